@@ -1,0 +1,129 @@
+"""Benchmarks (``navfn-smt bench``): speed goals live here, not in timed tests.
+
+* suite mode: plans every case of a suite per backend and mode, and reports cases per
+  second (planning only: loading files and comparing with golden outputs excluded);
+* size mode (``--size N ...``): plans on generated NxN maps, an open one (cost 50) and
+  a random-cost one (costs 50..253 from ``numpy.random.default_rng(12345)``), both with
+  a lethal border, from start (5, 5) to goal (N-6, N-6), and reports seconds per plan
+  and the planner's working memory.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .backends import get_backend
+from .errors import NavfnInputError
+from .maps.suite import discover, load_map
+from .report.tables import console, progress_bar
+
+SEED = 12345
+
+
+def generated_map(kind: str, n: int) -> np.ndarray:
+    """The benchmark maps: ``open`` (all cost 50) or ``random`` (50..253), lethal border."""
+    if kind == "open":
+        c = np.full((n, n), 50, dtype=np.uint8)
+    elif kind == "random":
+        c = np.random.default_rng(SEED).integers(50, 254, size=(n, n), dtype=np.uint8)
+    else:
+        raise ValueError(kind)
+    c[0, :] = c[-1, :] = c[:, 0] = c[:, -1] = 254
+    return c
+
+
+def _backends(name: str) -> list[str]:
+    return ["jit", "reference"] if name == "all" else [name]
+
+
+def _modes(name: str) -> list[str]:
+    return ["astar", "dijkstra"] if name == "both" else [name]
+
+
+def _write(path, doc) -> None:
+    from .cli import _atomic_write_text
+
+    _atomic_write_text(path, json.dumps(doc, indent=1))
+
+
+def bench_suite(suite: Path, backend: str, mode: str, json_path=None) -> list[dict]:
+    maps = [load_map(d, suite) for d in discover(suite)]
+    ncases = sum(len(m.cases) for m in maps)
+    rows = []
+    for b in _backends(backend):
+        for md in _modes(mode):
+            astar = md == "astar"
+            runners = [get_backend(b).prepare(m.costs) for m in maps]
+            if b == "jit":  # warm-up: compile or load the cache before timing
+                runners[0].run(tuple(maps[0].cases[0][:2]), tuple(maps[0].cases[0][2:]), astar)
+            elapsed = 0.0
+            with progress_bar(ncases, f"bench {b} {md}") as advance:
+                for m, r in zip(maps, runners):
+                    t0 = time.perf_counter()
+                    for sx, sy, gx, gy in m.cases.tolist():
+                        r.run((sx, sy), (gx, gy), astar)
+                    elapsed += time.perf_counter() - t0
+                    advance(len(m.cases))
+            rows.append({"backend": b, "mode": md, "cases": ncases, "seconds": round(elapsed, 3),
+                         "cases_per_second": round(ncases / elapsed, 1) if elapsed else None})
+    _table("bench: whole suite " + str(suite), rows, ["backend", "mode", "cases", "seconds", "cases_per_second"])
+    if json_path:
+        _write(json_path, {"suite": str(suite), "results": rows})
+    return rows
+
+
+def bench_sizes(sizes, backend: str, repeat: int, json_path=None, modes: str = "both") -> list[dict]:
+    for n in sizes:
+        if n < 12:
+            raise NavfnInputError(f"--size {n}: benchmark maps must be at least 12 cells a side")
+    if repeat < 1:
+        raise NavfnInputError("--repeat must be at least 1")
+    rows = []
+    for b in _backends(backend):
+        for n in sizes:
+            for kind in ("open", "random"):
+                costs = generated_map(kind, n)
+                runner = get_backend(b).prepare(costs)
+                for md in _modes(modes):
+                    astar = md == "astar"
+                    best = None
+                    res = None
+                    for _ in range(repeat if b == "jit" else 1):
+                        t0 = time.perf_counter()
+                        res = runner.run((5, 5), (n - 6, n - 6), astar)
+                        dt = time.perf_counter() - t0
+                        best = dt if best is None else min(best, dt)
+                    rows.append({
+                        "backend": b, "size": n, "map": kind, "mode": md,
+                        "seconds_per_plan": round(best, 4),
+                        "path_points": int(len(res.path)), "dropped_pushes": int(res.dropped),
+                        "work_bytes": _work_bytes(runner),
+                    })
+    _table("bench: generated maps, seconds per plan", rows,
+           ["backend", "size", "map", "mode", "seconds_per_plan", "path_points", "dropped_pushes", "work_bytes"])
+    if json_path:
+        _write(json_path, {"seed": SEED, "results": rows})
+    return rows
+
+
+def _work_bytes(runner) -> int:
+    """Bytes of the planner's own arrays (JIT backend); 0 where not measured."""
+    p = getattr(runner, "planner", None)
+    if p is None:
+        return 0
+    return int(sum(a.nbytes for a in vars(p).values() if isinstance(a, np.ndarray)))
+
+
+def _table(title, rows, cols) -> None:
+    from rich.table import Table
+
+    t = Table(title=title)
+    for c in cols:
+        t.add_column(c, justify="right" if c not in ("backend", "mode", "map") else "left")
+    for r in rows:
+        t.add_row(*(str(r[c]) for c in cols))
+    console.print(t)

@@ -1,0 +1,187 @@
+"""``navfn-smt``: one thin command layer over the parts of the toolkit.
+
+Every user error (bad map, missing file, cell off the map, ...) is printed as one line
+``navfn-smt: error: ...`` with exit status 2; disagreements found by ``difftest`` exit
+with status 1.  No traceback reaches the user for bad input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from pathlib import Path
+
+from .errors import NavfnInputError
+
+EXAMPLE_SUITE = Path(__file__).parent / "examples" / "suite"
+
+
+def _atomic_write_text(path: str, text: str) -> None:
+    """Write a whole file or nothing: a temporary file renamed into place."""
+    p = Path(path)
+    if p.parent and not p.parent.exists():
+        raise NavfnInputError(f"{path}: directory {p.parent} does not exist")
+    tmp = p.with_name(f".{p.name}.tmp{os.getpid()}")
+    try:
+        tmp.write_text(text)
+        os.replace(tmp, p)
+    except OSError as e:
+        tmp.unlink(missing_ok=True)
+        raise NavfnInputError(f"{path}: cannot write ({e.strerror})") from None
+
+
+# ----------------------------------------------------------------------------------- plan
+def _load_plan_map(args):
+    import numpy as np
+
+    from .maps.suite import load_map, read_map_bytes
+
+    m = Path(args.map)
+    if m.is_dir():
+        if args.size:
+            raise NavfnInputError(f"{m}: --size is for a raw map file; a map directory has its size in test.txt")
+        return load_map(m).costs
+    if not m.exists():
+        raise NavfnInputError(f"{m}: no such map file or directory")
+    if not args.size:
+        raise NavfnInputError(f"{m}: a raw map file needs --size W H")
+    w, h = args.size
+    if w < 3 or h < 3:
+        raise NavfnInputError(f"--size {w} {h}: NavFn needs at least 3x3 cells")
+    return np.asarray(read_map_bytes(m, w, h))
+
+
+def cmd_plan(args) -> int:
+    from .backends import get_backend
+
+    costs = _load_plan_map(args)
+    runner = get_backend(args.backend).prepare(costs)
+    res = runner.run(tuple(args.start), tuple(args.goal), astar=not args.dijkstra)
+    path = [[float(x), float(y)] for x, y in res.path]
+    if args.json:
+        out = {
+            "mode": "dijkstra" if args.dijkstra else "astar",
+            "backend": args.backend,
+            "start": list(args.start),
+            "goal": list(args.goal),
+            "start_reached": bool(res.start_reached),
+            "start_potential": float(res.start_potential),
+            "cycles": int(res.cycles),
+            "updates": int(res.updates),
+            "dropped_pushes": int(res.dropped),
+            "exit": res.exit.value if res.exit else None,
+            "path": path,
+        }
+        print(json.dumps(out))
+        return 0
+    print(f"mode {'dijkstra' if args.dijkstra else 'astar'}, start {tuple(args.start)}, goal {tuple(args.goal)}")
+    print(f"start reached: {res.start_reached}; start potential: {float(res.start_potential):.9g}; "
+          f"cycles: {res.cycles}; updates: {res.updates}; dropped pushes: {res.dropped}")
+    if path:
+        print(f"path: {len(path)} points")
+        for x, y in path:
+            print(f"  {x:.9g} {y:.9g}")
+    else:
+        print(f"no path (calcPath returned 0: {res.exit.value if res.exit else 'unknown'})")
+    return 0
+
+
+# ------------------------------------------------------------------------------- difftest
+def cmd_difftest(args) -> int:
+    from .difftest.runner import plan_tasks, run_suite, summarize
+    from .report.tables import difftest_table, progress_bar
+
+    suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
+    modes = ("astar", "dijkstra") if args.mode == "both" else (args.mode,)
+    if args.json:
+        _atomic_write_text(args.json, "")  # fail early on an unwritable path, before the run
+        Path(args.json).unlink()
+    tasks = plan_tasks(suite, modes, args.backend)
+    total = sum(t.hi - t.lo for t in tasks)
+    jobs = args.jobs if args.jobs else 1
+    with progress_bar(total, f"difftest {suite} ({args.backend})", enabled=not args.quiet) as advance:
+        outcomes = run_suite(suite, modes, args.backend, jobs, progress=lambda o: advance(o.cases), tasks=tasks)
+    summary = summarize(outcomes)
+    difftest_table(summary)
+    if args.json:
+        doc = {"suite": str(suite), "backend": args.backend, "modes": list(modes), **summary}
+        _atomic_write_text(args.json, json.dumps(doc, indent=1))
+    print(f"{summary['passed']} passed, {summary['failed']} failed")
+    return 0 if summary["failed"] == 0 else 1
+
+
+# ---------------------------------------------------------------------------------- bench
+def cmd_bench(args) -> int:
+    from .bench import bench_sizes, bench_suite
+
+    if args.size:
+        bench_sizes(args.size, args.backend, args.repeat, args.json)
+        return 0
+    suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
+    bench_suite(suite, args.backend, args.mode, args.json)
+    return 0
+
+
+# ---------------------------------------------------------------------------------- main
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="navfn-smt",
+        description="Executable specification of Nav2's NavFn planner, differential testing "
+        "against the C++ original, and SMT proofs of its invariants.",
+    )
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    pl = sub.add_parser("plan", help="plan on one map and print the path")
+    pl.add_argument("map", help="a suite map directory (test.txt gives the size) or a raw map file with --size")
+    pl.add_argument("--size", nargs=2, type=int, metavar=("W", "H"), help="size of a raw map file")
+    pl.add_argument("--start", nargs=2, type=int, required=True, metavar=("X", "Y"),
+                    help="NavFn's start cell (where the path begins)")
+    pl.add_argument("--goal", nargs=2, type=int, required=True, metavar=("X", "Y"),
+                    help="NavFn's goal cell (where propagation begins)")
+    pl.add_argument("--dijkstra", action="store_true", help="Dijkstra propagation (default: A*)")
+    pl.add_argument("--backend", choices=("jit", "reference"), default="jit")
+    pl.add_argument("--json", action="store_true", help="print a JSON object")
+    pl.set_defaults(func=cmd_plan)
+
+    dt = sub.add_parser("difftest", help="compare every case of a suite with its golden files")
+    dt.add_argument("suite", nargs="?", help="suite directory (default: the example suite shipped with the package)")
+    dt.add_argument("--mode", choices=("astar", "dijkstra", "both"), default="both")
+    dt.add_argument("--backend", choices=("jit", "reference"), default="jit")
+    dt.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
+    dt.add_argument("--json", metavar="FILE", help="write per-map counts and every disagreement as JSON")
+    dt.add_argument("--quiet", action="store_true", help="no progress bar")
+    dt.set_defaults(func=cmd_difftest)
+
+    be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
+    be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
+    be.add_argument("--size", nargs="+", type=int, metavar="N",
+                    help="instead of a suite, plan on generated NxN open and random-cost maps")
+    be.add_argument("--backend", choices=("jit", "reference", "all"), default="all")
+    be.add_argument("--mode", choices=("astar", "dijkstra", "both"), default="both")
+    be.add_argument("--repeat", type=int, default=3, help="plans per map and mode with --size (best is kept)")
+    be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
+    be.set_defaults(func=cmd_bench)
+    return p
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if getattr(args, "jobs", 1) is not None and getattr(args, "jobs", 1) < 1:
+        parser.error("--jobs must be at least 1")
+    try:
+        return args.func(args)
+    except NavfnInputError as e:
+        print(f"navfn-smt: error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("navfn-smt: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,166 @@
+"""The test-suite format of ``navfn-suite`` (see the suite's README.md).
+
+A map directory holds ``test.txt`` (``W H`` / map file name / blank / one case
+``sx sy gx gy`` a line; lines starting with ``-1`` are comments), the map bytes
+(NavFn-internal costs, row-major) and golden files ``golden_astar.npz`` and
+``golden_dijkstra.npz``.  A suite is any directory tree of map directories; a map's
+category is the first directory below the suite root.
+"""
+
+from __future__ import annotations
+
+import os
+import zipfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+
+from ..errors import NavfnInputError
+
+MODES = ("astar", "dijkstra")
+GOLDEN_FIELDS = (
+    "width",
+    "height",
+    "cases",
+    "start_reached",
+    "start_potential",
+    "path_offsets",
+    "path",
+    "potential_sha256",
+    "trace_sha256",
+    "cycles",
+    "updates",
+    "full_index",
+    "full_potential",
+    "full_trace_offsets",
+    "full_trace",
+)
+
+
+@dataclass
+class SuiteMap:
+    directory: Path
+    name: str
+    category: str
+    width: int
+    height: int
+    map_file: str
+    costs: np.ndarray  # (height, width) uint8
+    cases: np.ndarray  # (N, 4) int32: sx sy gx gy
+
+    def golden_path(self, mode: str) -> Path:
+        return self.directory / f"golden_{mode}.npz"
+
+
+def parse_test_txt(path: Path) -> tuple[int, int, str, np.ndarray]:
+    """Read a ``test.txt``; returns (width, height, map file name, cases)."""
+    try:
+        text = Path(path).read_text(encoding="ascii")
+    except FileNotFoundError:
+        raise NavfnInputError(f"{path}: no such file") from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise NavfnInputError(f"{path}: unreadable test file ({e.__class__.__name__})") from None
+    lines = text.splitlines()
+    if len(lines) < 2:
+        raise NavfnInputError(f"{path}: expected 'W H' and a map file name on the first two lines")
+    head = lines[0].split()
+    try:
+        width, height = int(head[0]), int(head[1])
+        if len(head) != 2:
+            raise ValueError
+    except (ValueError, IndexError):
+        raise NavfnInputError(f"{path}:1: expected 'W H', got {lines[0]!r}") from None
+    if width < 3 or height < 3:
+        raise NavfnInputError(f"{path}:1: map size {width}x{height} is below NavFn's 3x3 minimum")
+    map_file = lines[1].strip()
+    if not map_file or os.path.basename(map_file) != map_file:
+        raise NavfnInputError(f"{path}:2: expected a map file name in the same directory, got {lines[1]!r}")
+    cases = []
+    for no, line in enumerate(lines[2:], start=3):
+        s = line.strip()
+        if not s or s.startswith("-1"):
+            continue
+        parts = s.split()
+        try:
+            vals = [int(p) for p in parts]
+            if len(vals) != 4:
+                raise ValueError
+        except ValueError:
+            raise NavfnInputError(f"{path}:{no}: expected a case 'sx sy gx gy', got {line!r}") from None
+        sx, sy, gx, gy = vals
+        for what, x, y in (("start", sx, sy), ("goal", gx, gy)):
+            if not (0 <= x < width and 0 <= y < height):
+                raise NavfnInputError(f"{path}:{no}: {what} ({x}, {y}) is off the {width}x{height} map")
+        cases.append(vals)
+    return width, height, map_file, np.array(cases, dtype=np.int32).reshape(-1, 4)
+
+
+def read_map_bytes(path: Path, width: int, height: int) -> np.ndarray:
+    """Raw map bytes of exactly ``width * height`` cells, as a (height, width) uint8 array."""
+    try:
+        data = Path(path).read_bytes()
+    except FileNotFoundError:
+        raise NavfnInputError(f"{path}: no such map file") from None
+    except OSError as e:
+        raise NavfnInputError(f"{path}: unreadable map file ({e.strerror})") from None
+    if len(data) != width * height:
+        raise NavfnInputError(
+            f"{path}: map has {len(data)} bytes, expected {width}x{height} = {width * height}"
+        )
+    return np.frombuffer(data, dtype=np.uint8).reshape(height, width).copy()
+
+
+def load_map(directory, root: Optional[Path] = None) -> SuiteMap:
+    d = Path(directory)
+    if not d.is_dir():
+        raise NavfnInputError(f"{d}: not a map directory")
+    width, height, map_file, cases = parse_test_txt(d / "test.txt")
+    costs = read_map_bytes(d / map_file, width, height)
+    category = d.parent.name
+    if root is not None:
+        rel = d.resolve().relative_to(Path(root).resolve())
+        category = rel.parts[0] if len(rel.parts) > 1 else "."
+    return SuiteMap(d, d.name, category, width, height, map_file, costs, cases)
+
+
+def discover(root) -> list[Path]:
+    """All map directories (those holding a ``test.txt``) under ``root``, sorted."""
+    r = Path(root)
+    if not r.exists():
+        raise NavfnInputError(f"{r}: no such suite directory")
+    if not r.is_dir():
+        raise NavfnInputError(f"{r}: a suite must be a directory")
+    found = sorted(p.parent for p in r.rglob("test.txt"))
+    if not found:
+        raise NavfnInputError(f"{r}: no map directories (no test.txt) found")
+    return found
+
+
+def load_golden(path: Path, smap: Optional[SuiteMap] = None) -> dict:
+    """All fields of a golden npz, loaded eagerly; checked against the map if given."""
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            missing = [f for f in GOLDEN_FIELDS if f not in z.files]
+            if missing:
+                raise NavfnInputError(f"{path}: golden file lacks {', '.join(missing)}")
+            g = {f: z[f] for f in GOLDEN_FIELDS}
+    except FileNotFoundError:
+        raise NavfnInputError(f"{path}: no such golden file") from None
+    except (OSError, ValueError, zipfile.BadZipFile, EOFError) as e:
+        raise NavfnInputError(f"{path}: unreadable golden file ({e})") from None
+    if smap is not None:
+        if int(g["width"]) != smap.width or int(g["height"]) != smap.height:
+            raise NavfnInputError(
+                f"{path}: golden size {int(g['width'])}x{int(g['height'])} does not match test.txt's "
+                f"{smap.width}x{smap.height}"
+            )
+        if not np.array_equal(g["cases"], smap.cases):
+            raise NavfnInputError(f"{path}: golden cases differ from test.txt")
+    return g
+
+
+def golden_path_of(g: dict, i: int) -> np.ndarray:
+    off = g["path_offsets"]
+    return g["path"][off[i] : off[i + 1]]

@@ -1,0 +1,105 @@
+"""Path extraction: ``NavFn::calcPath(n)`` and ``gradCell``.
+
+Follows the interpolated gradient of the potential from the start cell down to the
+goal in steps of ``pathStep`` (0.5), falling back to the lowest of the eight
+neighbouring cells near unreached cells or when the path oscillates.  Every exit of
+the C++ is an :class:`ExtractionExit`; only ``NEAR_GOAL`` returns a path (C++ returns
+its length; every other exit returns 0 and the caller sees no path).
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+from . import kernels as K
+from .constants import PATH_STEP
+from .numeric import CONCRETE as D
+
+
+class ExtractionExit(enum.Enum):
+    NEAR_GOAL = "near_goal"  # success: the goal point was appended
+    OUT_OF_BOUNDS = "out_of_bounds"  # stc in the first or last row
+    HIGH_POTENTIAL = "high_potential"  # grid-following landed on an unreached cell
+    ZERO_GRADIENT = "zero_gradient"  # interpolated gradient exactly (0, 0)
+    EXHAUSTED = "exhausted"  # n iterations without reaching the goal
+
+
+@dataclass
+class Extraction:
+    path: list  # [(x, y), ...] float32 values, empty unless exit is NEAR_GOAL
+    exit: ExtractionExit
+    points_written: int  # npath at the exit (C++ leaves them in pathx/pathy)
+
+
+class UndefinedBehaviour(Exception):
+    """The C++ would read outside its arrays here; the spec refuses to guess."""
+
+
+def calc_path(
+    potential: list,
+    nx: int,
+    ny: int,
+    start: tuple[int, int],
+    goal: tuple[int, int],
+    n: int,
+    path_step: float = PATH_STEP,
+) -> Extraction:
+    """``calcPath(n)`` on a propagated potential (flat list of float32 values)."""
+    ns = nx * ny
+    pot = potential
+    gradx = [0.0] * ns
+    grady = [0.0] * ns
+    step = D.f32const(path_step)
+    stc = start[1] * nx + start[0]
+    dx = D.f32const(0.0)
+    dy = D.f32const(0.0)
+    xs: list = []
+    ys: list = []
+
+    def grad(m: int) -> None:
+        # gradCell(m): cached when gradx + grady > 0; rows 0 and ny-1 are left alone
+        if K.grad_cached(D, gradx[m], grady[m]):
+            return
+        if m < nx or m > ns - nx:
+            return
+        gradx[m], grady[m] = K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1], pot[m - nx], pot[m + nx])
+
+    for _ in range(n):
+        near = K.nearest_cell(D, stc, dx, dy, nx, ns)
+        if K.near_goal(D, pot[near]):
+            xs.append(D.int_to_f32(goal[0]))
+            ys.append(D.int_to_f32(goal[1]))
+            return Extraction(list(zip(xs, ys)), ExtractionExit.NEAR_GOAL, len(xs))
+        if stc < nx or stc > ns - nx:
+            return Extraction([], ExtractionExit.OUT_OF_BOUNDS, len(xs))
+        if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
+            # (0, 1), (nx-1, ny-2) and (0, ny-1) pass the bound test, but their eight-cell
+            # ring reaches one cell outside potarr
+            raise UndefinedBehaviour(
+                f"calcPath reads outside the potential array around cell {stc}"
+            )
+        px, py = K.path_point(D, stc, nx, dx, dy)
+        xs.append(px)
+        ys.append(py)
+        oscillation = len(xs) > 2 and xs[-1] == xs[-3] and ys[-1] == ys[-3]
+        up, down = stc - nx, stc + nx
+        ring = (up - 1, up, up + 1, stc - 1, stc + 1, down - 1, down, down + 1)
+        if oscillation or K.unreached(D, pot[stc]) or any(K.unreached(D, pot[m]) for m in ring):
+            best = K.lowest_of_eight(D, pot[stc], [pot[m] for m in ring])
+            if best >= 0:
+                stc = ring[best]
+            dx = D.f32const(0.0)
+            dy = D.f32const(0.0)
+            if K.unreached(D, pot[stc]):
+                return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs))
+        else:
+            for m in (stc, stc + 1, down, down + 1):
+                grad(m)
+            x = K.interpolate_gradient(D, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
+            y = K.interpolate_gradient(D, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
+            if x == 0.0 and y == 0.0:
+                return Extraction([], ExtractionExit.ZERO_GRADIENT, len(xs))
+            dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
+            stc += cdx + cdy * nx
+    return Extraction([], ExtractionExit.EXHAUSTED, len(xs))

@@ -1,0 +1,106 @@
+"""One NavFn planning call, exactly as Nav2 (and the golden suite) runs it.
+
+For every case, on a fresh copy of the costs: ``setGoal``, ``setStart``,
+``setupNavFn(true)``; then A* (``priInc = 2 * COST_NEUTRAL``,
+``propNavFnAstar(max(nx*ny/20, nx+ny))``) or Dijkstra
+(``propNavFnDijkstra(max(nx*ny/20, nx+ny), atStart=true)``); then ``calcPath(4 * nx)``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from ..errors import NavfnInputError
+from .costs import add_border
+from .extraction import ExtractionExit, calc_path
+from .propagation import TraceHook, cycle_limit, propagate, setup
+
+
+@dataclass
+class PlanResult:
+    start_reached: bool
+    start_potential: np.float32
+    path: np.ndarray  # (M, 2) float32, empty when calcPath returned 0
+    potential: np.ndarray  # (ny, nx) float32 after propagation
+    trace: np.ndarray  # int32 [n0, c..., n1, c...]
+    cycles: int
+    updates: int
+    dropped: int = 0
+    exit: Optional[ExtractionExit] = None
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def potential_sha256(self) -> bytes:
+        return sha256_f32(self.potential)
+
+    @property
+    def trace_sha256(self) -> bytes:
+        return sha256_i32(self.trace)
+
+
+def sha256_f32(a: np.ndarray) -> bytes:
+    return hashlib.sha256(np.ascontiguousarray(a, dtype="<f4").tobytes()).digest()
+
+
+def sha256_i32(a: np.ndarray) -> bytes:
+    return hashlib.sha256(np.ascontiguousarray(a, dtype="<i4").tobytes()).digest()
+
+
+def check_inputs(costs: np.ndarray, start, goal) -> np.ndarray:
+    """Validate a (height, width) cost array and two cells; returns the array as uint8."""
+    arr = np.asarray(costs)
+    if arr.ndim != 2:
+        raise NavfnInputError(f"the cost map must be two-dimensional, got shape {arr.shape}")
+    ny, nx = arr.shape
+    if nx < 3 or ny < 3:
+        raise NavfnInputError(f"the map is {nx}x{ny}; NavFn needs at least 3x3 cells")
+    if arr.dtype != np.uint8:
+        if not np.issubdtype(arr.dtype, np.integer) or arr.min() < 0 or arr.max() > 255:
+            raise NavfnInputError("costs must be integers 0..255")
+        arr = arr.astype(np.uint8)
+    for name, cell in (("start", start), ("goal", goal)):
+        x, y = int(cell[0]), int(cell[1])
+        if not (0 <= x < nx and 0 <= y < ny):
+            raise NavfnInputError(f"{name} ({x}, {y}) is off the {nx}x{ny} map")
+    return arr
+
+
+def plan(
+    costs: np.ndarray,
+    start: tuple[int, int],
+    goal: tuple[int, int],
+    astar: bool = True,
+    trace_hook: Optional[TraceHook] = None,
+    cycles: Optional[int] = None,
+    path_cycles: Optional[int] = None,
+) -> PlanResult:
+    """Plan on NavFn-internal costs (a (height, width) uint8 array) with the reference spec.
+
+    ``start`` is NavFn's start (where extraction begins), ``goal`` where propagation begins.
+    """
+    arr = check_inputs(costs, start, goal)
+    ny, nx = arr.shape
+    start = (int(start[0]), int(start[1]))
+    goal = (int(goal[0]), int(goal[1]))
+    cost_list = add_border(arr).ravel().tolist()
+    st = setup(cost_list, nx, ny, goal)
+    limit = cycle_limit(nx, ny) if cycles is None else cycles
+    reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook)
+    ext = calc_path(st.potential, nx, ny, start, goal, 4 * nx if path_cycles is None else path_cycles)
+    pot = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
+    path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
+    return PlanResult(
+        start_reached=bool(reached),
+        start_potential=pot[start[1], start[0]],
+        path=path,
+        potential=pot,
+        trace=np.array(st.trace, dtype=np.int32),
+        cycles=st.cycles,
+        updates=st.updates,
+        dropped=st.dropped,
+        exit=ext.exit,
+    )

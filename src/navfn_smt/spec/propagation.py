@@ -1,0 +1,171 @@
+"""Potential propagation: ``setupNavFn``, ``propNavFnDijkstra`` and ``propNavFnAstar``.
+
+The reference implementation: plain Python loops around the kernels of
+:mod:`.kernels`, evaluated in the concrete domain.  State is kept in flat lists indexed
+by ``n = y * nx + x`` like the C++ arrays.
+
+Priority buffers are three bounded FIFO lists (capacity PRIORITYBUFSIZE); a push to a
+full buffer is silently dropped, as in the C++ macros.  ``curT`` is a float.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+from . import kernels as K
+from .constants import COST_OBS, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
+from .numeric import CONCRETE as D
+
+TraceHook = Callable[[int, list], None]
+
+# Tables built by the kernels themselves (same code, evaluated once per cost value).
+_HF = [D.int_to_f32(c) for c in range(256)]
+_EDGE = [K.edge_weight(D, _HF[c]) for c in range(256)]
+_POT_HIGH = D.f32const(POT_HIGH)
+
+
+def cycle_limit(nx: int, ny: int) -> int:
+    """``std::max(nx * ny / 20, nx + ny)`` (integer division), the cycle budget Nav2 uses."""
+    return max((nx * ny) // 20, nx + ny)
+
+
+@dataclass
+class PropagationState:
+    """The arrays and counters of one propagation; what the trace and hashes are read from."""
+
+    nx: int
+    ny: int
+    costs: list  # ints 0..255, border already lethal
+    potential: list  # float32 values
+    pending: list
+    cur_t: float
+    cur: list = field(default_factory=list)
+    nxt: list = field(default_factory=list)
+    over: list = field(default_factory=list)
+    cycles: int = 0  # cycles that processed at least one cell
+    updates: int = 0
+    dropped: int = 0  # pushes rejected because the buffer was full
+    trace: list = field(default_factory=list)  # [n0, c, c, ..., n1, c, ...]
+
+    @property
+    def ns(self) -> int:
+        return self.nx * self.ny
+
+
+def _push(st: PropagationState, buf: list, n: int) -> None:
+    """The ``push_cur/push_next/push_over`` macros."""
+    if 0 <= n < st.nx * st.ny and not st.pending[n] and st.costs[n] < COST_OBS:
+        if len(buf) < PRIORITYBUFSIZE:
+            buf.append(n)
+            st.pending[n] = True
+        else:
+            st.dropped += 1
+
+
+def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int]) -> PropagationState:
+    """``setupNavFn(true)``: potentials to POT_HIGH, buffers empty, ``curT = COST_OBS``,
+    then ``initCost(goal, 0)``: the goal gets potential 0 and its four neighbours are
+    pushed onto the current buffer (right, left, up, down)."""
+    ns = nx * ny
+    st = PropagationState(
+        nx=nx,
+        ny=ny,
+        costs=costs_with_border,
+        potential=[_POT_HIGH] * ns,
+        pending=[False] * ns,
+        cur_t=D.f32const(COST_OBS),
+    )
+    k = goal[0] + goal[1] * nx
+    st.potential[k] = D.f32const(0.0)
+    for n in (k + 1, k - 1, k - nx, k + nx):
+        _push(st, st.cur, n)
+    return st
+
+
+def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, int]]) -> None:
+    """``updateCell(n)`` (Dijkstra) or ``updateCellAstar(n)`` when ``astar_start`` is given."""
+    st.updates += 1
+    nx = st.nx
+    pot = st.potential
+    cost = st.costs[n]
+    if not K.is_passable(D, cost):
+        return
+    l, r, u, d = pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx]
+    new = K.planar_wave(D, l, r, u, d, _HF[cost])
+    if not D.lt(new, pot[n]):
+        return
+    pot[n] = new
+    key = new
+    if astar_start is not None:
+        x, y = n % nx, n // nx
+        key = D.add(new, _heuristic(x - astar_start[0], y - astar_start[1]))
+    buf = st.nxt if K.to_low_buffer(D, key, st.cur_t) else st.over
+    costs = st.costs
+    for m, pm in ((n - 1, l), (n + 1, r), (n - nx, u), (n + nx, d)):
+        if K.push_wanted(D, pm, key, _EDGE[costs[m]]):
+            _push(st, buf, m)
+
+
+_HEURISTIC_CACHE: dict = {}
+
+
+def _heuristic(ddx: int, ddy: int) -> float:
+    h = _HEURISTIC_CACHE.get((ddx, ddy))
+    if h is None:
+        h = _HEURISTIC_CACHE[(ddx, ddy)] = K.astar_heuristic(D, ddx, ddy)
+    return h
+
+
+def propagate(
+    st: PropagationState,
+    start: tuple[int, int],
+    goal: tuple[int, int],
+    astar: bool,
+    cycles: int,
+    at_start: bool = True,
+    pri_inc: int = PRI_INC,
+    trace_hook: Optional[TraceHook] = None,
+    record_trace: bool = True,
+) -> bool:
+    """Run ``propNavFnAstar(cycles)`` or ``propNavFnDijkstra(cycles, atStart)``.
+
+    Returns what the C++ returns: for A*, whether the start cell got a finite
+    potential; for Dijkstra, ``cycle < cycles`` (true also when the buffers ran dry).
+    ``trace_hook(cycle, cells)`` is called with the current buffer's contents, in
+    processing order, for every cycle that processes cells.
+    """
+    nx = st.nx
+    start_cell = start[1] * nx + start[0]
+    astar_start = start if astar else None
+    if astar:
+        st.cur_t = D.add(_heuristic(goal[0] - start[0], goal[1] - start[1]), st.cur_t)
+    inc = D.int_to_f32(pri_inc)
+    check_start = astar or at_start
+    cycle = 0
+    while cycle < cycles:
+        if not st.cur and not st.nxt:
+            break
+        cells = st.cur
+        st.cycles += 1
+        if record_trace:
+            st.trace.append(len(cells))
+            st.trace.extend(cells)
+        if trace_hook is not None:
+            trace_hook(cycle, list(cells))
+        pending = st.pending
+        for c in cells:
+            pending[c] = False
+        for c in cells:
+            _update_cell(st, c, astar_start)
+        # swap: the next buffer becomes current; an empty one pulls in the overflow
+        st.cur, st.nxt = st.nxt, []
+        if not st.cur:
+            st.cur_t = D.add(st.cur_t, inc)
+            st.cur, st.over = st.over, []
+        if check_start and D.lt(st.potential[start_cell], _POT_HIGH):
+            break
+        cycle += 1
+    if astar:
+        return D.lt(st.potential[start_cell], _POT_HIGH)
+    return cycle < cycles
