@@ -1,0 +1,161 @@
+"""The command line: results on the example suite, and bad input handled cleanly.
+
+Bad input must give exit status 2, exactly one line on stderr naming the problem,
+no traceback, and no partially written output file.
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from navfn_smt.cli import EXAMPLE_SUITE, main
+
+FREE = EXAMPLE_SUITE / "free" / "3x3_free"
+FREE_MAP = (FREE / "test.txt").read_text().splitlines()[1].strip()  # its map file name
+
+
+def run(*args, cwd=None):
+    p = subprocess.run([sys.executable, "-m", "navfn_smt", *map(str, args)], capture_output=True, text=True,
+                       cwd=cwd, env={**os.environ, "COLUMNS": "200"})
+    return p.returncode, p.stdout, p.stderr
+
+
+def assert_clean_error(rc, err, *words):
+    assert rc == 2, err
+    assert "Traceback" not in err
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert len(lines) == 1, err
+    for w in words:
+        assert w in lines[0], lines[0]
+
+
+def test_plan_json_matches_golden():
+    rc, out, err = run("plan", FREE, "--start", 1, 1, "--goal", 1, 3, "--json")
+    assert rc == 0, err
+    doc = json.loads(out)
+    g = np.load(FREE / "golden_astar.npz")
+    i = [tuple(c) for c in g["cases"].tolist()].index((1, 1, 1, 3))
+    gp = g["path"][g["path_offsets"][i]: g["path_offsets"][i + 1]]
+    assert np.array_equal(np.array(doc["path"], dtype=np.float32), gp)
+    assert np.float32(doc["start_potential"]) == g["start_potential"][i]
+    assert doc["cycles"] == int(g["cycles"][i]) and doc["start_reached"] == bool(g["start_reached"][i])
+
+
+def test_plan_raw_map_with_size_and_dijkstra(tmp_path):
+    raw = tmp_path / "m.bin"
+    shutil.copy(FREE / FREE_MAP, raw)
+    rc, out, err = run("plan", raw, "--size", 5, 5, "--start", 3, 3, "--goal", 1, 1, "--dijkstra", "--json")
+    assert rc == 0, err
+    doc = json.loads(out)
+    assert doc["mode"] == "dijkstra" and doc["path"][0] == [3.0, 3.0] and doc["path"][-1] == [1.0, 1.0]
+
+
+def test_plan_text_output_reports_no_path():
+    rc, out, err = run("plan", EXAMPLE_SUITE / "split" / "3x3_wall_h", "--start", 1, 1, "--goal", 1, 3)
+    assert rc == 0, err
+    assert "no path" in out
+
+
+def test_difftest_default_example_and_json(tmp_path):
+    report = tmp_path / "r.json"
+    rc, out, err = run("difftest", "--mode", "astar", "--json", report)
+    assert rc == 0, err
+    assert out.strip().splitlines()[-1] == "2198 passed, 0 failed"
+    doc = json.loads(report.read_text())
+    assert doc["failed"] == 0 and doc["passed"] == 2198 and len(doc["maps"]) == 13
+
+
+def test_difftest_disagreement_exits_1(tmp_path):
+    suite = tmp_path / "s"
+    shutil.copytree(FREE, suite / "free" / "3x3_free")
+    g = dict(np.load(suite / "free" / "3x3_free" / "golden_dijkstra.npz"))
+    g["cycles"] = g["cycles"] + (np.arange(len(g["cycles"])) == 7)
+    np.savez(suite / "free" / "3x3_free" / "golden_dijkstra.npz", **g)
+    report = tmp_path / "r.json"
+    rc, out, err = run("difftest", suite, "--mode", "dijkstra", "--json", report)
+    assert rc == 1
+    assert out.strip().splitlines()[-1] == "80 passed, 1 failed"
+    d = json.loads(report.read_text())["disagreements"]
+    assert [(x["case_index"], x["field"]) for x in d] == [(7, "cycles")]
+
+
+def test_wrong_map_size(tmp_path):
+    raw = tmp_path / "m.bin"
+    raw.write_bytes(bytes(24))
+    rc, out, err = run("plan", raw, "--size", 5, 5, "--start", 1, 1, "--goal", 2, 2)
+    assert_clean_error(rc, err, "24 bytes", "5x5")
+
+
+def test_missing_map():
+    rc, out, err = run("plan", "/nonexistent/map.bin", "--size", 5, 5, "--start", 1, 1, "--goal", 2, 2)
+    assert_clean_error(rc, err, "no such")
+
+
+def test_raw_map_without_size(tmp_path):
+    raw = tmp_path / "m.bin"
+    raw.write_bytes(bytes(25))
+    rc, out, err = run("plan", raw, "--start", 1, 1, "--goal", 2, 2)
+    assert_clean_error(rc, err, "--size")
+
+
+@pytest.mark.parametrize("which,cell", [("--start", (5, 1)), ("--goal", (1, -1)), ("--start", (0, 99))])
+def test_cell_off_the_map(which, cell):
+    other = "--goal" if which == "--start" else "--start"
+    rc, out, err = run("plan", FREE, which, *cell, other, 1, 1)
+    assert_clean_error(rc, err, which.strip("-"), "off the 5x5 map")
+
+
+def test_not_a_map_directory(tmp_path):
+    d = tmp_path / "bad"
+    d.mkdir()
+    (d / "test.txt").write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00garbage")
+    rc, out, err = run("plan", d, "--start", 1, 1, "--goal", 2, 2)
+    assert_clean_error(rc, err, "test.txt")
+
+
+def test_malformed_case_line(tmp_path):
+    d = tmp_path / "suite" / "c" / "m"
+    shutil.copytree(FREE, d)
+    (d / "test.txt").write_text("5 5\nmap.bin\n\n1 1 2\n")
+    rc, out, err = run("difftest", tmp_path / "suite")
+    assert_clean_error(rc, err, "test.txt:4", "sx sy gx gy")
+
+
+def test_truncated_map_bytes_in_suite(tmp_path):
+    d = tmp_path / "suite" / "c" / "m"
+    shutil.copytree(FREE, d)
+    (d / FREE_MAP).write_bytes(bytes(7))
+    rc, out, err = run("difftest", tmp_path / "suite")
+    assert_clean_error(rc, err, "7 bytes")
+
+
+def test_corrupt_golden_file(tmp_path):
+    d = tmp_path / "suite" / "c" / "m"
+    shutil.copytree(FREE, d)
+    (d / "golden_astar.npz").write_bytes(b"not a zip")
+    report = tmp_path / "r.json"
+    rc, out, err = run("difftest", tmp_path / "suite", "--json", report)
+    assert_clean_error(rc, err, "golden_astar.npz")
+    assert not report.exists()  # nothing half-written
+
+
+def test_missing_suite_and_empty_suite(tmp_path):
+    rc, out, err = run("difftest", tmp_path / "nope")
+    assert_clean_error(rc, err, "no such suite")
+    rc, out, err = run("difftest", tmp_path)
+    assert_clean_error(rc, err, "no map directories")
+
+
+def test_unwritable_json_report(tmp_path):
+    rc, out, err = run("difftest", "--json", tmp_path / "missing-dir" / "r.json")
+    assert_clean_error(rc, err, "does not exist")
+
+
+def test_main_returns_status_in_process(capsys):
+    assert main(["plan", str(FREE), "--start", "9", "9", "--goal", "1", "1"]) == 2
+    assert "off the 5x5 map" in capsys.readouterr().err
