@@ -5,7 +5,7 @@
 * size mode (``--size N ...``): plans on generated NxN maps, an open one (cost 50) and
   a random-cost one (costs 50..253 from ``numpy.random.default_rng(12345)``), both with
   a lethal border, from start (5, 5) to goal (N-6, N-6), and reports seconds per plan
-  and the planner's working memory.
+  and the planner's working memory (its arrays; no trace is recorded when timing).
 """
 
 from __future__ import annotations
@@ -65,12 +65,13 @@ def bench_suite(suite: Path, backend: str, mode: str, json_path=None) -> list[di
                 for m, r in zip(maps, runners):
                     t0 = time.perf_counter()
                     for sx, sy, gx, gy in m.cases.tolist():
-                        r.run((sx, sy), (gx, gy), astar)
+                        r.run((sx, sy), (gx, gy), astar, trace=False)
                     elapsed += time.perf_counter() - t0
                     advance(len(m.cases))
             rows.append({"backend": b, "mode": md, "cases": ncases, "seconds": round(elapsed, 3),
                          "cases_per_second": round(ncases / elapsed, 1) if elapsed else None})
-    _table("bench: whole suite " + str(suite), rows, ["backend", "mode", "cases", "seconds", "cases_per_second"])
+    _table("bench: whole suite " + str(suite), rows, ["backend", "mode", "cases", "seconds", "cases_per_second"],
+           headers={"cases_per_second": "cases/s"})
     if json_path:
         _write(json_path, {"suite": str(suite), "results": rows})
     return rows
@@ -84,6 +85,8 @@ def bench_sizes(sizes, backend: str, repeat: int, json_path=None, modes: str = "
         raise NavfnInputError("--repeat must be at least 1")
     rows = []
     for b in _backends(backend):
+        if b == "jit":  # warm-up: load the compiled code before timing
+            get_backend(b).prepare(generated_map("open", 12)).run((5, 5), (6, 6), True, trace=False)
         for n in sizes:
             for kind in ("open", "random"):
                 costs = generated_map(kind, n)
@@ -94,7 +97,7 @@ def bench_sizes(sizes, backend: str, repeat: int, json_path=None, modes: str = "
                     res = None
                     for _ in range(repeat if b == "jit" else 1):
                         t0 = time.perf_counter()
-                        res = runner.run((5, 5), (n - 6, n - 6), astar)
+                        res = runner.run((5, 5), (n - 6, n - 6), astar, trace=False)
                         dt = time.perf_counter() - t0
                         best = dt if best is None else min(best, dt)
                     rows.append({
@@ -104,26 +107,31 @@ def bench_sizes(sizes, backend: str, repeat: int, json_path=None, modes: str = "
                         "work_bytes": _work_bytes(runner),
                     })
     _table("bench: generated maps, seconds per plan", rows,
-           ["backend", "size", "map", "mode", "seconds_per_plan", "path_points", "dropped_pushes", "work_bytes"])
+           ["backend", "size", "map", "mode", "seconds_per_plan", "path_points", "dropped_pushes", "work_bytes"],
+           headers={"seconds_per_plan": "s/plan", "path_points": "points", "dropped_pushes": "dropped",
+                    "work_bytes": "work MiB"},
+           fmt={"work_bytes": lambda b: f"{b / 2**20:.1f}"})
     if json_path:
         _write(json_path, {"seed": SEED, "results": rows})
     return rows
 
 
 def _work_bytes(runner) -> int:
-    """Bytes of the planner's own arrays (JIT backend); 0 where not measured."""
+    """Bytes of the planner's own arrays (JIT backend, trace off); 0 where not measured."""
     p = getattr(runner, "planner", None)
     if p is None:
         return 0
     return int(sum(a.nbytes for a in vars(p).values() if isinstance(a, np.ndarray)))
 
 
-def _table(title, rows, cols) -> None:
+def _table(title, rows, cols, headers=None, fmt=None) -> None:
     from rich.table import Table
 
+    headers = headers or {}
+    fmt = fmt or {}
     t = Table(title=title)
     for c in cols:
-        t.add_column(c, justify="right" if c not in ("backend", "mode", "map") else "left")
+        t.add_column(headers.get(c, c), justify="right" if c not in ("backend", "mode", "map") else "left")
     for r in rows:
-        t.add_row(*(str(r[c]) for c in cols))
+        t.add_row(*(fmt.get(c, str)(r[c]) for c in cols))
     console.print(t)

@@ -58,7 +58,7 @@ def cmd_plan(args) -> int:
 
     costs = _load_plan_map(args)
     runner = get_backend(args.backend).prepare(costs)
-    res = runner.run(tuple(args.start), tuple(args.goal), astar=not args.dijkstra)
+    res = runner.run(tuple(args.start), tuple(args.goal), astar=not args.dijkstra, trace=False)
     path = [[float(x), float(y)] for x, y in res.path]
     if args.json:
         out = {

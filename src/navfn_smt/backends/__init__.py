@@ -1,8 +1,8 @@
 """Planner backends with one interface: the reference spec and the numba JIT.
 
 ``get_backend(name).prepare(costs)`` returns a runner for one map (NavFn-internal
-costs, a (height, width) uint8 array); ``runner.run(start, goal, astar)`` returns a
-:class:`~navfn_smt.spec.planner.PlanResult`.  A JIT result's arrays are views into the
+costs, a (height, width) uint8 array); ``runner.run(start, goal, astar, trace=True)`` returns a
+:class:`~navfn_smt.spec.planner.PlanResult` (its ``trace`` is None when ``trace`` is False).  A JIT result's arrays are views into the
 runner's work buffers and stay valid until its next ``run``.
 """
 
@@ -23,8 +23,8 @@ class ReferenceRunner:
     def __init__(self, costs: np.ndarray):
         self.costs = costs
 
-    def run(self, start, goal, astar: bool) -> PlanResult:
-        return plan(self.costs, start, goal, astar=astar)
+    def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
+        return plan(self.costs, start, goal, astar=astar, record_trace=trace)
 
 
 class ReferenceBackend:
@@ -43,14 +43,14 @@ class JitRunner:
         self.planner = JitPlanner(add_border(self.costs))
         self.cycles = cycle_limit(self.nx, self.ny)
 
-    def run(self, start, goal, astar: bool) -> PlanResult:
+    def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
         from .jit import EXIT_NAMES, EXIT_UB
 
         check_inputs(self.costs, start, goal)
         p = self.planner
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
-        reached, code, npath = p.run(start, goal, astar, self.cycles, 4 * self.nx)
+        reached, code, npath = p.run(start, goal, astar, self.cycles, 4 * self.nx, trace)
         if code == EXIT_UB:
             from ..spec.extraction import UndefinedBehaviour
 
@@ -62,7 +62,7 @@ class JitRunner:
             start_potential=pot[start[1], start[0]],
             path=path,
             potential=pot,
-            trace=p.trace[: p.counters[3]],
+            trace=p.trace[: p.counters[3]] if trace else None,
             cycles=int(p.counters[0]),
             updates=int(p.counters[1]),
             dropped=int(p.counters[2]),

@@ -352,18 +352,21 @@ class JitPlanner:
         self.gradx = np.zeros(ns, np.float32)
         self.grady = np.zeros(ns, np.float32)
         self.trace = np.empty(max(4 * ns, 1 << 12), np.int32)
+        self.no_trace = np.empty(0, np.int32)
         self.counters = np.zeros(4, np.int64)
         self.path = np.empty((4 * self.nx + 1, 2), np.float32)
 
-    def run(self, start, goal, astar: bool, cycles: int, path_cycles: int):
+    def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True):
+        """Plan one case; with ``record_trace`` False no trace is kept (memory stays linear
+        in the map size: the trace grows with the number of updates)."""
         sx, sy = start
         gx, gy = goal
         while True:
             reached = _propagate(
                 self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
-                self.pot, self.pending, self.pb, self.trace, self.counters,
+                self.pot, self.pending, self.pb, self.trace if record_trace else self.no_trace, self.counters,
             )
-            if self.counters[3] <= self.trace.shape[0]:
+            if not record_trace or self.counters[3] <= self.trace.shape[0]:
                 break
             self.trace = np.empty(int(self.counters[3]) * 2, np.int32)
         if self.path.shape[0] < path_cycles + 1:

@@ -26,7 +26,7 @@ class PlanResult:
     start_potential: np.float32
     path: np.ndarray  # (M, 2) float32, empty when calcPath returned 0
     potential: np.ndarray  # (ny, nx) float32 after propagation
-    trace: np.ndarray  # int32 [n0, c..., n1, c...]
+    trace: Optional[np.ndarray]  # int32 [n0, c..., n1, c...]; None when not recorded
     cycles: int
     updates: int
     dropped: int = 0
@@ -77,6 +77,7 @@ def plan(
     trace_hook: Optional[TraceHook] = None,
     cycles: Optional[int] = None,
     path_cycles: Optional[int] = None,
+    record_trace: bool = True,
 ) -> PlanResult:
     """Plan on NavFn-internal costs (a (height, width) uint8 array) with the reference spec.
 
@@ -89,7 +90,8 @@ def plan(
     cost_list = add_border(arr).ravel().tolist()
     st = setup(cost_list, nx, ny, goal)
     limit = cycle_limit(nx, ny) if cycles is None else cycles
-    reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook)
+    reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
+                        record_trace=record_trace)
     ext = calc_path(st.potential, nx, ny, start, goal, 4 * nx if path_cycles is None else path_cycles)
     pot = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
     path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
@@ -98,7 +100,7 @@ def plan(
         start_potential=pot[start[1], start[0]],
         path=path,
         potential=pot,
-        trace=np.array(st.trace, dtype=np.int32),
+        trace=np.array(st.trace, dtype=np.int32) if record_trace else None,
         cycles=st.cycles,
         updates=st.updates,
         dropped=st.dropped,
