@@ -83,6 +83,19 @@ def _edge(c):
     return np.float32(D_INVSQRT2 * np.float64(np.float32(c)))
 
 
+@njit(cache=True, inline="always", error_model="numpy")
+def _push(pb, fill, buf, n, ns, pending, costs):
+    """The push_* macros: enqueue ``n`` on buffer ``buf``; returns 1 when a full buffer drops it."""
+    if n >= 0 and n < ns and not pending[n] and costs[n] < COST_OBS:
+        if fill[buf] < BUF:
+            pb[buf, fill[buf]] = n
+            fill[buf] += 1
+            pending[n] = True
+        else:
+            return 1
+    return 0
+
+
 @njit(cache=True, error_model="numpy")
 def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, trace, counters):
     """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
@@ -108,13 +121,7 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
     k = gx + gy * nx
     pot[k] = F0
     for n in (k + 1, k - 1, k - nx, k + nx):
-        if n >= 0 and n < ns and not pending[n] and costs[n] < COST_OBS:
-            if fill[cur] < BUF:
-                pb[cur, fill[cur]] = n
-                fill[cur] += 1
-                pending[n] = True
-            else:
-                ndrop += 1
+        ndrop += _push(pb, fill, cur, n, ns, pending, costs)
     start_cell = sy * nx + sx
     if astar:
         cur_t = _heuristic(gx - sx, gy - sy) + cur_t
@@ -177,13 +184,7 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
                     m = n + nx
                     pm = d
                 if pm > np.float32(key + _edge(costs[m])):
-                    if m >= 0 and m < ns and not pending[m] and costs[m] < COST_OBS:
-                        if fill[dest] < BUF:
-                            pb[dest, fill[dest]] = m
-                            fill[dest] += 1
-                            pending[m] = True
-                        else:
-                            ndrop += 1
+                    ndrop += _push(pb, fill, dest, m, ns, pending, costs)
         # swap buffers
         fill[cur] = 0
         t = cur
