@@ -93,3 +93,10 @@ def test_tampered_golden_is_reported(tmp_path):
     assert s["failed"] >= 1
     first = s["disagreements"][0]
     assert (first["case_index"], first["field"], first["detail"]["point"]) == (5, "path", 0)
+
+
+@pytest.mark.parametrize("backend", ["jit", "reference"])
+def test_unseen_suite_agrees(backend):
+    """A suite recorded from the C++ after the spec was written (tests/data/unseen-suite)."""
+    s = _assert_clean(run_suite(DATA / "unseen-suite", ("astar", "dijkstra"), backend, jobs=2))
+    assert s["passed"] == 2 * 2101
