@@ -70,6 +70,15 @@ class JitRunner:
         )
 
 
+    def run_batch(self, cases, astar: bool) -> dict:
+        """Plan many cases in one compiled call (no traces); see :func:`.jit.run_cases`."""
+        from .jit import run_cases
+
+        for sx, sy, gx, gy in np.asarray(cases).reshape(-1, 4).tolist():
+            check_inputs(self.costs, (sx, sy), (gx, gy))
+        return run_cases(self.planner, cases, astar, self.cycles, 4 * self.nx)
+
+
 class JitBackend:
     name = "jit"
 

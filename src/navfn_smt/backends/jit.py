@@ -49,7 +49,7 @@ EXIT_NEAR_GOAL, EXIT_OUT_OF_BOUNDS, EXIT_HIGH_POTENTIAL, EXIT_ZERO_GRADIENT, EXI
 EXIT_NAMES = ("near_goal", "out_of_bounds", "high_potential", "zero_gradient", "exhausted", "undefined")
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _f2i(a):
     """cvttss2si: truncation, INT_MIN for NaN and out of range."""
     d = np.float64(a)
@@ -58,7 +58,7 @@ def _f2i(a):
     return int(d)
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _roundf(a):
     """roundf: halves away from zero (exact for float32 inputs, see spec.numeric)."""
     d = np.float64(a)
@@ -73,27 +73,14 @@ def _roundf(a):
     return np.float32(r)
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _heuristic(ddx, ddy):
     return np.float32(math.hypot(np.float64(ddx), np.float64(ddy)) * D_NEUTRAL)
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _edge(c):
     return np.float32(D_INVSQRT2 * np.float64(np.float32(c)))
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _push(pb, fill, buf, n, ns, pending, costs):
-    """The push_* macros: enqueue ``n`` on buffer ``buf``; returns 1 when a full buffer drops it."""
-    if n >= 0 and n < ns and not pending[n] and costs[n] < COST_OBS:
-        if fill[buf] < BUF:
-            pb[buf, fill[buf]] = n
-            fill[buf] += 1
-            pending[n] = True
-        else:
-            return 1
-    return 0
 
 
 @njit(cache=True, error_model="numpy")
@@ -120,8 +107,16 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
     cur_t = F_COST_OBS
     k = gx + gy * nx
     pot[k] = F0
+    # push_cur; the push is written out at both sites: a helper taking arrays would pay
+    # reference-count updates on every call (7x slower in the update loop)
     for n in (k + 1, k - 1, k - nx, k + nx):
-        ndrop += _push(pb, fill, cur, n, ns, pending, costs)
+        if n >= 0 and n < ns and not pending[n] and costs[n] < COST_OBS:
+            if fill[cur] < BUF:
+                pb[cur, fill[cur]] = n
+                fill[cur] += 1
+                pending[n] = True
+            else:
+                ndrop += 1
     start_cell = sy * nx + sx
     if astar:
         cur_t = _heuristic(gx - sx, gy - sy) + cur_t
@@ -184,7 +179,13 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
                     m = n + nx
                     pm = d
                 if pm > np.float32(key + _edge(costs[m])):
-                    ndrop += _push(pb, fill, dest, m, ns, pending, costs)
+                    if m >= 0 and m < ns and not pending[m] and costs[m] < COST_OBS:
+                        if fill[dest] < BUF:
+                            pb[dest, fill[dest]] = m
+                            fill[dest] += 1
+                            pending[m] = True
+                        else:
+                            ndrop += 1
         # swap buffers
         fill[cur] = 0
         t = cur
@@ -207,41 +208,7 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
     return cycle < cycles
 
 
-@njit(cache=True, inline="always", error_model="numpy")
-def _grad(pot, gradx, grady, nx, ns, n):
-    if np.float32(gradx[n] + grady[n]) > F0:
-        return
-    if n < nx or n > ns - nx:
-        return
-    cv = pot[n]
-    dx = F0
-    dy = F0
-    if cv >= F_POT_HIGH:
-        if pot[n - 1] < F_POT_HIGH:
-            dx = F_MCOST_OBS
-        elif pot[n + 1] < F_POT_HIGH:
-            dx = F_COST_OBS
-        if pot[n - nx] < F_POT_HIGH:
-            dy = F_MCOST_OBS
-        elif pot[n + nx] < F_POT_HIGH:
-            dy = F_COST_OBS
-    else:
-        if pot[n - 1] < F_POT_HIGH:
-            dx = np.float32(dx + np.float32(pot[n - 1] - cv))
-        if pot[n + 1] < F_POT_HIGH:
-            dx = np.float32(dx + np.float32(cv - pot[n + 1]))
-        if pot[n - nx] < F_POT_HIGH:
-            dy = np.float32(dy + np.float32(pot[n - nx] - cv))
-        if pot[n + nx] < F_POT_HIGH:
-            dy = np.float32(dy + np.float32(cv - pot[n + nx]))
-    norm = np.float32(math.hypot(dx, dy))
-    if norm > F0:
-        inv = np.float32(D_ONE / np.float64(norm))
-        gradx[n] = np.float32(inv * dx)
-        grady[n] = np.float32(inv * dy)
-
-
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _bilinear(t, a, b):
     return np.float32((D_ONE - np.float64(t)) * np.float64(a) + np.float64(np.float32(t * b)))
 
@@ -309,10 +276,39 @@ def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
             if pot[stc] >= F_POT_HIGH:
                 return EXIT_HIGH_POTENTIAL, npath
         else:
-            _grad(pot, gradx, grady, nx, ns, stc)
-            _grad(pot, gradx, grady, nx, ns, stc + 1)
-            _grad(pot, gradx, grady, nx, ns, down)
-            _grad(pot, gradx, grady, nx, ns, down + 1)
+            # gradCell for the four cells of the interpolation square (inlined: array
+            # arguments to a helper cost reference-count updates on every call)
+            for n in (stc, stc + 1, down, down + 1):
+                if np.float32(gradx[n] + grady[n]) > F0:
+                    continue
+                if n < nx or n > ns - nx:
+                    continue
+                cv = pot[n]
+                gdx = F0
+                gdy = F0
+                if cv >= F_POT_HIGH:
+                    if pot[n - 1] < F_POT_HIGH:
+                        gdx = F_MCOST_OBS
+                    elif pot[n + 1] < F_POT_HIGH:
+                        gdx = F_COST_OBS
+                    if pot[n - nx] < F_POT_HIGH:
+                        gdy = F_MCOST_OBS
+                    elif pot[n + nx] < F_POT_HIGH:
+                        gdy = F_COST_OBS
+                else:
+                    if pot[n - 1] < F_POT_HIGH:
+                        gdx = np.float32(gdx + np.float32(pot[n - 1] - cv))
+                    if pot[n + 1] < F_POT_HIGH:
+                        gdx = np.float32(gdx + np.float32(cv - pot[n + 1]))
+                    if pot[n - nx] < F_POT_HIGH:
+                        gdy = np.float32(gdy + np.float32(pot[n - nx] - cv))
+                    if pot[n + nx] < F_POT_HIGH:
+                        gdy = np.float32(gdy + np.float32(cv - pot[n + nx]))
+                norm = np.float32(math.hypot(gdx, gdy))
+                if norm > F0:
+                    inv = np.float32(D_ONE / np.float64(norm))
+                    gradx[n] = np.float32(inv * gdx)
+                    grady[n] = np.float32(inv * gdy)
             x1 = _bilinear(dx, gradx[stc], gradx[stc + 1])
             x2 = _bilinear(dx, gradx[down], gradx[down + 1])
             x = _bilinear(dy, x1, x2)
@@ -376,3 +372,55 @@ class JitPlanner:
             self.pot, self.nx, self.ny, sx, sy, gx, gy, path_cycles, self.gradx, self.grady, self.path
         )
         return bool(reached), int(code), int(npath)
+
+
+@njit(cache=True, error_model="numpy")
+def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, gradx, grady,
+               reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
+    """Plan every case of one map in one call (no trace); results go to the output arrays.
+
+    ``path_pts`` must hold ``len(cases) * (path_cycles + 1)`` points; case ``i``'s path is
+    ``path_pts[path_off[i]:path_off[i + 1]]`` (empty unless the exit is NEAR_GOAL).
+    """
+    no_trace = np.empty(0, np.int32)
+    counters = np.zeros(4, np.int64)
+    buf = np.empty((path_cycles + 1, 2), np.float32)
+    off = 0
+    path_off[0] = 0
+    for i in range(cases.shape[0]):
+        sx, sy, gx, gy = cases[i, 0], cases[i, 1], cases[i, 2], cases[i, 3]
+        reached[i] = _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, no_trace, counters)
+        start_pot[i] = pot[sy * nx + sx]
+        ncycles[i] = counters[0]
+        nupdates[i] = counters[1]
+        ndropped[i] = counters[2]
+        code, npath = _calc_path(pot, nx, ny, sx, sy, gx, gy, path_cycles, gradx, grady, buf)
+        exits[i] = code
+        if code == EXIT_NEAR_GOAL:
+            for k in range(npath):
+                path_pts[off + k, 0] = buf[k, 0]
+                path_pts[off + k, 1] = buf[k, 1]
+            off += npath
+        path_off[i + 1] = off
+
+
+def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int, path_cycles: int) -> dict:
+    """Batch form of :meth:`JitPlanner.run` for benchmarks and bulk planning (no traces)."""
+    cases = np.ascontiguousarray(cases, dtype=np.int64).reshape(-1, 4)
+    n = cases.shape[0]
+    out = {
+        "start_reached": np.zeros(n, np.bool_),
+        "start_potential": np.zeros(n, np.float32),
+        "cycles": np.zeros(n, np.int64),
+        "updates": np.zeros(n, np.int64),
+        "dropped": np.zeros(n, np.int64),
+        "exit": np.zeros(n, np.int64),
+        "path_offsets": np.zeros(n + 1, np.int64),
+        "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
+    }
+    _run_cases(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
+               planner.pending, planner.pb, planner.gradx, planner.grady, out["start_reached"],
+               out["start_potential"], out["cycles"], out["updates"], out["dropped"], out["exit"],
+               out["path_offsets"], out["path"])
+    out["path"] = out["path"][: out["path_offsets"][-1]]
+    return out
