@@ -100,3 +100,17 @@ def test_unseen_suite_agrees(backend):
     """A suite recorded from the C++ after the spec was written (tests/data/unseen-suite)."""
     s = _assert_clean(run_suite(DATA / "unseen-suite", ("astar", "dijkstra"), backend, jobs=2))
     assert s["passed"] == 2 * 2101
+
+
+@pytest.mark.parametrize("mode", ["astar", "dijkstra"])
+def test_jit_batch_equals_golden(mode):
+    """The benchmark's batch entry point plans exactly what the C++ planned."""
+    for d in discover(EXAMPLE_SUITE):
+        smap = load_map(d, EXAMPLE_SUITE)
+        g = load_golden(smap.golden_path(mode), smap)
+        out = get_backend("jit").prepare(smap.costs).run_batch(smap.cases, mode == "astar")
+        assert np.array_equal(out["path_offsets"], g["path_offsets"]), d
+        assert np.array_equal(out["path"].view(np.uint32), g["path"].view(np.uint32)), d
+        assert np.array_equal(out["start_potential"].view(np.uint32), g["start_potential"].view(np.uint32)), d
+        assert np.array_equal(out["start_reached"], g["start_reached"].astype(bool)), d
+        assert np.array_equal(out["cycles"], g["cycles"]) and np.array_equal(out["updates"], g["updates"]), d
