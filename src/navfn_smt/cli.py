@@ -112,6 +112,84 @@ def cmd_difftest(args) -> int:
     return 0 if summary["failed"] == 0 else 1
 
 
+# --------------------------------------------------------------------------------- render
+def cmd_render(args) -> int:
+    from .backends import get_backend
+    from .maps.pictures import render_case
+    from .maps.suite import load_map
+
+    m = Path(args.map)
+    if not m.is_dir():
+        raise NavfnInputError(f"{m}: not a suite map directory")
+    smap = load_map(m)
+    if args.start or args.goal:
+        if not (args.start and args.goal):
+            raise NavfnInputError("--start and --goal go together")
+        start, goal = tuple(args.start), tuple(args.goal)
+    else:
+        if not 0 <= args.case < len(smap.cases):
+            raise NavfnInputError(f"--case {args.case}: {m} has cases 0..{len(smap.cases) - 1}")
+        sx, sy, gx, gy = (int(v) for v in smap.cases[args.case])
+        start, goal = (sx, sy), (gx, gy)
+    res = get_backend(args.backend).prepare(smap.costs).run(start, goal, astar=not args.dijkstra, trace=False)
+    hl = None
+    if args.highlight:
+        if len(args.highlight) not in (2, 4):
+            raise NavfnInputError("--highlight takes X Y (a cell) or X1 Y1 X2 Y2 (a segment)")
+        hl = [tuple(args.highlight[i:i + 2]) for i in range(0, len(args.highlight), 2)]
+    mode = "Dijkstra" if args.dijkstra else "A*"
+    render_case(smap.costs, res, start, goal, args.output, title=f"{smap.name} ({mode})", highlight=hl,
+                arrows=None if args.arrows == "auto" else args.arrows == "on")
+    print(f"wrote {args.output}")
+    return 0
+
+
+# ---------------------------------------------------------------------------- metamorphic
+def cmd_metamorphic(args) -> int:
+    from rich.table import Table
+
+    from .maps.suite import discover, load_map
+    from .report.tables import console, progress_bar
+    from .search.metamorphic import TRANSFORMS, run_metamorphic, save_counterexample
+
+    suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
+    relations = args.relation or list(TRANSFORMS)
+    modes = ("astar", "dijkstra") if args.mode == "both" else (args.mode,)
+    if args.max_cases is not None and args.max_cases < 1:
+        raise NavfnInputError("--max-cases must be at least 1")
+    if args.json:
+        _atomic_write_text(args.json, "")  # fail early on an unwritable path
+        Path(args.json).unlink()
+    per_map = [len(load_map(d).cases) for d in discover(suite)]
+    total = sum(min(n, args.max_cases or n) for n in per_map) * len(relations) * len(modes)
+    with progress_bar(total, f"metamorphic {suite}") as advance:
+        outcomes = run_metamorphic(suite, relations, modes, args.backend, args.max_cases, progress=advance)
+    t = Table(title="metamorphic relations: result on the transformed map == transformed result")
+    for c in ("relation", "mode", "cases", "potential", "path", "reached", "holds", "saved"):
+        t.add_column(c, justify="left" if c in ("relation", "mode") else "right")
+    rows = []
+    for o in outcomes:
+        tr = TRANSFORMS[o.relation]
+        saved = [str(save_counterexample(Path(args.save), o.relation, cx, tr))
+                 for cx in (o.counterexamples[: args.save_max] if args.save else [])]
+        rows.append({
+            "relation": o.relation, "mode": o.mode, "cases": o.cases, "holds": o.holds,
+            "potential_equal": o.potential_equal if tr.same_potential else None,
+            "path_equal": o.path_equal, "start_reached_equal": o.reached_equal, "saved": saved,
+            "counterexamples": [{k: cx[k] for k in ("case_index", "case", "transformed_case", "mode",
+                                                    "potential", "path", "reached")} | {"map": cx["map"].name}
+                                for cx in o.counterexamples],
+        })
+        t.add_row(o.relation, o.mode, str(o.cases), str(o.potential_equal) if tr.same_potential else "n/a",
+                  str(o.path_equal), str(o.reached_equal), str(o.holds), str(len(saved)))
+    console.print(t)
+    if args.json:
+        _atomic_write_text(args.json, json.dumps({"suite": str(suite), "relations": rows}, indent=1))
+    if args.save:
+        print(f"counterexamples saved under {args.save} (at most {args.save_max} per relation and mode)")
+    return 0
+
+
 # ---------------------------------------------------------------------------------- bench
 def cmd_bench(args) -> int:
     from .bench import bench_sizes, bench_suite
@@ -153,6 +231,34 @@ def build_parser() -> argparse.ArgumentParser:
     dt.add_argument("--json", metavar="FILE", help="write per-map counts and every disagreement as JSON")
     dt.add_argument("--quiet", action="store_true", help="no progress bar")
     dt.set_defaults(func=cmd_difftest)
+
+    rd = sub.add_parser("render", help="draw a planning case: costmap, potential, path, gradient")
+    rd.add_argument("map", help="a suite map directory")
+    rd.add_argument("--case", type=int, default=0, help="case index in test.txt (default 0)")
+    rd.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="plan this start instead of a case")
+    rd.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"))
+    rd.add_argument("--dijkstra", action="store_true")
+    rd.add_argument("--backend", choices=("jit", "reference"), default="jit")
+    rd.add_argument("--highlight", nargs="+", type=float, metavar="V",
+                    help="mark a cell (X Y) or a segment (X1 Y1 X2 Y2), e.g. a counterexample")
+    rd.add_argument("--arrows", choices=("auto", "on", "off"), default="auto",
+                    help="gradient arrows (auto: on maps up to 60 cells a side)")
+    rd.add_argument("-o", "--output", required=True, metavar="FILE", help="a .png or .svg file")
+    rd.set_defaults(func=cmd_render)
+
+    mm = sub.add_parser("metamorphic", help="check map symmetries: transposes, flips, rotations, padding, cost shifts")
+    mm.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
+    mm.add_argument("--relation", action="append", choices=("transpose", "flip_x", "flip_y", "rot90", "rot180",
+                                                           "rot270", "pad", "cost_shift"),
+                    help="check only this relation (repeatable; default: all)")
+    mm.add_argument("--mode", choices=("astar", "dijkstra", "both"), default="both")
+    mm.add_argument("--backend", choices=("jit", "reference"), default="jit")
+    mm.add_argument("--max-cases", type=int, help="at most this many cases per map")
+    mm.add_argument("--save", metavar="DIR", default="metamorphic-counterexamples",
+                    help="where counterexamples are saved as suite map directories ('' to not save)")
+    mm.add_argument("--save-max", type=int, default=3, help="counterexamples saved per relation and mode")
+    mm.add_argument("--json", metavar="FILE", help="write the counts and counterexamples as JSON")
+    mm.set_defaults(func=cmd_metamorphic)
 
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")

@@ -164,3 +164,34 @@ def load_golden(path: Path, smap: Optional[SuiteMap] = None) -> dict:
 def golden_path_of(g: dict, i: int) -> np.ndarray:
     off = g["path_offsets"]
     return g["path"][off[i] : off[i + 1]]
+
+
+def _atomic_bytes(path: Path, data: bytes) -> None:
+    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
+    try:
+        tmp.write_bytes(data)
+        os.replace(tmp, path)
+    except OSError as e:
+        tmp.unlink(missing_ok=True)
+        raise NavfnInputError(f"{path}: cannot write ({e.strerror})") from None
+
+
+def write_map_dir(directory, costs: np.ndarray, cases, map_file: str = "map.bin", comment: str = "") -> Path:
+    """Write a map directory in the suite format (test.txt and the map bytes), file by file
+    atomically; golden files are written separately (``suite record``)."""
+    d = Path(directory)
+    c = np.ascontiguousarray(costs, dtype=np.uint8)
+    if c.ndim != 2:
+        raise NavfnInputError("a map must be two-dimensional")
+    ny, nx = c.shape
+    lines = [f"{nx} {ny}", map_file, ""]
+    if comment:
+        lines.append(f"-1 {comment}")
+    lines += [" ".join(str(int(v)) for v in case) for case in cases]
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise NavfnInputError(f"{d}: cannot create directory ({e.strerror})") from None
+    _atomic_bytes(d / map_file, c.tobytes())
+    _atomic_bytes(d / "test.txt", ("\n".join(lines) + "\n").encode("ascii"))
+    return d
