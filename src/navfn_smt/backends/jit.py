@@ -283,6 +283,8 @@ def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
                     continue
                 if n < nx or n > ns - nx:
                     continue
+                if n + nx >= ns:  # n == ns - nx: the C++ reads potarr[ns]
+                    return EXIT_UB, npath
                 cv = pot[n]
                 gdx = F0
                 gdy = F0

@@ -63,6 +63,9 @@ def calc_path(
             return
         if m < nx or m > ns - nx:
             return
+        if m + nx >= ns:
+            # m == ns - nx (0, ny-1) passes gradCell's bound test, then potarr[ns] is read
+            raise UndefinedBehaviour(f"gradCell reads past the potential array at cell {m}")
         gradx[m], grady[m] = K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1], pot[m - nx], pot[m + nx])
 
     for _ in range(n):
