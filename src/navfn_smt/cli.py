@@ -190,6 +190,50 @@ def cmd_metamorphic(args) -> int:
     return 0
 
 
+# ------------------------------------------------------------------------------- coverage
+def cmd_coverage(args) -> int:
+    from rich.table import Table
+
+    from .difftest.coverage import measure, percent
+    from .maps.suite import discover, load_map
+    from .report.tables import console, progress_bar
+
+    suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
+    modes = ("astar", "dijkstra") if args.mode == "both" else (args.mode,)
+    if args.max_cases is not None and args.max_cases < 1:
+        raise NavfnInputError("--max-cases must be at least 1")
+    if args.json:
+        _atomic_write_text(args.json, "")
+        Path(args.json).unlink()
+    total = sum(min(len(load_map(d).cases), args.max_cases or 10**12) for d in discover(suite)) * len(modes)
+    with progress_bar(total, f"coverage {suite}") as advance:
+        r = measure(suite, modes, args.max_cases, progress=lambda n: advance(n * len(modes)))
+    t = Table(title=f"coverage of the reference spec under {suite} ({r['cases_run']} case runs)")
+    for c in ("file", "lines", "covered", "branches", "covered ", "branch %"):
+        t.add_column(c, justify="left" if c == "file" else "right")
+    for f in r["files"]:
+        t.add_row(f["file"], str(f["lines"]), str(f["lines_covered"]), str(f["branches"]),
+                  str(f["branches_covered"]), percent(f["branches_covered"], f["branches"]))
+    t.add_row("all", str(r["lines"]), str(r["lines_covered"]), str(r["branches"]), str(r["branches_covered"]),
+              percent(r["branches_covered"], r["branches"]))
+    console.print(t)
+    print(f"kernel decisions (ite outcomes): {r['ite_outcomes_covered']} of {r['ite_outcomes']} "
+          f"({percent(r['ite_outcomes_covered'], r['ite_outcomes'])})")
+    if r["uncovered"]:
+        print("not covered:")
+        for u in r["uncovered"]:
+            why = u["reason"] or "no reason recorded: a suite case could reach it"
+            print(f"  {u['kind']} {u['file']}:{u['line']} -> {u['to']}: {u['source']}\n      {why}")
+    if args.json:
+        _atomic_write_text(args.json, json.dumps({"suite": str(suite), "modes": list(modes), **r}, indent=1))
+    unexplained = [u for u in r["uncovered"] if not u["reason"]]
+    print(f"branch coverage {percent(r['branches_covered'], r['branches'])}; "
+          f"{len(r['uncovered'])} uncovered, {len(unexplained)} without a reason")
+    if args.min_branch is not None and 100.0 * r["branches_covered"] / max(r["branches"], 1) < args.min_branch:
+        return 1
+    return 0
+
+
 # ---------------------------------------------------------------------------------- bench
 def cmd_bench(args) -> int:
     from .bench import bench_sizes, bench_suite
@@ -259,6 +303,14 @@ def build_parser() -> argparse.ArgumentParser:
     mm.add_argument("--save-max", type=int, default=3, help="counterexamples saved per relation and mode")
     mm.add_argument("--json", metavar="FILE", help="write the counts and counterexamples as JSON")
     mm.set_defaults(func=cmd_metamorphic)
+
+    cv = sub.add_parser("coverage", help="line, branch and kernel-decision coverage of the reference spec under a suite")
+    cv.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
+    cv.add_argument("--mode", choices=("astar", "dijkstra", "both"), default="both")
+    cv.add_argument("--max-cases", type=int, help="at most this many cases per map (the spec runs traced: slow)")
+    cv.add_argument("--min-branch", type=float, help="exit 1 when branch coverage is below this percentage")
+    cv.add_argument("--json", metavar="FILE", help="write the figures and every uncovered branch as JSON")
+    cv.set_defaults(func=cmd_coverage)
 
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
