@@ -312,6 +312,10 @@ def build_parser() -> argparse.ArgumentParser:
     cv.add_argument("--json", metavar="FILE", help="write the figures and every uncovered branch as JSON")
     cv.set_defaults(func=cmd_coverage)
 
+    from .maps.suite_cli import register as register_suite
+
+    register_suite(sub)
+
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
     be.add_argument("--size", nargs="+", type=int, metavar="N",

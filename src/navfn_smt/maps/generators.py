@@ -259,7 +259,7 @@ def split_map(rng: np.random.Generator, width: int, height: int, orientation: Op
         raise NavfnInputError(f"cannot split a {width}x{height} map {orientation!r}")
     n = ih if orientation == "h" else iw
     thick = int(rng.integers(1, min(2, n - 2) + 1))
-    at = 1 + int(rng.integers(1, n - thick + 1))  # first wall row/column; >= 1 free line each side
+    at = int(rng.integers(2, n - thick + 1))  # first wall row/column; >= 1 free line each side
     a = _frame(width, height, FREE_COST)
     if orientation == "h":
         a[at:at + thick, :] = LETHAL
@@ -471,6 +471,7 @@ class Category:
     default_sizes: tuple[Size, Size]  # ranges of W and H drawn when no size is given: (lo, hi) each
     alternates: bool  # even maps neutral, odd maps random costs
     summary: str
+    min_long: int = 3  # the longer side must have at least this many cells
 
 
 CATEGORY_INFO: dict[str, Category] = {
@@ -488,7 +489,7 @@ CATEGORY_INFO: dict[str, Category] = {
         Category("spiral", spiral_map, (3, 3), ((7, 26), (7, 26)), True,
                  "a one-cell clockwise spiral corridor from (1, 1) inwards"),
         Category("split", split_map, (3, 3), ((5, 22), (5, 22)), True,
-                 "a straight lethal wall across the map: two regions, no path between them"),
+                 "a straight lethal wall across the map: two regions, no path between them", min_long=5),
         Category("walls", walls_map, (5, 5), ((7, 32), (7, 27)), True,
                  "random straight wall segments of any direction"),
         Category("inflated", inflated_map, (5, 5), ((40, 100), (40, 100)), False,
@@ -572,6 +573,8 @@ def _check_size(info: Category, size) -> Optional[Size]:
     mw, mh = info.min_size
     if w < mw or h < mh:
         raise NavfnInputError(f"--size {w} {h}: {info.name} maps need at least {mw}x{mh} cells (border included)")
+    if max(w, h) < info.min_long:
+        raise NavfnInputError(f"--size {w} {h}: {info.name} maps need {info.min_long} cells one way (border included)")
     if w * h > 4096 * 4096:
         raise NavfnInputError(f"--size {w} {h}: too large (at most 4096x4096 cells)")
     return w, h
@@ -703,8 +706,9 @@ def generate_suite(out_dir, category: str, count: int = 1, seed: int = 0, size: 
     if not overwrite:
         clash = [m.name for m in maps if (cat_dir / m.name).exists()]
         if clash:
-            more = f" and {len(clash) - 1} more" if len(clash) > 1 else ""
-            raise NavfnInputError(f"{cat_dir / clash[0]}{more}: already exist(s) (pass --overwrite to replace)")
+            what = (f"{cat_dir / clash[0]} already exists" if len(clash) == 1
+                    else f"{cat_dir / clash[0]} and {len(clash) - 1} more maps already exist")
+            raise NavfnInputError(f"{what} (pass --overwrite to replace)")
     try:
         cat_dir.mkdir(parents=True, exist_ok=True)
     except OSError as e:
