@@ -13,7 +13,8 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.costs import add_border
 from ..spec.extraction import ExtractionExit
-from ..spec.planner import PlanResult, check_inputs, plan
+from ..inputs import check_inputs
+from ..spec.planner import PlanResult, plan
 from ..spec.propagation import cycle_limit
 
 BACKENDS = ("jit", "reference")

@@ -14,7 +14,7 @@ from typing import Optional
 
 import numpy as np
 
-from ..errors import NavfnInputError
+from ..inputs import check_inputs
 from .costs import add_border
 from .extraction import ExtractionExit, calc_path
 from .propagation import TraceHook, cycle_limit, propagate, setup
@@ -48,25 +48,6 @@ def sha256_f32(a: np.ndarray) -> bytes:
 
 def sha256_i32(a: np.ndarray) -> bytes:
     return hashlib.sha256(np.ascontiguousarray(a, dtype="<i4").tobytes()).digest()
-
-
-def check_inputs(costs: np.ndarray, start, goal) -> np.ndarray:
-    """Validate a (height, width) cost array and two cells; returns the array as uint8."""
-    arr = np.asarray(costs)
-    if arr.ndim != 2:
-        raise NavfnInputError(f"the cost map must be two-dimensional, got shape {arr.shape}")
-    ny, nx = arr.shape
-    if nx < 3 or ny < 3:
-        raise NavfnInputError(f"the map is {nx}x{ny}; NavFn needs at least 3x3 cells")
-    if arr.dtype != np.uint8:
-        if not np.issubdtype(arr.dtype, np.integer) or arr.min() < 0 or arr.max() > 255:
-            raise NavfnInputError("costs must be integers 0..255")
-        arr = arr.astype(np.uint8)
-    for name, cell in (("start", start), ("goal", goal)):
-        x, y = int(cell[0]), int(cell[1])
-        if not (0 <= x < nx and 0 <= y < ny):
-            raise NavfnInputError(f"{name} ({x}, {y}) is off the {nx}x{ny} map")
-    return arr
 
 
 def plan(
