@@ -96,10 +96,12 @@ def test_tampered_golden_is_reported(tmp_path):
 
 
 @pytest.mark.parametrize("backend", ["jit", "reference"])
-def test_unseen_suite_agrees(backend):
-    """A suite recorded from the C++ after the spec was written (tests/data/unseen-suite)."""
-    s = _assert_clean(run_suite(DATA / "unseen-suite", ("astar", "dijkstra"), backend, jobs=2))
-    assert s["passed"] == 2 * 2101
+@pytest.mark.parametrize("suite,cases", [("unseen-suite", 2101), ("edge-suite", 109)])
+def test_suites_recorded_after_the_spec_agree(backend, suite, cases):
+    """Suites recorded from the C++ after the spec was written (tests/data): new maps, and
+    starts and goals on the lethal border."""
+    s = _assert_clean(run_suite(DATA / suite, ("astar", "dijkstra"), backend, jobs=2))
+    assert s["passed"] == 2 * cases
 
 
 @pytest.mark.parametrize("mode", ["astar", "dijkstra"])
