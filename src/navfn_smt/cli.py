@@ -33,12 +33,29 @@ def _atomic_write_text(path: str, text: str) -> None:
 
 
 # ----------------------------------------------------------------------------------- plan
+def _is_yaml(path: Path) -> bool:
+    return path.suffix.lower() in (".yaml", ".yml")
+
+
+def _cell(what: str, v) -> tuple[int, int]:
+    """A map cell from two command-line numbers (which must be integers)."""
+    if any(not float(c).is_integer() for c in v):
+        raise NavfnInputError(f"--{what} {v[0]:g} {v[1]:g}: a map cell needs integers (use --world for world coordinates)")
+    return int(v[0]), int(v[1])
+
+
 def _load_plan_map(args):
     import numpy as np
 
     from .maps.suite import load_map, read_map_bytes
 
     m = Path(args.map)
+    if _is_yaml(m):
+        if args.size:
+            raise NavfnInputError(f"{m}: --size is for a raw map file; a map_server map has its own size")
+        from .maps.mapserver import load_map_yaml
+
+        return load_map_yaml(m, args.allow_outside, distro=args.distro).navfn_costs
     if m.is_dir():
         if args.size:
             raise NavfnInputError(f"{m}: --size is for a raw map file; a map directory has its size in test.txt")
@@ -53,19 +70,60 @@ def _load_plan_map(args):
     return np.asarray(read_map_bytes(m, w, h))
 
 
+def _plan_world(args) -> int:
+    from .maps.mapserver import plan_world
+
+    if not _is_yaml(Path(args.map)):
+        raise NavfnInputError(f"{args.map}: --world needs a map_server YAML map")
+    wp = plan_world(args.map, tuple(args.start), tuple(args.goal), astar=not args.dijkstra,
+                    backend=args.backend, allow_outside=args.allow_outside, distro=args.distro)
+    res = wp.result
+    path = [[float(x), float(y)] for x, y in wp.path_world]
+    if args.json:
+        out = {
+            "mode": "dijkstra" if args.dijkstra else "astar", "backend": args.backend, "world": True,
+            "start": list(args.start), "goal": list(args.goal),
+            "start_cell": list(wp.start_cell), "goal_cell": list(wp.goal_cell),
+            "start_reached": None if res is None else bool(res.start_reached),
+            "start_potential": None if res is None else float(res.start_potential),
+            "cycles": None if res is None else int(res.cycles),
+            "exit": None if res is None or res.exit is None else res.exit.value,
+            "path": path,
+        }
+        print(json.dumps(out))
+        return 0
+    print(f"map {wp.map.path} ({wp.map.width}x{wp.map.height} cells of {wp.map.resolution} m)")
+    print(f"robot {tuple(args.start)} -> cell {wp.start_cell}; goal {tuple(args.goal)} -> cell {wp.goal_cell}")
+    if res is None:
+        print("start and goal poses are equal: Nav2 returns the pose without planning")
+    else:
+        print(f"NavFn runs from the goal cell back to the robot's (Nav2 swaps them); start reached: "
+              f"{res.start_reached}; cycles: {res.cycles}")
+    if path:
+        print(f"path: {len(path)} poses (world coordinates)")
+        for x, y in path:
+            print(f"  {x:.9g} {y:.9g}")
+    else:
+        print(f"no path (calcPath returned 0: {res.exit.value if res and res.exit else 'unknown'})")
+    return 0
+
+
 def cmd_plan(args) -> int:
     from .backends import get_backend
 
+    if args.world:
+        return _plan_world(args)
+    start, goal = _cell("start", args.start), _cell("goal", args.goal)
     costs = _load_plan_map(args)
     runner = get_backend(args.backend).prepare(costs)
-    res = runner.run(tuple(args.start), tuple(args.goal), astar=not args.dijkstra, trace=False)
+    res = runner.run(start, goal, astar=not args.dijkstra, trace=False)
     path = [[float(x), float(y)] for x, y in res.path]
     if args.json:
         out = {
             "mode": "dijkstra" if args.dijkstra else "astar",
             "backend": args.backend,
-            "start": list(args.start),
-            "goal": list(args.goal),
+            "start": list(start),
+            "goal": list(goal),
             "start_reached": bool(res.start_reached),
             "start_potential": float(res.start_potential),
             "cycles": int(res.cycles),
@@ -76,7 +134,7 @@ def cmd_plan(args) -> int:
         }
         print(json.dumps(out))
         return 0
-    print(f"mode {'dijkstra' if args.dijkstra else 'astar'}, start {tuple(args.start)}, goal {tuple(args.goal)}")
+    print(f"mode {'dijkstra' if args.dijkstra else 'astar'}, start {start}, goal {goal}")
     print(f"start reached: {res.start_reached}; start potential: {float(res.start_potential):.9g}; "
           f"cycles: {res.cycles}; updates: {res.updates}; dropped pushes: {res.dropped}")
     if path:
@@ -119,9 +177,19 @@ def cmd_render(args) -> int:
     from .maps.suite import load_map
 
     m = Path(args.map)
-    if not m.is_dir():
-        raise NavfnInputError(f"{m}: not a suite map directory")
-    smap = load_map(m)
+    if _is_yaml(m):
+        from types import SimpleNamespace
+
+        from .maps.mapserver import load_map_yaml
+
+        ms = load_map_yaml(m, args.allow_outside)
+        smap = SimpleNamespace(name=m.stem, costs=ms.navfn_costs, cases=[])
+        if not (args.start and args.goal):
+            raise NavfnInputError(f"{m}: a map_server map has no cases; give --start X Y --goal X Y (cells)")
+    elif not m.is_dir():
+        raise NavfnInputError(f"{m}: not a suite map directory or map_server YAML")
+    else:
+        smap = load_map(m)
     if args.start or args.goal:
         if not (args.start and args.goal):
             raise NavfnInputError("--start and --goal go together")
@@ -258,12 +326,21 @@ def build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     pl = sub.add_parser("plan", help="plan on one map and print the path")
-    pl.add_argument("map", help="a suite map directory (test.txt gives the size) or a raw map file with --size")
+    pl.add_argument("map", help="a suite map directory (test.txt gives the size), a map_server YAML, "
+                    "or a raw map file with --size")
     pl.add_argument("--size", nargs=2, type=int, metavar=("W", "H"), help="size of a raw map file")
-    pl.add_argument("--start", nargs=2, type=int, required=True, metavar=("X", "Y"),
-                    help="NavFn's start cell (where the path begins)")
-    pl.add_argument("--goal", nargs=2, type=int, required=True, metavar=("X", "Y"),
-                    help="NavFn's goal cell (where propagation begins)")
+    pl.add_argument("--start", nargs=2, type=float, required=True, metavar=("X", "Y"),
+                    help="NavFn's start cell (where the path begins); with --world the robot's position")
+    pl.add_argument("--goal", nargs=2, type=float, required=True, metavar=("X", "Y"),
+                    help="NavFn's goal cell (where propagation begins); with --world the goal position")
+    pl.add_argument("--world", action="store_true",
+                    help="start and goal are world coordinates on a map_server YAML map, planned as Nav2's "
+                    "NavFn planner plugin does (it swaps them before calling NavFn)")
+    pl.add_argument("--allow-outside", action="store_true",
+                    help="let a map_server YAML name an image outside its own folder")
+    pl.add_argument("--distro", default="rolling",
+                    help="Nav2 distribution whose map loading rules apply (humble, iron, jazzy, kilted, "
+                    "lyrical, rolling; default rolling)")
     pl.add_argument("--dijkstra", action="store_true", help="Dijkstra propagation (default: A*)")
     pl.add_argument("--backend", choices=("jit", "reference"), default="jit")
     pl.add_argument("--json", action="store_true", help="print a JSON object")
@@ -279,7 +356,9 @@ def build_parser() -> argparse.ArgumentParser:
     dt.set_defaults(func=cmd_difftest)
 
     rd = sub.add_parser("render", help="draw a planning case: costmap, potential, path, gradient")
-    rd.add_argument("map", help="a suite map directory")
+    rd.add_argument("map", help="a suite map directory or a map_server YAML")
+    rd.add_argument("--allow-outside", action="store_true",
+                    help="let a map_server YAML name an image outside its own folder")
     rd.add_argument("--case", type=int, default=0, help="case index in test.txt (default 0)")
     rd.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="plan this start instead of a case")
     rd.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"))
