@@ -19,6 +19,7 @@ import numpy as np
 
 from .backends import get_backend
 from .errors import NavfnInputError
+from .fileio import atomic_write_text
 from .maps.suite import discover, load_map
 from .report.tables import console, progress_bar
 
@@ -46,9 +47,7 @@ def _modes(name: str) -> list[str]:
 
 
 def _write(path, doc) -> None:
-    from .cli import _atomic_write_text
-
-    _atomic_write_text(path, json.dumps(doc, indent=1))
+    atomic_write_text(path, json.dumps(doc, indent=1))
 
 
 def bench_suite(suite: Path, backend: str, mode: str, json_path=None) -> list[dict]:

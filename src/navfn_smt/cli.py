@@ -9,27 +9,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 from pathlib import Path
 
 from .errors import NavfnInputError
+from .fileio import atomic_write_text, check_writable
 
 EXAMPLE_SUITE = Path(__file__).parent / "examples" / "suite"
-
-
-def _atomic_write_text(path: str, text: str) -> None:
-    """Write a whole file or nothing: a temporary file renamed into place."""
-    p = Path(path)
-    if p.parent and not p.parent.exists():
-        raise NavfnInputError(f"{path}: directory {p.parent} does not exist")
-    tmp = p.with_name(f".{p.name}.tmp{os.getpid()}")
-    try:
-        tmp.write_text(text)
-        os.replace(tmp, p)
-    except OSError as e:
-        tmp.unlink(missing_ok=True)
-        raise NavfnInputError(f"{path}: cannot write ({e.strerror})") from None
 
 
 # ----------------------------------------------------------------------------------- plan
@@ -154,8 +140,7 @@ def cmd_difftest(args) -> int:
     suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
     modes = ("astar", "dijkstra") if args.mode == "both" else (args.mode,)
     if args.json:
-        _atomic_write_text(args.json, "")  # fail early on an unwritable path, before the run
-        Path(args.json).unlink()
+        check_writable(args.json)  # fail early, before the run
     tasks = plan_tasks(suite, modes, args.backend)
     total = sum(t.hi - t.lo for t in tasks)
     jobs = args.jobs if args.jobs else 1
@@ -165,7 +150,7 @@ def cmd_difftest(args) -> int:
     difftest_table(summary)
     if args.json:
         doc = {"suite": str(suite), "backend": args.backend, "modes": list(modes), **summary}
-        _atomic_write_text(args.json, json.dumps(doc, indent=1))
+        atomic_write_text(args.json, json.dumps(doc, indent=1))
     print(f"{summary['passed']} passed, {summary['failed']} failed")
     return 0 if summary["failed"] == 0 else 1
 
@@ -226,8 +211,7 @@ def cmd_metamorphic(args) -> int:
     if args.max_cases is not None and args.max_cases < 1:
         raise NavfnInputError("--max-cases must be at least 1")
     if args.json:
-        _atomic_write_text(args.json, "")  # fail early on an unwritable path
-        Path(args.json).unlink()
+        check_writable(args.json)
     per_map = [len(load_map(d).cases) for d in discover(suite)]
     total = sum(min(n, args.max_cases or n) for n in per_map) * len(relations) * len(modes)
     with progress_bar(total, f"metamorphic {suite}") as advance:
@@ -252,7 +236,7 @@ def cmd_metamorphic(args) -> int:
                   str(o.path_equal), str(o.reached_equal), str(o.holds), str(len(saved)))
     console.print(t)
     if args.json:
-        _atomic_write_text(args.json, json.dumps({"suite": str(suite), "relations": rows}, indent=1))
+        atomic_write_text(args.json, json.dumps({"suite": str(suite), "relations": rows}, indent=1))
     if args.save:
         print(f"counterexamples saved under {args.save} (at most {args.save_max} per relation and mode)")
     return 0
@@ -271,8 +255,7 @@ def cmd_coverage(args) -> int:
     if args.max_cases is not None and args.max_cases < 1:
         raise NavfnInputError("--max-cases must be at least 1")
     if args.json:
-        _atomic_write_text(args.json, "")
-        Path(args.json).unlink()
+        check_writable(args.json)
     total = sum(min(len(load_map(d).cases), args.max_cases or 10**12) for s in suites for d in discover(s))
     with progress_bar(total * len(modes), "coverage") as advance:
         r = measure(suites, modes, args.max_cases, progress=advance)
@@ -294,7 +277,7 @@ def cmd_coverage(args) -> int:
             why = u["reason"] or "no reason recorded: a suite case could reach it"
             print(f"  {u['kind']} {u['file']}:{u['line']} -> {u['to']}: {u['source']}\n      {why}")
     if args.json:
-        _atomic_write_text(args.json, json.dumps({"suites": [str(s) for s in suites], "modes": list(modes), **r},
+        atomic_write_text(args.json, json.dumps({"suites": [str(s) for s in suites], "modes": list(modes), **r},
                                                  indent=1))
     unexplained = [u for u in r["uncovered"] if not u["reason"]]
     print(f"spec branch coverage {percent(r['branches_covered'], r['branches'])}; "

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..backends import BACKENDS, get_backend
 from ..errors import NavfnInputError
+from ..fileio import atomic_path
 from ..maps.suite import GOLDEN_FIELDS, MODES, SuiteMap, discover, load_map
 from ..spec.constants import POT_HIGH
 from ..spec.extraction import UndefinedBehaviour
@@ -108,21 +109,12 @@ def golden_fields(smap: SuiteMap, runner, astar: bool, full_first: int = 50) -> 
 
 
 def write_golden(path: Path, fields: dict) -> None:
-    """``numpy.savez_compressed`` to a temporary name in the same directory, then os.replace."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    try:
+    """``numpy.savez_compressed``, written whole or not at all."""
+    with atomic_path(path) as tmp:
         with open(tmp, "wb") as f:
             np.savez_compressed(f, **fields)
             f.flush()
             os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except OSError as e:
-        tmp.unlink(missing_ok=True)
-        raise NavfnInputError(f"{path}: cannot write ({e.strerror})") from None
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
 
 
 def _modes(modes: Iterable[str]) -> tuple[str, ...]:

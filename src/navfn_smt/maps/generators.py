@@ -53,6 +53,7 @@ from typing import Callable, Optional, Union
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..fileio import atomic_write_bytes
 from ..spec.constants import COST_NEUTRAL, COST_OBS
 from ..spec.costs import set_costmap
 
@@ -647,17 +648,8 @@ def format_test_txt(m: GeneratedMap, map_file: str = "map.bin") -> str:
 
 
 def _write_file(path: Path, data: bytes) -> None:
-    """Write a whole file or nothing: a temporary name in the same directory, then os.replace."""
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    try:
-        with open(tmp, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    """Write a whole file or nothing (see :mod:`navfn_smt.fileio`)."""
+    atomic_write_bytes(path, data)
 
 
 def write_map(m: GeneratedMap, category_dir: Path, overwrite: bool = False) -> Path:

@@ -9,13 +9,13 @@ Coordinates are NavFn's: x to the right, y down, cell (x, y) centred on integer 
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 from typing import Optional, Sequence
 
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..fileio import atomic_path
 from ..spec import kernels as K
 from ..spec.constants import COST_OBS, POT_HIGH
 from ..spec.numeric import CONCRETE
@@ -53,9 +53,8 @@ def render_case(
     ext = Path(out).suffix.lower()
     if ext not in FORMATS:
         raise NavfnInputError(f"{out}: the picture must be .png or .svg")
-    parent = Path(out).resolve().parent
-    if not parent.is_dir():
-        raise NavfnInputError(f"{out}: directory {parent} does not exist")
+    if not Path(out).resolve().parent.is_dir():
+        raise NavfnInputError(f"{out}: directory {Path(out).resolve().parent} does not exist")
     import matplotlib
 
     matplotlib.use("Agg")
@@ -112,12 +111,8 @@ def render_case(
     status = f"path: {len(path)} points" if len(path) else f"no path ({result.exit.value if result.exit else '?'})"
     fig.suptitle(f"{title}  start {tuple(start)} goal {tuple(goal)}  {status}".strip(), fontsize=10)
     fig.tight_layout()
-    tmp = Path(out).with_name(f".{Path(out).name}.tmp{os.getpid()}{ext}")
     try:
-        fig.savefig(tmp, dpi=110)
-        os.replace(tmp, out)
-    except OSError as e:
-        tmp.unlink(missing_ok=True)
-        raise NavfnInputError(f"{out}: cannot write ({e.strerror})") from None
+        with atomic_path(out, suffix=ext) as tmp:
+            fig.savefig(tmp, dpi=110)
     finally:
         plt.close(fig)

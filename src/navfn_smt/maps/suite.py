@@ -18,6 +18,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..fileio import atomic_write_bytes
 
 MODES = ("astar", "dijkstra")
 GOLDEN_FIELDS = (
@@ -166,16 +167,6 @@ def golden_path_of(g: dict, i: int) -> np.ndarray:
     return g["path"][off[i] : off[i + 1]]
 
 
-def _atomic_bytes(path: Path, data: bytes) -> None:
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    try:
-        tmp.write_bytes(data)
-        os.replace(tmp, path)
-    except OSError as e:
-        tmp.unlink(missing_ok=True)
-        raise NavfnInputError(f"{path}: cannot write ({e.strerror})") from None
-
-
 def write_map_dir(directory, costs: np.ndarray, cases, map_file: str = "map.bin", comment: str = "") -> Path:
     """Write a map directory in the suite format (test.txt and the map bytes), file by file
     atomically; golden files are written separately (``suite record``)."""
@@ -192,6 +183,6 @@ def write_map_dir(directory, costs: np.ndarray, cases, map_file: str = "map.bin"
         d.mkdir(parents=True, exist_ok=True)
     except OSError as e:
         raise NavfnInputError(f"{d}: cannot create directory ({e.strerror})") from None
-    _atomic_bytes(d / map_file, c.tobytes())
-    _atomic_bytes(d / "test.txt", ("\n".join(lines) + "\n").encode("ascii"))
+    atomic_write_bytes(d / map_file, c.tobytes())
+    atomic_write_bytes(d / "test.txt", ("\n".join(lines) + "\n").encode("ascii"))
     return d

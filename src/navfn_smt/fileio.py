@@ -1,0 +1,53 @@
+"""Writing files whole or not at all: a temporary name in the same directory, then a rename.
+
+Every file the toolkit writes for a user (reports, pictures, maps, golden files) goes
+through here, so a failure or an interruption never leaves a half-written file behind.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from pathlib import Path
+
+from .errors import NavfnInputError
+
+
+@contextlib.contextmanager
+def atomic_path(path, suffix: str = ""):
+    """Yield a temporary path beside ``path``; on success it replaces ``path``.
+
+    ``suffix`` keeps an extension on the temporary name (for writers that choose the format
+    by extension).  OS errors become one-line :class:`NavfnInputError`.
+    """
+    p = Path(path)
+    if not p.parent.is_dir():
+        raise NavfnInputError(f"{path}: directory {p.parent} does not exist")
+    tmp = p.with_name(f".{p.name}.tmp{os.getpid()}{suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, p)
+    except OSError as e:
+        tmp.unlink(missing_ok=True)
+        raise NavfnInputError(f"{path}: cannot write ({e.strerror or e})") from None
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def atomic_write_bytes(path, data: bytes) -> None:
+    with atomic_path(path) as tmp:
+        with open(tmp, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
+
+
+def atomic_write_text(path, text: str) -> None:
+    atomic_write_bytes(path, text.encode("utf-8"))
+
+
+def check_writable(path) -> None:
+    """Fail before a long run when its report could not be written at the end."""
+    atomic_write_bytes(path, b"")
+    Path(path).unlink()
