@@ -85,12 +85,7 @@ def _plan_world(args) -> int:
     else:
         print(f"NavFn runs from the goal cell back to the robot's (Nav2 swaps them); start reached: "
               f"{res.start_reached}; cycles: {res.cycles}")
-    if path:
-        print(f"path: {len(path)} poses (world coordinates)")
-        for x, y in path:
-            print(f"  {x:.9g} {y:.9g}")
-    else:
-        print(f"no path (calcPath returned 0: {res.exit.value if res and res.exit else 'unknown'})")
+    _print_path(path, "poses (world coordinates)", res)
     return 0
 
 
@@ -123,13 +118,17 @@ def cmd_plan(args) -> int:
     print(f"mode {'dijkstra' if args.dijkstra else 'astar'}, start {start}, goal {goal}")
     print(f"start reached: {res.start_reached}; start potential: {float(res.start_potential):.9g}; "
           f"cycles: {res.cycles}; updates: {res.updates}; dropped pushes: {res.dropped}")
+    _print_path(path, "points", res)
+    return 0
+
+
+def _print_path(path, unit: str, res) -> None:
     if path:
-        print(f"path: {len(path)} points")
+        print(f"path: {len(path)} {unit}")
         for x, y in path:
             print(f"  {x:.9g} {y:.9g}")
     else:
-        print(f"no path (calcPath returned 0: {res.exit.value if res.exit else 'unknown'})")
-    return 0
+        print(f"no path (calcPath returned 0: {res.exit.value if res and res.exit else 'unknown'})")
 
 
 # ------------------------------------------------------------------------------- difftest

@@ -556,6 +556,13 @@ def world_to_map(m: MapServerMap, wx, wy) -> tuple[int, int]:
     Fails (NavfnInputError) when ``wx < origin_x`` or ``wy < origin_y``, or when the
     truncated ``(w - origin) / resolution`` is not below the map size.
     """
+    fx, fy = _map_coordinates(m, wx, wy)
+    return int(fx), int(fy)  # static_cast<unsigned int>: truncation
+
+
+def _map_coordinates(m: MapServerMap, wx, wy) -> tuple[float, float]:
+    """``(w - origin) / resolution`` per axis, refused below the origin or past the map's size
+    (the bounds test both ``worldToMap`` functions share)."""
     wx, wy = _finite("world point", wx, wy)
     ox, oy = m.origin[0], m.origin[1]
     res = m.costmap_resolution
@@ -566,7 +573,7 @@ def world_to_map(m: MapServerMap, wx, wy) -> tuple[int, int]:
     if fx >= m.width or fy >= m.height:
         raise NavfnInputError(f"world point ({wx!r}, {wy!r}) is outside the {m.width}x{m.height} map "
                               f"(origin ({ox!r}, {oy!r}), resolution {res!r})")
-    return int(fx), int(fy)  # static_cast<unsigned int>: truncation
+    return fx, fy
 
 
 def map_to_world(m: MapServerMap, mx, my) -> tuple[float, float]:
@@ -594,15 +601,7 @@ def navfn_world_to_map(m: MapServerMap, wx, wy) -> tuple[int, int]:
     ``makePlan`` ignores that failure and hands NavFn the off-map cell; Humble's fails the
     plan; here it is an error).
     """
-    wx, wy = _finite("world point", wx, wy)
-    ox, oy = m.origin[0], m.origin[1]
-    res = m.costmap_resolution
-    if wx < ox or wy < oy:
-        raise NavfnInputError(f"world point ({wx!r}, {wy!r}) is outside the map (below its origin ({ox!r}, {oy!r}))")
-    fx = (wx - ox) / res
-    fy = (wy - oy) / res
-    if fx >= m.width or fy >= m.height:
-        raise NavfnInputError(f"world point ({wx!r}, {wy!r}) is outside the {m.width}x{m.height} map")
+    fx, fy = _map_coordinates(m, wx, wy)
     mx, my = _round_half_away(fx), _round_half_away(fy)
     if mx >= m.width or my >= m.height:
         raise NavfnInputError(f"world point ({wx!r}, {wy!r}) rounds to cell ({mx}, {my}), off the "
