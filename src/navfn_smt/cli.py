@@ -286,6 +286,61 @@ def cmd_coverage(args) -> int:
     return 0
 
 
+# ---------------------------------------------------------------------------------- prove
+PROOFS_DIR = Path(__file__).resolve().parents[2] / "proofs"
+
+
+def cmd_prove(args) -> int:
+    import datetime
+
+    from .report import proofs as rp
+    from .report.tables import progress_bar
+    from .smt.runner import SEMANTICS, default_proof_files, run
+
+    files = [Path(f) for f in args.files] if args.files else default_proof_files(PROOFS_DIR)
+    semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
+    if args.timeout <= 0:
+        raise NavfnInputError("--timeout must be positive")
+    if args.jobs < 1:
+        raise NavfnInputError("--jobs must be at least 1")
+    for f in (args.report, args.junit, args.markdown):
+        if f:
+            check_writable(f)
+    solvers = tuple(args.solver) if args.solver else ("z3", "bitwuzla", "cvc5")
+    from .smt.obligation import load_obligations
+
+    n = sum(len([s for s in semantics if s in o.expect]) for o in load_obligations(files))
+    with progress_bar(n, "prove") as advance:
+        outcomes = run(files, semantics, args.timeout, args.jobs, solvers, progress=lambda o: advance(1))
+    witness_files = {}
+    for o in outcomes:
+        if o.witness:
+            wdir = Path(args.witness_dir)
+            wdir.mkdir(parents=True, exist_ok=True)
+            w = wdir / f"{o.name}.{o.semantics}.json"
+            atomic_write_text(w, json.dumps({"obligation": o.name, "property": o.predicate, "semantics": o.semantics,
+                                             "statement": o.statement, **o.witness}, indent=1))
+            witness_files[(o.name, o.semantics)] = str(w)
+    if args.smt2:
+        from .smt.runner import write_smt2
+
+        write_smt2(files, semantics, Path(args.smt2))
+    rp.table(outcomes)
+    meta = {"when": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+            "timeout": args.timeout, "solvers": list(solvers), "semantics": list(semantics),
+            "files": [str(f) for f in files]}
+    if args.report:
+        rp.write_json(args.report, outcomes, witness_files, meta)
+    if args.junit:
+        rp.write_junit(args.junit, outcomes)
+    if args.markdown:
+        rp.write_markdown(args.markdown, outcomes, meta)
+    bad = [o for o in outcomes if not o.as_expected]
+    print(f"{len(outcomes) - len(bad)} passed, {len(bad)} failed"
+          + (": " + ", ".join(f"{o.name}[{o.semantics}] {o.status} (expected {o.expected})" for o in bad) if bad else ""))
+    return 1 if bad else 0
+
+
 # ---------------------------------------------------------------------------------- bench
 def cmd_bench(args) -> int:
     from .bench import bench_sizes, bench_suite
@@ -378,6 +433,21 @@ def build_parser() -> argparse.ArgumentParser:
     from .maps.suite_cli import register as register_suite
 
     register_suite(sub)
+
+    pr = sub.add_parser("prove", help="check the proof obligations in proofs/ (or the given files)")
+    pr.add_argument("files", nargs="*", help="proof files (default: every proofs/*.py)")
+    pr.add_argument("--semantics", choices=("real", "fp32", "both"), default="both")
+    pr.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query (default 30)")
+    pr.add_argument("--jobs", type=int, default=1, help="obligations checked in parallel (default 1)")
+    pr.add_argument("--solver", action="append", choices=("z3", "bitwuzla", "cvc5"),
+                    help="solvers of the portfolio (repeatable; default all three)")
+    pr.add_argument("--report", metavar="FILE.json", help="machine-readable report")
+    pr.add_argument("--junit", metavar="FILE.xml", help="JUnit XML, one test case per obligation and semantics")
+    pr.add_argument("--markdown", metavar="FILE.md", help="the invariants page (docs/invariants.md)")
+    pr.add_argument("--smt2", metavar="DIR", help="also write every query as SMT-LIB2")
+    pr.add_argument("--witness-dir", default="proof-witnesses", metavar="DIR",
+                    help="where counterexamples are written (default proof-witnesses)")
+    pr.set_defaults(func=cmd_prove)
 
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")

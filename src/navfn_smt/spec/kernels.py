@@ -55,6 +55,18 @@ def planar_wave(D, l, r, u, d, hf):
     return D.ite(D.ge(dc, hf), D.add(ta, hf), D.add(ta, D.mul(hf, v)))
 
 
+def cell_update(D, old, l, r, u, d, cost, hf):
+    """One ``updateCell`` on a cell's potential: ``(new potential, changed)``.
+
+    ``cost`` is the cell's cost as an int and ``hf`` the same as a float.  An obstacle
+    (``cost >= COST_OBS``) is left alone; otherwise the planar-wave candidate replaces
+    the old potential only when it is strictly lower (``if (pot < potarr[n])``).
+    """
+    cand = planar_wave(D, l, r, u, d, hf)
+    changed = D.and_(is_passable(D, cost), D.lt(cand, old))
+    return D.ite(changed, cand, old), changed
+
+
 def edge_weight(D, hf_neighbour):
     """``INVSQRT2 * static_cast<float>(costarr[m])``: a double product narrowed to float."""
     return D.narrow(D.mul64(D.f64const(INVSQRT2), D.widen(hf_neighbour)))

@@ -89,11 +89,11 @@ def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, 
     nx = st.nx
     pot = st.potential
     cost = st.costs[n]
-    if not K.is_passable(D, cost):
+    if not K.is_passable(D, cost):  # skip the arithmetic on obstacles (cell_update keeps them)
         return
     l, r, u, d = pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx]
-    new = K.planar_wave(D, l, r, u, d, _HF[cost])
-    if not D.lt(new, pot[n]):
+    new, changed = K.cell_update(D, pot[n], l, r, u, d, cost, _HF[cost])
+    if not changed:
         return
     pot[n] = new
     key = new

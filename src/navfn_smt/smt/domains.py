@@ -1,0 +1,387 @@
+"""Symbolic numeric domains: the kernels of :mod:`navfn_smt.spec.kernels` as Z3 terms.
+
+Two interpretations of the operations the concrete domain
+(:class:`navfn_smt.spec.numeric.ConcreteDomain`) provides, under the same method names:
+
+* :class:`FPDomain` (``fp32``): bit-precise IEEE-754.  C++ ``float`` is ``Float32``,
+  ``double`` is ``Float64``, every operation rounds to nearest-even exactly where the C++
+  rounds; C++ ``int`` is a 32-bit bit-vector; ``static_cast<int>`` is x86-64's
+  ``cvttss2si`` (truncation, INT_MIN for NaN and out of range).
+* :class:`RealDomain` (``real``): the paper's abstraction.  Both ``float`` and ``double``
+  are mathematical reals, no operation rounds, ``int`` is a mathematical integer.
+
+Library functions are not IEEE basic operations:
+
+* ``roundf`` has an exact definition (nearest integer, halves away from zero): the
+  FP domain uses IEEE ``roundToIntegral`` with mode RNA, which is exactly that; the real
+  domain defines it with ``floor``.
+* ``hypot`` / ``hypotf`` have no exact definition.  Each call yields a fresh result
+  constrained by a *model* recorded in :attr:`Domain.assumptions` (to be asserted with the
+  obligation and named in its report): the result is non-negative, zero exactly when
+  both arguments are zero, at least the larger magnitude and at most their sum, and (FP)
+  within one unit in the last place of the exact value, which glibc documents for these
+  functions on x86-64 (its ``libm-test-ulps``: at most 1 ulp).  In the real domain the
+  result is the exact square root.
+
+A domain also mints variables (:meth:`Domain.f32`, :meth:`Domain.cost`, ...), so an
+obligation written against the domain can be evaluated symbolically or, with a model's
+values, concretely (see :mod:`navfn_smt.smt.obligation`).
+"""
+
+from __future__ import annotations
+
+import itertools
+import struct
+
+import z3
+
+from ..spec.constants import INT_MIN
+
+F32 = z3.FPSort(8, 24)
+F64 = z3.FPSort(11, 53)
+BV32 = z3.BitVecSort(32)
+RNE = z3.RNE()
+
+
+def _bits32(x: float) -> int:
+    return struct.unpack("<I", struct.pack("<f", x))[0]
+
+
+def _bits64(x: float) -> int:
+    return struct.unpack("<Q", struct.pack("<d", x))[0]
+
+
+def fp32_val(x: float) -> z3.FPRef:
+    """The Float32 value with exactly the bits of float32 ``x`` (NaN, -0.0 included)."""
+    return z3.fpBVToFP(z3.BitVecVal(_bits32(x), 32), F32)
+
+
+def fp64_val(x: float) -> z3.FPRef:
+    return z3.fpBVToFP(z3.BitVecVal(_bits64(x), 64), F64)
+
+
+class Domain:
+    """Common parts: logic, variables, the assumption list."""
+
+    name = "?"
+    _fresh = itertools.count()
+
+    def __init__(self):
+        self.assumptions: list = []  # constraints of library-function models
+        self.assumption_notes: set = set()
+        self.variables: dict = {}
+
+    # logic
+    @staticmethod
+    def and_(a, b):
+        return z3.And(a, b)
+
+    @staticmethod
+    def or_(a, b):
+        return z3.Or(a, b)
+
+    @staticmethod
+    def not_(a):
+        return z3.Not(a)
+
+    def _var(self, name, sort):
+        v = z3.Const(name, sort)
+        self.variables[name] = v
+        return v
+
+    def _fresh_name(self, stem: str) -> str:
+        return f"{stem}!{next(self._fresh)}"
+
+
+class FPDomain(Domain):
+    """Bit-precise IEEE-754 semantics (``fp32``)."""
+
+    name = "fp32"
+
+    # ----------------------------------------------------------------- variables
+    def f32(self, name: str):
+        return self._var(name, F32)
+
+    def f64(self, name: str):
+        return self._var(name, F64)
+
+    def int32(self, name: str):
+        return self._var(name, BV32)
+
+    def cost(self, name: str):
+        """A cell cost (unsigned char) as the float ``static_cast<float>(costarr[n])``."""
+        return self._var(name, z3.BitVecSort(8))
+
+    def cost_as_f32(self, c):
+        return z3.fpUnsignedToFP(RNE, c, F32) if z3.is_bv(c) else self.f32const(float(c))
+
+    def cost_int(self, c):
+        """The cost as a 32-bit int (for comparisons with COST_OBS)."""
+        return z3.ZeroExt(24, c) if z3.is_bv(c) and c.size() == 8 else self._int(c)
+
+    # ------------------------------------------------------- constants, conversions
+    @staticmethod
+    def f32const(x):
+        from ..spec.numeric import f32
+
+        return fp32_val(f32(float(x)))
+
+    @staticmethod
+    def f64const(x):
+        return fp64_val(float(x))
+
+    @staticmethod
+    def widen(a):
+        return z3.fpFPToFP(RNE, a, F64)
+
+    @staticmethod
+    def narrow(a):
+        return z3.fpFPToFP(RNE, a, F32)
+
+    def int_to_f32(self, n):
+        if isinstance(n, int):
+            return self.f32const(float(n))
+        return z3.fpSignedToFP(RNE, n, F32)
+
+    def int_to_f64(self, n):
+        if isinstance(n, int):
+            return self.f64const(float(n))
+        return z3.fpSignedToFP(RNE, n, F64)
+
+    @staticmethod
+    def to_int32(a):
+        """cvttss2si / cvttsd2si: truncation; NaN or out of int32 range gives INT_MIN."""
+        if a.sort() == F32:
+            in_range = z3.And(z3.fpGEQ(a, fp32_val(-2147483648.0)), z3.fpLT(a, fp32_val(2147483648.0)))
+        else:
+            in_range = z3.And(z3.fpGT(a, fp64_val(-2147483649.0)), z3.fpLT(a, fp64_val(2147483648.0)))
+        return z3.If(in_range, z3.fpToSBV(z3.RTZ(), a, BV32), z3.BitVecVal(INT_MIN, 32))
+
+    # ------------------------------------------------------------- arithmetic
+    @staticmethod
+    def add(a, b):
+        return z3.fpAdd(RNE, a, b)
+
+    @staticmethod
+    def sub(a, b):
+        return z3.fpSub(RNE, a, b)
+
+    @staticmethod
+    def mul(a, b):
+        return z3.fpMul(RNE, a, b)
+
+    @staticmethod
+    def div(a, b):
+        return z3.fpDiv(RNE, a, b)
+
+    @staticmethod
+    def neg(a):
+        return z3.fpNeg(a)
+
+    add64, sub64, mul64, div64 = add, sub, mul, div
+
+    # ------------------------------------------------------- library functions
+    def _hypot(self, a, b, sort, name):
+        h = self.library_result(name, sort, a, b)
+        aa, ab = z3.fpAbs(a), z3.fpAbs(b)
+        zero = z3.FPVal(0.0, sort)
+        big = z3.If(z3.fpGEQ(aa, ab), aa, ab)
+        # exact value bracketed in a wider format: (h - ulp)^2 <= a^2 + b^2 <= (h + ulp)^2,
+        # with ulp = next(h) - h; squares of binary32/64 values are exact in the wide format
+        wide = z3.FPSort(15, 113) if sort == F32 else z3.FPSort(19, 237)
+        W = lambda v: z3.fpFPToFP(RNE, v, wide)  # noqa: E731
+        hb = z3.fpToIEEEBV(h)
+        nxt = z3.fpBVToFP(hb + 1, sort)
+        ulp = z3.fpSub(RNE, W(nxt), W(h))
+        s = z3.fpAdd(RNE, z3.fpMul(RNE, W(a), W(a)), z3.fpMul(RNE, W(b), W(b)))
+        lo = z3.fpSub(RNE, W(h), ulp)
+        hi = z3.fpAdd(RNE, W(h), ulp)
+        finite_args = z3.And(z3.Not(z3.fpIsInf(a)), z3.Not(z3.fpIsNaN(a)),
+                             z3.Not(z3.fpIsInf(b)), z3.Not(z3.fpIsNaN(b)))
+        self.assumptions.append(z3.Implies(finite_args, z3.And(
+            z3.Not(z3.fpIsNaN(h)), z3.Not(z3.fpIsInf(h)), z3.fpGEQ(h, zero),
+            z3.fpEQ(h, zero) == z3.And(z3.fpIsZero(a), z3.fpIsZero(b)),
+            z3.fpGEQ(h, big), z3.fpLEQ(W(h), z3.fpAdd(RNE, W(aa), W(ab))),
+            z3.Implies(z3.Not(z3.fpIsZero(h)), z3.And(
+                z3.fpLEQ(z3.fpMul(RNE, z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo),
+                                  z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo)), s),
+                z3.fpLEQ(s, z3.fpMul(RNE, hi, hi)))),
+        )))
+        self.assumption_notes.add(
+            f"{name}: non-negative, zero iff both arguments are, between the larger magnitude and "
+            f"the sum of magnitudes, and within 1 ulp of the exact sqrt(a*a + b*b) (glibc, x86-64)")
+        return h
+
+    def library_result(self, name, sort, *args):
+        """The result of a library call: a fresh constant (subclasses may supply a value)."""
+        return z3.Const(self._fresh_name(name), sort)
+
+    def hypot64(self, a, b):
+        return self._hypot(a, b, F64, "hypot")
+
+    def hypotf(self, a, b):
+        return self._hypot(a, b, F32, "hypotf")
+
+    @staticmethod
+    def roundf(a):
+        return z3.fpRoundToIntegral(z3.RNA(), a)
+
+    # ------------------------------------------------------------ comparisons
+    @staticmethod
+    def _int(v):
+        return z3.BitVecVal(v, 32) if isinstance(v, int) else v
+
+    def _cmp(self, a, b, fp, bv):
+        if isinstance(a, z3.FPRef) or isinstance(b, z3.FPRef):
+            return fp(a, b)
+        return bv(self._int(a), self._int(b))
+
+    def lt(self, a, b):
+        return self._cmp(a, b, z3.fpLT, lambda x, y: x < y)
+
+    def le(self, a, b):
+        return self._cmp(a, b, z3.fpLEQ, lambda x, y: x <= y)
+
+    def gt(self, a, b):
+        return self._cmp(a, b, z3.fpGT, lambda x, y: x > y)
+
+    def ge(self, a, b):
+        return self._cmp(a, b, z3.fpGEQ, lambda x, y: x >= y)
+
+    def eq(self, a, b):
+        return self._cmp(a, b, z3.fpEQ, lambda x, y: x == y)
+
+    def ite(self, c, a, b):
+        if isinstance(c, bool):
+            return a if c else b
+        if isinstance(a, int) and not isinstance(a, bool):
+            a = self._int(a)
+        if isinstance(b, int) and not isinstance(b, bool):
+            b = self._int(b)
+        return z3.If(c, a, b)
+
+
+class RealDomain(Domain):
+    """The paper's abstraction: float and double are reals, int is an integer, no rounding."""
+
+    name = "real"
+
+    def f32(self, name: str):
+        return self._var(name, z3.RealSort())
+
+    f64 = f32
+
+    def int32(self, name: str):
+        return self._var(name, z3.IntSort())
+
+    def cost(self, name: str):
+        c = self._var(name, z3.IntSort())
+        self.assumptions.append(z3.And(c >= 0, c <= 255))
+        return c
+
+    def cost_as_f32(self, c):
+        return z3.ToReal(c) if z3.is_int(c) else z3.RealVal(c)
+
+    def cost_int(self, c):
+        return c
+
+    @staticmethod
+    def f32const(x):
+        from fractions import Fraction
+
+        from ..spec.numeric import f32
+
+        return z3.RealVal(Fraction(f32(float(x))))
+
+    @staticmethod
+    def f64const(x):
+        from fractions import Fraction
+
+        return z3.RealVal(Fraction(float(x)))
+
+    @staticmethod
+    def widen(a):
+        return a
+
+    narrow = widen
+
+    @staticmethod
+    def int_to_f32(n):
+        return z3.RealVal(n) if isinstance(n, int) else z3.ToReal(n)
+
+    int_to_f64 = int_to_f32
+
+    @staticmethod
+    def to_int32(a):
+        """Truncation toward zero (the reals never leave the int range in this abstraction)."""
+        return z3.If(a >= 0, z3.ToInt(a), -z3.ToInt(-a))
+
+    @staticmethod
+    def add(a, b):
+        return a + b
+
+    @staticmethod
+    def sub(a, b):
+        return a - b
+
+    @staticmethod
+    def mul(a, b):
+        return a * b
+
+    @staticmethod
+    def div(a, b):
+        return a / b
+
+    @staticmethod
+    def neg(a):
+        return -a
+
+    add64, sub64, mul64, div64 = add, sub, mul, div
+
+    def _hypot(self, a, b, name):
+        h = z3.Real(self._fresh_name(name))
+        self.assumptions.append(z3.And(h >= 0, h * h == a * a + b * b))
+        self.assumption_notes.add(f"{name}: the exact square root sqrt(a*a + b*b)")
+        return h
+
+    def hypot64(self, a, b):
+        return self._hypot(a, b, "hypot")
+
+    def hypotf(self, a, b):
+        return self._hypot(a, b, "hypotf")
+
+    @staticmethod
+    def roundf(a):
+        """Nearest integer, halves away from zero: floor(|a| + 1/2) with a's sign."""
+        up = z3.ToReal(z3.ToInt(a + z3.RealVal("1/2")))
+        down = -z3.ToReal(z3.ToInt(-a + z3.RealVal("1/2")))
+        return z3.If(a >= 0, up, down)
+
+    @staticmethod
+    def lt(a, b):
+        return a < b
+
+    @staticmethod
+    def le(a, b):
+        return a <= b
+
+    @staticmethod
+    def gt(a, b):
+        return a > b
+
+    @staticmethod
+    def ge(a, b):
+        return a >= b
+
+    @staticmethod
+    def eq(a, b):
+        return a == b
+
+    @staticmethod
+    def ite(c, a, b):
+        if isinstance(c, bool):
+            return a if c else b
+        return z3.If(c, a, b)
+
+
+DOMAINS = {"fp32": FPDomain, "real": RealDomain}

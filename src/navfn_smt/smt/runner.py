@@ -1,0 +1,136 @@
+"""Run proof obligations: every obligation of the given files in every requested semantics.
+
+Each (obligation, semantics) pair is one job; ``jobs`` worker processes take them, each
+loading the proof file itself (obligations hold functions, which do not travel between
+processes).  Solving goes through :func:`solve_query`: the solver portfolio when it is
+available, Z3 alone otherwise.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+from typing import Callable, Optional
+
+from ..errors import NavfnInputError
+from .obligation import Outcome, check, load_obligations, solve_z3
+
+SEMANTICS = ("real", "fp32")
+
+
+def solve_query(solvers: tuple):
+    """A ``solve(assertions, variables, timeout)`` for :func:`check` over ``solvers``."""
+    if tuple(solvers) == ("z3",):
+        return solve_z3
+
+    def solve(assertions, variables, timeout):
+        from .portfolio import solve as portfolio_solve
+
+        res = portfolio_solve(assertions, timeout=timeout, solvers=solvers)
+        if res.status == "error":
+            raise RuntimeError("solvers disagree: " + "; ".join(f"{a.solver}={a.status}" for a in res.answers))
+        if res.status == "sat":
+            win = next(a for a in res.answers if a.solver == res.solver)
+            values = _portfolio_values(win.model or {}, variables)
+            if values is None:  # the winner gave no usable model: ask z3 for one
+                return solve_z3(assertions, variables, timeout)
+            return "sat", values, res.solver, ""
+        if res.status == "unsat":
+            return "unsat", None, res.solver, ""
+        return "unknown", None, ",".join(solvers), "; ".join(f"{a.solver}: {a.status}" for a in res.answers)
+
+    return solve
+
+
+def _portfolio_values(model: dict, variables: dict) -> Optional[dict]:
+    """The obligation's variables from a portfolio model ({name: {sort, bits, value}})."""
+    import struct
+    from fractions import Fraction
+
+    out = {}
+    for name, v in variables.items():
+        m = model.get(name)
+        if m is None:
+            return None
+        if isinstance(m, dict) and "bits" in m:
+            sort = str(m.get("sort", ""))
+            if "64" in sort:
+                out[name] = struct.unpack("<d", struct.pack("<Q", int(m["bits"])))[0]
+            else:
+                out[name] = struct.unpack("<f", struct.pack("<I", int(m["bits"])))[0]
+        elif isinstance(m, dict) and "value" in m:
+            out[name] = m["value"]
+        elif isinstance(m, (bool, int, Fraction)):
+            out[name] = m
+        else:
+            return None
+        if isinstance(out[name], int) and not isinstance(out[name], bool):
+            size = getattr(v.sort(), "size", lambda: None)()
+            if size == 32 and out[name] >= 2**31:
+                out[name] -= 2**32
+    return out
+
+
+def _job(path: str, name: str, semantics: str, timeout: float, solvers: tuple) -> Outcome:
+    ob = next(o for o in load_obligations([path]) if o.name == name)
+    return check(ob, semantics, timeout, solve_query(solvers))
+
+
+def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: int = 1, solvers=("z3",),
+        progress: Optional[Callable[[Outcome], None]] = None) -> list[Outcome]:
+    obligations = load_obligations(paths)
+    work = [(o.source, o.name, s) for o in obligations for s in semantics if s in o.expect]
+    if not work:
+        raise NavfnInputError("no obligation to check in the requested semantics")
+    outcomes = []
+    if jobs <= 1:
+        for w in work:
+            o = _job(*w, timeout, tuple(solvers))
+            outcomes.append(o)
+            if progress:
+                progress(o)
+    else:
+        with ProcessPoolExecutor(max_workers=jobs) as ex:
+            futs = [ex.submit(_job, *w, timeout, tuple(solvers)) for w in work]
+            for f in as_completed(futs):
+                o = f.result()
+                outcomes.append(o)
+                if progress:
+                    progress(o)
+    order = {(w[1], w[2]): i for i, w in enumerate(work)}
+    outcomes.sort(key=lambda o: order[(o.name, o.semantics)])
+    return outcomes
+
+
+def default_proof_files(root: Path) -> list[Path]:
+    files = sorted(p for p in Path(root).glob("*.py") if not p.name.startswith("_"))
+    if not files:
+        raise NavfnInputError(f"{root}: no proof files (*.py)")
+    return files
+
+
+
+
+def write_smt2(paths, semantics, out_dir: Path) -> list[Path]:
+    """Every query (assumptions, precondition and negated claim) as an SMT-LIB2 file."""
+    import z3
+
+    from ..fileio import atomic_write_text
+    from .obligation import _query
+
+    try:
+        out_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise NavfnInputError(f"{out_dir}: cannot create directory ({e.strerror})") from None
+    written = []
+    for ob in load_obligations(paths):
+        for sem in semantics:
+            if sem not in ob.expect:
+                continue
+            _, assertions = _query(ob, sem)
+            s = z3.Solver()
+            s.add(*assertions)
+            p = out_dir / f"{ob.name}.{sem}.smt2"
+            atomic_write_text(p, s.to_smt2())
+            written.append(p)
+    return written
