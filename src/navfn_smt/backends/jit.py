@@ -229,6 +229,7 @@ def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
         ox = _f2i(_roundf(dx))
         oy = _f2i(np.float32(fnx * _roundf(dy)))
         near = stc + ox + oy
+        near = ((near + 2147483648) & 0xFFFFFFFF) - 2147483648  # int32 wrap-around, as on x86-64
         if near > ns - 1:
             near = ns - 1
         if near < 0:

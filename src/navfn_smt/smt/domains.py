@@ -60,6 +60,10 @@ def fp64_val(x: float) -> z3.FPRef:
     return z3.fpBVToFP(z3.BitVecVal(_bits64(x), 64), F64)
 
 
+def _max_value(sort) -> float:
+    return 3.4028234663852886e38 if sort == F32 else 1.7976931348623157e308
+
+
 class Domain:
     """Common parts: logic, variables, the assumption list."""
 
@@ -158,6 +162,12 @@ class FPDomain(Domain):
         return z3.If(in_range, z3.fpToSBV(z3.RTZ(), a, BV32), z3.BitVecVal(INT_MIN, 32))
 
     # ------------------------------------------------------------- arithmetic
+    def add_int(self, a, b):
+        """32-bit int addition: bit-vector addition wraps like x86-64."""
+        if isinstance(a, int) and isinstance(b, int):
+            return a + b
+        return self._int(a) + self._int(b)
+
     @staticmethod
     def add(a, b):
         return z3.fpAdd(RNE, a, b)
@@ -198,14 +208,18 @@ class FPDomain(Domain):
         hi = z3.fpAdd(RNE, W(h), ulp)
         finite_args = z3.And(z3.Not(z3.fpIsInf(a)), z3.Not(z3.fpIsNaN(a)),
                              z3.Not(z3.fpIsInf(b)), z3.Not(z3.fpIsNaN(b)))
+        top = W(z3.fpMaxValue(sort) if hasattr(z3, "fpMaxValue") else z3.FPVal(_max_value(sort), sort))
+        lo0 = z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo)
         self.assumptions.append(z3.Implies(finite_args, z3.And(
-            z3.Not(z3.fpIsNaN(h)), z3.Not(z3.fpIsInf(h)), z3.fpGEQ(h, zero),
+            z3.Not(z3.fpIsNaN(h)), z3.fpGEQ(h, zero),
             z3.fpEQ(h, zero) == z3.And(z3.fpIsZero(a), z3.fpIsZero(b)),
-            z3.fpGEQ(h, big), z3.fpLEQ(W(h), z3.fpAdd(RNE, W(aa), W(ab))),
-            z3.Implies(z3.Not(z3.fpIsZero(h)), z3.And(
-                z3.fpLEQ(z3.fpMul(RNE, z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo),
-                                  z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo)), s),
-                z3.fpLEQ(s, z3.fpMul(RNE, hi, hi)))),
+            z3.fpGEQ(h, big),
+            # overflow: infinity only when the exact value is beyond the largest finite float
+            z3.If(z3.fpIsInf(h), z3.fpGT(s, z3.fpMul(RNE, top, top)), z3.And(
+                z3.fpLEQ(W(h), z3.fpAdd(RNE, W(aa), W(ab))),
+                z3.Implies(z3.Not(z3.fpIsZero(h)), z3.And(
+                    z3.fpLEQ(z3.fpMul(RNE, lo0, lo0), s),
+                    z3.fpLEQ(s, z3.fpMul(RNE, hi, hi)))))),
         )))
         self.assumption_notes.add(
             f"{name}: non-negative, zero iff both arguments are, between the larger magnitude and "
@@ -319,6 +333,8 @@ class RealDomain(Domain):
     @staticmethod
     def add(a, b):
         return a + b
+
+    add_int = add  # integers without range in this abstraction
 
     @staticmethod
     def sub(a, b):

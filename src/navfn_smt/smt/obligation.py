@@ -180,6 +180,8 @@ class ExactReplayDomain(ReplayDomain):
     def add(a, b):
         return a + b
 
+    add_int = add
+
     @staticmethod
     def sub(a, b):
         return a - b
@@ -190,7 +192,9 @@ class ExactReplayDomain(ReplayDomain):
 
     @staticmethod
     def div(a, b):
-        return a / b
+        # the kernels compute both sides of a choice; a quotient by zero is never chosen
+        # (in SMT-LIB real division by zero is an unspecified value as well)
+        return a / b if b != 0 else a * 0
 
     add64, sub64, mul64, div64 = add, sub, mul, div
 

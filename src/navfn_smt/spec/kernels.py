@@ -197,11 +197,12 @@ def nearest_cell(D, stc, dx, dy, nx, ns):
         max(0, min(nx*ny - 1, stc + (int)roundf(dx) + (int)(nx * roundf(dy))))
 
     ``nx * roundf(dy)`` is a float product (int ``nx`` converted to float) before the
-    truncating conversion to int.
+    truncating conversion to int.  The sum overflows only for offsets no extraction
+    produces (|dx| beyond 2**31); it then wraps, as the compiled x86-64 code does.
     """
     ox = D.to_int32(D.roundf(dx))
     oy = D.to_int32(D.mul(D.int_to_f32(nx), D.roundf(dy)))
-    idx = stc + ox + oy
+    idx = D.add_int(D.add_int(stc, ox), oy)  # int additions wrap on overflow, as on x86-64
     idx = D.ite(D.lt(ns - 1, idx), ns - 1, idx)
     return D.ite(D.lt(idx, 0), 0, idx)
 

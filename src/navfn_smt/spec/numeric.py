@@ -137,6 +137,10 @@ class ConcreteDomain:
 
     to_int32 = staticmethod(cvt_to_int32)
 
+    @staticmethod
+    def add_int(a: int, b: int) -> int:  # int + int, wrapping at 32 bits
+        return wrap_int32(a + b)
+
     # --- float arithmetic (binary32) ------------------------------------------------
     @staticmethod
     def add(a: float, b: float) -> float:
