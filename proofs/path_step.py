@@ -6,6 +6,11 @@ obligations below show that one step (interpolate, advance by ``pathStep``, norm
 offset) keeps the offset in [-1, 1] and moves the cell by at most one in each direction,
 so every point emitted lies among the reached cells around the previous cell, and the
 near-goal probe reads one of those cells.
+
+In float32 the step fails for a subnormal gradient: ``pathStep / hypotf(x, y)``
+overflows to infinity and the offset with it.  The interpolated gradient is a weighted
+mean of unit vectors; the step is proved for every gradient whose larger component is at
+least 2**-100 (anything that does not cancel to nearly nothing).
 """
 
 from navfn_smt.smt.obligation import obligation
@@ -18,21 +23,38 @@ def _unit_interval(D, v):
     return D.and_(D.ge(v, D.f32const(-1.0)), D.le(v, D.f32const(1.0)))
 
 
+def _step(D, least):
+    dx, dy, x, y = (D.f32(v) for v in ("dx", "dy", "x", "y"))
+    ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, D.f32const(PATH_STEP))
+    zero = D.f32const(0.0)
+    big_enough = D.not_(D.and_(D.eq(x, zero), D.eq(y, zero)))
+    if least is not None:
+        m = D.f32const(least)
+        big_enough = D.or_(D.or_(D.ge(x, m), D.le(x, D.neg(m))), D.or_(D.ge(y, m), D.le(y, D.neg(m))))
+    pre = all_of(D, InUnitBox(D, dx, dy), _unit_interval(D, x), _unit_interval(D, y), big_enough)
+    moves = all_of(D, D.ge(cdx, -1), D.le(cdx, 1), D.ge(cdy, -1), D.le(cdy, 1))
+    return pre, D.and_(InUnitBox(D, ndx, ndy), moves)
+
+
 @obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
             scope="one gradient step from any offset in the unit box: every map size")
 def step_keeps_offset_in_unit_box(D):
     """One step of calcPath keeps the offset in [-1, 1] and moves at most one cell per axis.
 
-    |dx|, |dy| <= 1, gradient components in [-1, 1] and not both zero
+    |dx|, |dy| <= 1, gradient components in [-1, 1], max(|x|, |y|) >= 2**-100
     ==>  new |dx|, |dy| <= 1  and  cell moves in {-1, 0, 1}
     """
-    dx, dy, x, y = (D.f32(v) for v in ("dx", "dy", "x", "y"))
-    ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, D.f32const(PATH_STEP))
-    zero = D.f32const(0.0)
-    pre = all_of(D, InUnitBox(D, dx, dy), _unit_interval(D, x), _unit_interval(D, y),
-                 D.not_(D.and_(D.eq(x, zero), D.eq(y, zero))))
-    moves = all_of(D, D.ge(cdx, -1), D.le(cdx, 1), D.ge(cdy, -1), D.le(cdy, 1))
-    return pre, D.and_(InUnitBox(D, ndx, ndy), moves)
+    return _step(D, 2.0**-100)
+
+
+@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "refuted"},
+            scope="one gradient step from any offset in the unit box, any non-zero gradient: every map size")
+def step_keeps_offset_in_unit_box_any_gradient(D):
+    """The same for any non-zero gradient, subnormal ones included (fails in float32).
+
+    |dx|, |dy| <= 1, gradient components in [-1, 1], not both zero  ==>  new |dx|, |dy| <= 1
+    """
+    return _step(D, None)
 
 
 @obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},

@@ -311,7 +311,8 @@ def cmd_prove(args) -> int:
 
     n = sum(len([s for s in semantics if s in o.expect]) for o in load_obligations(files))
     with progress_bar(n, "prove") as advance:
-        outcomes = run(files, semantics, args.timeout, args.jobs, solvers, progress=lambda o: advance(1))
+        outcomes = run(files, semantics, args.timeout, args.jobs, solvers, progress=lambda o: advance(1),
+                       bounds=not args.no_bound_search)
     witness_files = {}
     for o in outcomes:
         if o.witness:
@@ -339,6 +340,42 @@ def cmd_prove(args) -> int:
     print(f"{len(outcomes) - len(bad)} passed, {len(bad)} failed"
           + (": " + ", ".join(f"{o.name}[{o.semantics}] {o.status} (expected {o.expected})" for o in bad) if bad else ""))
     return 1 if bad else 0
+
+
+# --------------------------------------------------------------------------------- mutate
+def cmd_mutate(args) -> int:
+    from rich.table import Table
+
+    from .report.tables import console, progress_bar
+    from .search.mutation import MUTANTS, run_mutant
+    from .smt.runner import default_proof_files
+
+    chosen = [m for m in MUTANTS if not args.mutant or m.name in args.mutant]
+    unknown = set(args.mutant or []) - {m.name for m in MUTANTS}
+    if unknown:
+        raise NavfnInputError(f"unknown mutant(s): {', '.join(sorted(unknown))}")
+    if args.json:
+        check_writable(args.json)
+    files = default_proof_files(PROOFS_DIR)
+    suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
+    results = []
+    with progress_bar(len(chosen), "mutants") as advance:
+        for m in chosen:
+            results.append(run_mutant(m, files, suite, args.timeout))
+            advance(1)
+    t = Table(title="mutation check: seeded bugs and what caught them")
+    for c in ("mutant", "seeded bug", "caught by", "seconds"):
+        t.add_column(c, overflow="fold")
+    for r in results:
+        t.add_row(r.name, r.what, ", ".join(r.caught_by) or "[red]survived[/]", f"{r.seconds:.0f}")
+    console.print(t)
+    caught = sum(r.caught for r in results)
+    if args.json:
+        atomic_write_text(args.json, json.dumps({"score": f"{caught}/{len(results)}", "mutants": [
+            {"name": r.name, "what": r.what, "caught_by": r.caught_by, "details": r.details, "seconds": r.seconds}
+            for r in results]}, indent=1, default=str))
+    print(f"mutation score: {caught} of {len(results)} seeded bugs caught")
+    return 0
 
 
 # ---------------------------------------------------------------------------------- bench
@@ -445,9 +482,18 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--junit", metavar="FILE.xml", help="JUnit XML, one test case per obligation and semantics")
     pr.add_argument("--markdown", metavar="FILE.md", help="the invariants page (docs/invariants.md)")
     pr.add_argument("--smt2", metavar="DIR", help="also write every query as SMT-LIB2")
+    pr.add_argument("--no-bound-search", action="store_true",
+                    help="do not search bounds for properties refuted in fp32 (verdicts only)")
     pr.add_argument("--witness-dir", default="proof-witnesses", metavar="DIR",
                     help="where counterexamples are written (default proof-witnesses)")
     pr.set_defaults(func=cmd_prove)
+
+    mu = sub.add_parser("mutate", help="seed bugs in the kernels and domains; report which checks catch them")
+    mu.add_argument("--mutant", action="append", metavar="NAME", help="run only this mutant (repeatable)")
+    mu.add_argument("--suite", help="suite for the difftest detector (default: the example suite)")
+    mu.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query")
+    mu.add_argument("--json", metavar="FILE", help="write every mutant's result as JSON")
+    mu.set_defaults(func=cmd_mutate)
 
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")

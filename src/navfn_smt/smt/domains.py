@@ -98,9 +98,17 @@ class Domain:
 
 
 class FPDomain(Domain):
-    """Bit-precise IEEE-754 semantics (``fp32``)."""
+    """Bit-precise IEEE-754 semantics (``fp32``).
+
+    ``hypotf_model``: ``"glibc"`` (default) defines ``hypotf`` as glibc computes it;
+    ``"ulp"`` uses only the documented one-ulp accuracy.
+    """
 
     name = "fp32"
+
+    def __init__(self, hypotf_model: str = "glibc"):
+        super().__init__()
+        self.hypotf_model = hypotf_model
 
     # ----------------------------------------------------------------- variables
     def f32(self, name: str):
@@ -197,8 +205,10 @@ class FPDomain(Domain):
         zero = z3.FPVal(0.0, sort)
         big = z3.If(z3.fpGEQ(aa, ab), aa, ab)
         # exact value bracketed in a wider format: (h - ulp)^2 <= a^2 + b^2 <= (h + ulp)^2,
-        # with ulp = next(h) - h; squares of binary32/64 values are exact in the wide format
-        wide = z3.FPSort(15, 113) if sort == F32 else z3.FPSort(19, 237)
+        # with ulp = next(h) - h.  Squares of binary32 values (and of h +- ulp) are exact in
+        # binary64, squares of binary64 values in binary128; only the sum of the two squares
+        # rounds there (relative 2**-53, resp. 2**-113), far inside the one-ulp bracket.
+        wide = F64 if sort == F32 else z3.FPSort(15, 113)
         W = lambda v: z3.fpFPToFP(RNE, v, wide)  # noqa: E731
         hb = z3.fpToIEEEBV(h)
         nxt = z3.fpBVToFP(hb + 1, sort)
@@ -223,7 +233,8 @@ class FPDomain(Domain):
         )))
         self.assumption_notes.add(
             f"{name}: non-negative, zero iff both arguments are, between the larger magnitude and "
-            f"the sum of magnitudes, and within 1 ulp of the exact sqrt(a*a + b*b) (glibc, x86-64)")
+            f"the sum of magnitudes, infinite only beyond the largest float, and within 1 ulp of the "
+            f"exact sqrt(a*a + b*b) (glibc's documented accuracy on x86-64)")
         return h
 
     def library_result(self, name, sort, *args):
@@ -234,7 +245,19 @@ class FPDomain(Domain):
         return self._hypot(a, b, F64, "hypot")
 
     def hypotf(self, a, b):
-        return self._hypot(a, b, F32, "hypotf")
+        """glibc's ``hypotf`` (2.35 and later, x86-64): ``(float) sqrt((double) a * a + (double) b * b)``.
+
+        An exact definition of the implementation the original links against, rather than
+        the one-ulp bound (:meth:`_hypot`) its documentation gives; the equality test holds it
+        bit-equal to the platform's ``hypotf`` on every test input."""
+        if self.hypotf_model == "ulp":
+            return self._hypot(a, b, F32, "hypotf")
+        wa, wb = self.widen(a), self.widen(b)
+        self.assumption_notes.add("hypotf: glibc's implementation, (float) sqrt((double) a * a + (double) b * b), "
+                                  "held bit-equal to the platform libm by the equality test")
+        core = self.narrow(z3.fpSqrt(RNE, z3.fpAdd(RNE, z3.fpMul(RNE, wa, wa), z3.fpMul(RNE, wb, wb))))
+        # C99 Annex F (and glibc): an infinite argument gives +inf even when the other is NaN
+        return z3.If(z3.Or(z3.fpIsInf(a), z3.fpIsInf(b)), z3.fpPlusInfinity(F32), core)
 
     @staticmethod
     def roundf(a):

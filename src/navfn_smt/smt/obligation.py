@@ -47,25 +47,27 @@ class Obligation:
     name: str
     predicate: str  # the paper's predicate this obligation is part of
     build: Callable
-    expect: dict  # semantics -> "proved" | "refuted"
+    expect: dict  # semantics -> "proved" | "refuted" | "unknown" (an open question, documented as such)
     scope: str
     doc: str
     source: str = ""
     bound: Optional[Bound] = None
+    hypotf_model: str = "glibc"  # fp32: glibc's exact implementation, or "ulp" (documented accuracy only)
 
     @property
     def title(self) -> str:
         return self.doc.strip().splitlines()[0] if self.doc else self.name
 
 
-def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] = None):
+def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc"):
     """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``)."""
 
     def wrap(fn):
         for sem, verdict in expect.items():
-            if sem not in DOMAINS or verdict not in ("proved", "refuted"):
+            if sem not in DOMAINS or verdict not in STATUSES:
                 raise ValueError(f"{fn.__name__}: bad expectation {sem}={verdict}")
-        return Obligation(fn.__name__, predicate, fn, dict(expect), scope, fn.__doc__ or "", bound=bound)
+        return Obligation(fn.__name__, predicate, fn, dict(expect), scope, fn.__doc__ or "", bound=bound,
+                          hypotf_model=hypotf_model)
 
     return wrap
 
@@ -284,7 +286,7 @@ class Outcome:
 
 
 def _query(ob: Obligation, semantics: str, extra=None):
-    D = DOMAINS[semantics]()
+    D = DOMAINS[semantics](hypotf_model=ob.hypotf_model) if semantics == "fp32" else DOMAINS[semantics]()
     pre, claim = ob.build(D)
     if extra is not None:
         pre = z3.And(pre, extra(D))
@@ -304,7 +306,7 @@ def solve_z3(assertions, variables: dict, timeout: float):
     return "unknown", None, "z3", s.reason_unknown()
 
 
-def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3) -> Outcome:
+def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3, bounds: bool = True) -> Outcome:
     """Check one obligation in one semantics."""
     t0 = time.perf_counter()
     D, assertions = _query(ob, semantics)
@@ -324,7 +326,7 @@ def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3)
             out.detail = "solver model not confirmed by the concrete spec (libm differs from its model)"
         else:
             out.status = "refuted"
-    if ob.bound is not None and semantics == "fp32" and out.status == "refuted":
+    if bounds and ob.bound is not None and semantics == "fp32" and out.status == "refuted":
         out.bound = search_bound(ob, timeout, solve)
     out.seconds = round(time.perf_counter() - t0, 3)
     return out
@@ -361,6 +363,8 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
     b = ob.bound
     lo, hi = _bits(b.lo), _bits(b.hi)  # invariant: proved at lo, refuted at hi
 
+    witness_at: dict = {}
+
     def proved_below(bits_x: int) -> Optional[bool]:
         x = _f32_from_bits(bits_x)
         extra = lambda D: z3.fpLT(D.variables[b.var], fp32_val(x))  # noqa: E731
@@ -369,15 +373,26 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
         if ans == "unsat":
             return True
         if ans == "sat":
-            return False if replay(ob, values, lambda C: values[b.var] < x) else None
+            if not replay(ob, values, lambda C: values[b.var] < x):
+                return None
+            witness_at[bits_x] = values[b.var]
+            return False
         return None
 
+    cache = _BoundCache(ob)
+    known = cache.get()
+    if known is not None:
+        kb = _bits(known)
+        if proved_below(kb) is True and proved_below(kb + 1) is False:
+            return {"var": b.var, "holds_below": known, "refuted_below": _f32_from_bits(kb + 1), "solver_calls": 2,
+                    "note": "bound from an earlier search, verified tight (proved below it, refuted one ulp above)"}
     first = proved_below(lo)
     if first is not True:
         return {"var": b.var, "holds_below": None, "note": f"not proved even for {b.var} < {b.lo}"}
     if proved_below(hi) is not False:
         return {"var": b.var, "holds_below": None, "note": f"no confirmed counterexample below {b.hi}"}
     calls = 2
+    hi = min(hi, _bits(witness_at[hi]) + 1)  # refuted already below the counterexample's value + 1 ulp
     while hi - lo > 1:
         mid = (lo + hi) // 2
         r = proved_below(mid)
@@ -385,6 +400,54 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
         if r is None:
             return {"var": b.var, "holds_below": _f32_from_bits(lo), "note": "search stopped on an unknown answer",
                     "solver_calls": calls}
-        lo, hi = (mid, hi) if r else (lo, mid)
+        if r:
+            lo = mid
+        else:  # a confirmed counterexample with var = w < mid: refuted below w + 1 ulp as well
+            hi = min(mid, _bits(witness_at[mid]) + 1)
+    cache.put(_f32_from_bits(lo))
     return {"var": b.var, "holds_below": _f32_from_bits(lo), "refuted_below": _f32_from_bits(hi),
             "solver_calls": calls}
+
+
+class _BoundCache:
+    """Bounds found by search, kept beside the proof file (``.bounds.json``) and keyed by a
+    hash of the proof file, the kernels and the domains: a later run only re-verifies that
+    the bound is tight (two solver calls) instead of searching again."""
+
+    def __init__(self, ob: Obligation):
+        import hashlib
+
+        self.ob = ob
+        src = Path(ob.source) if ob.source else None
+        self.path = src.parent / ".bounds.json" if src else None
+        h = hashlib.sha256()
+        here = Path(__file__).resolve().parent
+        for f in (src, here.parent / "spec" / "kernels.py", here / "domains.py"):
+            if f is not None and f.exists():
+                h.update(f.read_bytes())
+        self.key = f"{ob.name}:{h.hexdigest()[:16]}"
+
+    def _load(self) -> dict:
+        import json
+
+        try:
+            return json.loads(self.path.read_text()) if self.path and self.path.exists() else {}
+        except (OSError, ValueError):
+            return {}
+
+    def get(self) -> Optional[float]:
+        return self._load().get(self.key)
+
+    def put(self, value: float) -> None:
+        import json
+
+        from ..fileio import atomic_write_text
+
+        if self.path is None:
+            return
+        doc = {k: v for k, v in self._load().items() if not k.startswith(self.ob.name + ":")}
+        doc[self.key] = value
+        try:
+            atomic_write_text(self.path, json.dumps(doc, indent=1, sort_keys=True) + "\n")
+        except NavfnInputError:
+            pass  # a read-only checkout: the next run searches again

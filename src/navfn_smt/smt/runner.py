@@ -71,13 +71,13 @@ def _portfolio_values(model: dict, variables: dict) -> Optional[dict]:
     return out
 
 
-def _job(path: str, name: str, semantics: str, timeout: float, solvers: tuple) -> Outcome:
+def _job(path: str, name: str, semantics: str, timeout: float, solvers: tuple, bounds: bool = True) -> Outcome:
     ob = next(o for o in load_obligations([path]) if o.name == name)
-    return check(ob, semantics, timeout, solve_query(solvers))
+    return check(ob, semantics, timeout, solve_query(solvers), bounds=bounds)
 
 
 def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: int = 1, solvers=("z3",),
-        progress: Optional[Callable[[Outcome], None]] = None) -> list[Outcome]:
+        progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True) -> list[Outcome]:
     obligations = load_obligations(paths)
     work = [(o.source, o.name, s) for o in obligations for s in semantics if s in o.expect]
     if not work:
@@ -85,13 +85,13 @@ def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: int = 1, solver
     outcomes = []
     if jobs <= 1:
         for w in work:
-            o = _job(*w, timeout, tuple(solvers))
+            o = _job(*w, timeout, tuple(solvers), bounds)
             outcomes.append(o)
             if progress:
                 progress(o)
     else:
         with ProcessPoolExecutor(max_workers=jobs) as ex:
-            futs = [ex.submit(_job, *w, timeout, tuple(solvers)) for w in work]
+            futs = [ex.submit(_job, *w, timeout, tuple(solvers), bounds) for w in work]
             for f in as_completed(futs):
                 o = f.result()
                 outcomes.append(o)

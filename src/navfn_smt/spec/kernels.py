@@ -117,11 +117,16 @@ def grad_cell(D, cv, pl, pr, pu, pd):
     """The gradient ``gradCell`` stores for a cell of potential ``cv`` (not on the border).
 
     Returns ``(gx, gy)``: the normalised vector when its norm is positive, otherwise
-    ``(0, 0)`` (C++ then leaves ``gradx/grady`` at the zero ``setupNavFn`` wrote).  In an
-    unreached cell (``cv >= POT_HIGH``) the vector points by +-COST_OBS towards a reached
-    neighbour; otherwise it is the central difference over the reached neighbours.
-    ``hypot(dx, dy)`` of two floats is ``hypotf``; ``1.0 / norm`` is double, narrowed.
+    ``(0, 0)`` (C++ then leaves ``gradx/grady`` at the zero ``setupNavFn`` wrote).
     """
+    dx, dy = grad_vector(D, cv, pl, pr, pu, pd)
+    return normalise(D, dx, dy)
+
+
+def grad_vector(D, cv, pl, pr, pu, pd):
+    """gradCell's unnormalised vector (float).  In an unreached cell (``cv >= POT_HIGH``)
+    it points by +-COST_OBS towards a reached neighbour; otherwise it is the central
+    difference over the reached neighbours (``dx += l - cv; dx += cv - r``)."""
     high = D.f32const(POT_HIGH)
     zero = D.f32const(0.0)
     obs = D.f32const(COST_OBS)
@@ -137,8 +142,14 @@ def grad_cell(D, cv, pl, pr, pu, pd):
     dy1 = D.ite(reached_u, D.add(zero, D.sub(pu, cv)), zero)
     dy2 = D.ite(reached_d, D.add(dy1, D.sub(cv, pd)), dy1)
     unreached = D.ge(cv, high)
-    dx = D.ite(unreached, dx_obs, dx2)
-    dy = D.ite(unreached, dy_obs, dy2)
+    return D.ite(unreached, dx_obs, dx2), D.ite(unreached, dy_obs, dy2)
+
+
+def normalise(D, dx, dy):
+    """gradCell's normalisation: ``norm = hypot(dx, dy)`` (``hypotf``); when positive,
+    ``norm = 1.0 / norm`` (double, narrowed) and the stored vector is ``norm * (dx, dy)``
+    (float); otherwise the stored vector stays (0, 0)."""
+    zero = D.f32const(0.0)
     norm = D.hypotf(dx, dy)
     inv = D.narrow(D.div64(D.f64const(1.0), D.widen(norm)))
     positive = D.gt(norm, zero)

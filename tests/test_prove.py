@@ -1,0 +1,100 @@
+"""The proof run: every obligation in proofs/ gets its expected verdict, the reports are
+complete, and a changed verdict fails the run."""
+
+import json
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def run(*args, cwd):
+    p = subprocess.run([sys.executable, "-m", "navfn_smt", *map(str, args)], capture_output=True, text=True,
+                       cwd=cwd, env={**os.environ, "COLUMNS": "200"})
+    return p.returncode, p.stdout, p.stderr
+
+
+@pytest.fixture(scope="module")
+def proof_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("prove")
+    rc, stdout, stderr = run("prove", "--jobs", "2", "--timeout", "120", "--report", out / "r.json",
+                             "--junit", out / "j.xml", "--markdown", out / "inv.md", "--witness-dir", out / "w",
+                             cwd=out)
+    return rc, stdout, stderr, out
+
+
+def test_every_obligation_gets_its_expected_verdict(proof_run):
+    rc, stdout, stderr, out = proof_run
+    assert rc == 0, stdout[-3000:] + stderr[-2000:]
+    doc = json.loads((out / "r.json").read_text())
+    obs = doc["obligations"]
+    assert len(obs) >= 20
+    for o in obs:
+        for key in ("name", "property", "semantics", "status", "seconds", "solver", "bound", "witness"):
+            assert key in o
+        assert o["semantics"] in ("real", "fp32") and o["status"] == o["expected"], o
+        if o["status"] == "refuted":
+            w = json.loads(Path(o["witness"]).read_text())
+            assert w["replayed_on_spec"] is True and w["values"]
+        else:
+            assert o["witness"] is None
+    props = {o["property"] for o in obs}
+    assert {"PositionSafe", "Progress", "Monotone", "ObstacleFreeQueue", "FinitePotentialPath", "ValidPath",
+            "NoPathWithoutFinitePotential", "Gradient"} <= props
+    # every obligation in both semantics
+    names = {o["name"] for o in obs}
+    assert all({(n, "real"), (n, "fp32")} <= {(o["name"], o["semantics"]) for o in obs} for n in names)
+
+
+def test_progress_bound_is_found_and_tight(proof_run):
+    doc = json.loads((proof_run[3] / "r.json").read_text())
+    o = next(o for o in doc["obligations"] if o["name"] == "update_keeps_a_lower_neighbour" and o["semantics"] == "fp32")
+    b = o["bound"]
+    # ta + 50 is absorbed once ulp(ta) > 100, i.e. from 2**30 on (ulp 128): the bound found must be that
+    assert b["holds_below"] == 2.0**30 and b["refuted_below"] > b["holds_below"]
+
+
+def test_reports_junit_and_markdown(proof_run):
+    out = proof_run[3]
+    suite = ET.parse(out / "j.xml").getroot()
+    assert suite.tag == "testsuite" and int(suite.get("failures")) == 0 and int(suite.get("tests")) >= 20
+    md = (out / "inv.md").read_text()
+    assert md.startswith("# NavFn invariants") and "do not edit by hand" in md
+    assert "update_keeps_a_lower_neighbour" in md and "holds for `l < 1073741824.0`" in md
+
+
+def test_changed_verdict_fails_the_run(tmp_path):
+    (tmp_path / "wrong.py").write_text('''
+from navfn_smt.smt.obligation import obligation
+from navfn_smt.smt.predicates import ValidPotential
+
+@obligation("Demo", expect={"real": "proved", "fp32": "proved"}, scope="one addition")
+def adding_one_always_increases(D):
+    """x + 1 > x for every valid potential (false in float32: absorbed above 2**24)."""
+    x = D.f32("x")
+    return ValidPotential(D, x), D.gt(D.add(x, D.f32const(1.0)), x)
+''')
+    rc, stdout, stderr = run("prove", tmp_path / "wrong.py", "--report", tmp_path / "r.json",
+                             "--witness-dir", tmp_path / "w", cwd=tmp_path)
+    assert rc == 1, stdout + stderr
+    assert "1 passed, 1 failed" in stdout
+    o = {x["semantics"]: x for x in json.loads((tmp_path / "r.json").read_text())["obligations"]}
+    assert o["real"]["status"] == "proved" and o["fp32"]["status"] == "refuted"
+    x = np.float32(o["fp32"]["witness_values"]["values"]["x"]["value"])
+    assert x >= 2.0**24 and x + np.float32(1.0) == x  # the counterexample: 1 is absorbed
+
+
+@pytest.mark.parametrize("content,words", [(None, "no such proof file"), ("this is not python(", "cannot load"),
+                                           ("x = 1\n", "defines no obligations")])
+def test_bad_proof_files(tmp_path, content, words):
+    f = tmp_path / "p.py"
+    if content is not None:
+        f.write_text(content)
+    rc, stdout, stderr = run("prove", f, cwd=tmp_path)
+    assert rc == 2 and "Traceback" not in stderr and words in stderr, stderr
