@@ -121,10 +121,20 @@ def run_mutant(m: Mutant, proof_files, suite, timeout: float = 20.0, solvers=("b
         p = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=tmp)
         if p.returncode == 1 and report.exists():
             doc = json.loads(report.read_text())
+            # a verdict that changes to another definitive verdict catches the mutant, and so
+            # does a solver model the concrete spec refuses (the domain no longer matches the
+            # spec); a timeout does not: it says nothing about the mutant
             changed = [f"{o['name']}[{o['semantics']}]: {o['status']}" for o in doc["obligations"]
-                       if o["status"] != o["expected"]]
-            res.caught_by.append("prove")
-            res.details["prove"] = changed
+                       if o["status"] != o["expected"]
+                       and (o["status"] != "unknown" or "not confirmed" in (o.get("detail") or ""))]
+            timeouts = [f"{o['name']}[{o['semantics']}]" for o in doc["obligations"]
+                        if o["status"] != o["expected"] and o["name"] + "[" + o["semantics"] + "]: unknown"
+                        not in changed and o["status"] == "unknown"]
+            if changed:
+                res.caught_by.append("prove")
+                res.details["prove"] = changed
+            if timeouts:
+                res.details["prove_timeouts"] = timeouts
         elif p.returncode not in (0, 1):
             res.details["prove_error"] = (p.stderr or p.stdout).strip().splitlines()[-1:]
         # 2. equality of the symbolic domains with the concrete spec
