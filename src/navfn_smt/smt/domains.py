@@ -31,6 +31,7 @@ values, concretely (see :mod:`navfn_smt.smt.obligation`).
 from __future__ import annotations
 
 import itertools
+import operator
 import struct
 
 import z3
@@ -298,7 +299,18 @@ class FPDomain(Domain):
         return z3.If(c, a, b)
 
 
-class RealDomain(Domain):
+class ExactArithmetic:
+    """Rounding-free arithmetic through Python's operators: on Z3 reals it builds terms, on
+    fractions it computes exactly.  Floats, doubles and ints alike (no range, no rounding)."""
+
+    add = add64 = add_int = staticmethod(operator.add)
+    sub = sub64 = staticmethod(operator.sub)
+    mul = mul64 = staticmethod(operator.mul)
+    div = div64 = staticmethod(operator.truediv)
+    neg = staticmethod(operator.neg)
+
+
+class RealDomain(ExactArithmetic, Domain):
     """The paper's abstraction: float and double are reals, int is an integer, no rounding."""
 
     name = "real"
@@ -352,30 +364,6 @@ class RealDomain(Domain):
     def to_int32(a):
         """Truncation toward zero (the reals never leave the int range in this abstraction)."""
         return z3.If(a >= 0, z3.ToInt(a), -z3.ToInt(-a))
-
-    @staticmethod
-    def add(a, b):
-        return a + b
-
-    add_int = add  # integers without range in this abstraction
-
-    @staticmethod
-    def sub(a, b):
-        return a - b
-
-    @staticmethod
-    def mul(a, b):
-        return a * b
-
-    @staticmethod
-    def div(a, b):
-        return a / b
-
-    @staticmethod
-    def neg(a):
-        return -a
-
-    add64, sub64, mul64, div64 = add, sub, mul, div
 
     def _hypot(self, a, b, name):
         h = z3.Real(self._fresh_name(name))

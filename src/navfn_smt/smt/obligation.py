@@ -27,7 +27,7 @@ import z3
 
 from ..errors import NavfnInputError
 from ..spec.numeric import ConcreteDomain, c_hypot, c_hypotf
-from .domains import DOMAINS, F32, F64
+from .domains import DOMAINS, F32, F64, ExactArithmetic
 
 STATUSES = ("proved", "refuted", "unknown")
 
@@ -138,7 +138,7 @@ class ReplayDomain(ConcreteDomain):
     hypotf = staticmethod(c_hypotf)
 
 
-class ExactReplayDomain(ReplayDomain):
+class ExactReplayDomain(ExactArithmetic, ReplayDomain):
     """The real semantics evaluated concretely on rationals: no rounding anywhere, ints
     without range, ``hypot`` as a 60-digit square root; for replaying ``real`` models."""
 
@@ -179,26 +179,12 @@ class ExactReplayDomain(ReplayDomain):
         return math.trunc(a)
 
     @staticmethod
-    def add(a, b):
-        return a + b
-
-    add_int = add
-
-    @staticmethod
-    def sub(a, b):
-        return a - b
-
-    @staticmethod
-    def mul(a, b):
-        return a * b
-
-    @staticmethod
     def div(a, b):
         # the kernels compute both sides of a choice; a quotient by zero is never chosen
         # (in SMT-LIB real division by zero is an unspecified value as well)
         return a / b if b != 0 else a * 0
 
-    add64, sub64, mul64, div64 = add, sub, mul, div
+    div64 = div
 
     def _sqrt(self, a, b):
         from decimal import Decimal, getcontext
