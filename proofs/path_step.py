@@ -47,8 +47,11 @@ def step_keeps_offset_in_unit_box(D):
     return _step(D, 2.0**-100)
 
 
+# the counterexample needs only hypotf's documented accuracy (much faster for the solvers than
+# glibc's exact definition); it is replayed with the real libm
 @obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "refuted"},
-            scope="one gradient step from any offset in the unit box, any non-zero gradient: every map size")
+            scope="one gradient step from any offset in the unit box, any non-zero gradient: every map size",
+            hypotf_model="ulp")
 def step_keeps_offset_in_unit_box_any_gradient(D):
     """The same for any non-zero gradient, subnormal ones included (fails in float32).
 
