@@ -58,7 +58,7 @@ REASONS = {
         "from an interior start, extraction moves only to reached cells (grid fallback) or by at most "
         "one cell from a cell whose eight neighbours are reached; the border rows are never reached",
     # propagation.py
-    "if not K.is_passable(D, cost):":
+    "if not K.is_passable(D, cost):  # skip the arithmetic on obstacles (cell_update keeps them)":
         "pushes admit only passable cells, so an updated cell is never an obstacle (obstacle-free queues)",
     "if len(buf) < PRIORITYBUFSIZE:":
         "a full buffer needs a wavefront of more than 10,000 cells: reached by navfn-suite-large "
@@ -68,9 +68,7 @@ REASONS = {
         "the left neighbours of the four interpolation cells lie in the ring of nine reached cells",
     "dy1 = D.ite(reached_u, D.add(zero, D.sub(pu, cv)), zero)":
         "the upper neighbours of the four interpolation cells lie in the ring of nine reached cells",
-    "dx = D.ite(unreached, dx_obs, dx2)":
-        "gradCell is applied to the interpolation square, whose cells are all reached (see above)",
-    "dy = D.ite(unreached, dy_obs, dy2)":
+    "return D.ite(unreached, dx_obs, dx2), D.ite(unreached, dy_obs, dy2)":
         "gradCell is applied to the interpolation square, whose cells are all reached (see above)",
     "idx = D.ite(D.lt(ns - 1, idx), ns - 1, idx)":
         "the probed cell is within one cell of an interior stc, never past the last cell",
