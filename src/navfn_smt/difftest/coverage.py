@@ -76,13 +76,6 @@ REASONS = {
         "the probed cell is within one cell of an interior stc, never before the first cell",
     "if stc - nx - 1 < 0 or stc + nx + 1 >= ns:":
         "undefined behaviour of the C++ at three border cells; suite starts are interior cells",
-    # planner.py input checks (the command line and tests exercise them)
-    "if arr.ndim != 2:": "input validation; exercised by tests/test_cli.py, not by suite runs",
-    "if nx < 3 or ny < 3:": "input validation; exercised by tests/test_cli.py, not by suite runs",
-    "if arr.dtype != np.uint8:": "suite maps are read as uint8",
-    "if not np.issubdtype(arr.dtype, np.integer) or arr.min() < 0 or arr.max() > 255:":
-        "suite maps are read as uint8",
-    "if not (0 <= x < nx and 0 <= y < ny):": "suite cases are on their maps (checked when test.txt is read)",
 }
 
 
