@@ -14,7 +14,6 @@ are not evidence about the C++ original.  Existing golden files are kept unless
 
 from __future__ import annotations
 
-import hashlib
 import os
 import time
 from dataclasses import dataclass
@@ -29,6 +28,7 @@ from ..fileio import atomic_path
 from ..maps.suite import GOLDEN_FIELDS, MODES, SuiteMap, discover, load_map
 from ..spec.constants import POT_HIGH
 from ..spec.extraction import UndefinedBehaviour
+from ..spec.planner import sha256_f32, sha256_i32
 
 _UNREACHED = np.float32(POT_HIGH)
 
@@ -74,8 +74,8 @@ def golden_fields(smap: SuiteMap, runner, astar: bool, full_first: int = 50) -> 
         start_potential[i] = sp
         paths.append(path)
         path_offsets[i + 1] = path_offsets[i] + len(path)
-        pot_sha[i] = np.frombuffer(hashlib.sha256(pot.tobytes()).digest(), dtype=np.uint8)
-        trace_sha[i] = np.frombuffer(hashlib.sha256(trace.tobytes()).digest(), dtype=np.uint8)
+        pot_sha[i] = np.frombuffer(sha256_f32(pot), dtype=np.uint8)
+        trace_sha[i] = np.frombuffer(sha256_i32(trace), dtype=np.uint8)
         cycles[i] = res.cycles
         updates[i] = res.updates
         if i < full_first or (len(path) == 0 and np.isfinite(sp) and sp != _UNREACHED):

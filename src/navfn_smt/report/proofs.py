@@ -39,7 +39,6 @@ def to_json(outcomes, witness_files: dict) -> list:
         d["statement"] = o.statement
         d["witness"] = witness_files.get((o.name, o.semantics))
         d["witness_values"] = o.witness
-        d.pop("witness_file", None)
         rows.append(d)
     return rows
 

@@ -263,7 +263,6 @@ class Outcome:
     assumptions: list = field(default_factory=list)
     bound: Optional[dict] = None
     witness: Optional[dict] = None  # values and replay verdict (refuted only)
-    witness_file: Optional[str] = None
     detail: str = ""
 
     @property
