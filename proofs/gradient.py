@@ -59,7 +59,8 @@ def grad_differences_are_not_tiny(D):
 # verdict records that honestly; a solver that decides it changes the verdict and fails the
 # run, so the expectation is then updated deliberately.
 @obligation("Gradient", expect={"real": "proved", "fp32": "unknown"},
-            scope="gradCell's normalisation of any vector whose components are 0 or in [2**-25, 2**35]")
+            scope="gradCell's normalisation of any vector whose components are 0 or in [2**-25, 2**35]",
+            timeout=10)
 def grad_is_unit_or_zero(D):
     """gradCell's normalisation returns a unit or zero vector; with the lemma above, gradCell
     stores a unit or zero vector on every potential NavFn produces.

@@ -1,16 +1,31 @@
-"""FinitePotentialPath and ValidPath: the steps of path extraction stay where the
-potential is known.
+"""FinitePotentialPath and ValidPath: every point extraction emits lies in a reached cell.
 
-The gradient step is taken only from a cell whose eight neighbours are all reached; the
-obligations below show that one step (interpolate, advance by ``pathStep``, normalise the
-offset) keeps the offset in [-1, 1] and moves the cell by at most one in each direction,
-so every point emitted lies among the reached cells around the previous cell, and the
-near-goal probe reads one of those cells.
+The paper's FinitePotentialPath: each point of the path lies within 1/2 (each axis, ends
+included) of a cell whose potential is finite; with PositionSafe that cell is no obstacle,
+so the path is a ValidPath.  The argument is an induction over calcPath's iterations, each
+case an obligation below or in ``no_path.py``:
 
-In float32 the step fails for a subnormal gradient: ``pathStep / hypotf(x, y)``
-overflows to infinity and the offset with it.  The interpolated gradient is a weighted
-mean of unit vectors; the step is proved for every gradient whose larger component is at
-least 2**-100 (anything that does not cancel to nearly nothing).
+* the first point is the start cell exactly (``first_point_is_the_start``), and an
+  unreached start emits nothing more (``unreached_cell_stays_put``: calcPath fails);
+* the grid-following fallback moves to a cell with offset 0 and stops unless that cell is
+  reached (control flow of calcPath), so the next point is a reached cell exactly;
+* the gradient step is taken only when the cell and its eight neighbours are all reached
+  (control flow); the interpolated gradient is bounded (``stored_gradient_is_bounded``,
+  ``interpolated_gradient_is_bounded``), one step keeps the offset in [-1, 1] and moves
+  the cell by at most one (``step_keeps_offset_in_unit_box``), and the next point lies
+  within 3/2 of the previous cell (``next_point_stays_near_the_cell``), hence within 1/2
+  of one of those nine reached cells;
+* the last point is the goal exactly (potential 0).
+
+The near-goal probe reads a cell at most one away (``near_goal_probe_reads_a_neighbour``).
+Each obligation is about one step over a symbolic neighbourhood, so the induction holds
+for maps of every size (up to the stated coordinate bounds).
+
+One precondition is not discharged: the interpolated gradient is either exactly zero
+(calcPath then fails) or has a component of at least 2**-100.  In float32 a nonzero
+gradient below that can make ``pathStep / hypotf(x, y)`` overflow, and the offset becomes
+infinite (``step_keeps_offset_in_unit_box_any_gradient`` is refuted); whether potentials
+NavFn produces can interpolate to such a gradient is open.
 """
 
 from navfn_smt.smt.obligation import obligation
@@ -19,8 +34,15 @@ from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import PATH_STEP
 
 
-def _unit_interval(D, v):
-    return D.and_(D.ge(v, D.f32const(-1.0)), D.le(v, D.f32const(1.0)))
+def _within(D, v, m):
+    return D.and_(D.ge(v, D.f32const(-m)), D.le(v, D.f32const(m)))
+
+
+# bound on a stored gradient component (stored_gradient_is_bounded); loose on purpose: the
+# chain needs only some bound, and a loose one is decided in seconds (a tight one is not)
+UNIT_SLACK = 2.0
+# bound on the interpolated gradient (interpolated_gradient_is_bounded): 3 * 3 * UNIT_SLACK
+GRAD_BOUND = 20.0
 
 
 def _step(D, least):
@@ -31,7 +53,7 @@ def _step(D, least):
     if least is not None:
         m = D.f32const(least)
         big_enough = D.or_(D.or_(D.ge(x, m), D.le(x, D.neg(m))), D.or_(D.ge(y, m), D.le(y, D.neg(m))))
-    pre = all_of(D, InUnitBox(D, dx, dy), _unit_interval(D, x), _unit_interval(D, y), big_enough)
+    pre = all_of(D, InUnitBox(D, dx, dy), _within(D, x, GRAD_BOUND), _within(D, y, GRAD_BOUND), big_enough)
     moves = all_of(D, D.ge(cdx, -1), D.le(cdx, 1), D.ge(cdy, -1), D.le(cdy, 1))
     return pre, D.and_(InUnitBox(D, ndx, ndy), moves)
 
@@ -41,7 +63,7 @@ def _step(D, least):
 def step_keeps_offset_in_unit_box(D):
     """One step of calcPath keeps the offset in [-1, 1] and moves at most one cell per axis.
 
-    |dx|, |dy| <= 1, gradient components in [-1, 1], max(|x|, |y|) >= 2**-100
+    |dx|, |dy| <= 1, |x|, |y| <= 20, max(|x|, |y|) >= 2**-100
     ==>  new |dx|, |dy| <= 1  and  cell moves in {-1, 0, 1}
     """
     return _step(D, 2.0**-100)
@@ -55,7 +77,7 @@ def step_keeps_offset_in_unit_box(D):
 def step_keeps_offset_in_unit_box_any_gradient(D):
     """The same for any non-zero gradient, subnormal ones included (fails in float32).
 
-    |dx|, |dy| <= 1, gradient components in [-1, 1], not both zero  ==>  new |dx|, |dy| <= 1
+    |dx|, |dy| <= 1, |x|, |y| <= 20, not both zero  ==>  new |dx|, |dy| <= 1
     """
     return _step(D, None)
 
@@ -89,3 +111,69 @@ def first_point_is_the_start(D):
     back_x = D.to_int32(px)
     back_y = D.to_int32(py)
     return pre, D.and_(D.eq(back_x, sx), D.eq(back_y, sy))
+
+
+# needs only that hypotf lies between the larger magnitude and the sum of magnitudes
+@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
+            scope="gradCell's normalisation of any vector whose components are 0 or in [2**-25, 2**35]",
+            hypotf_model="bounds")
+def stored_gradient_is_bounded(D):
+    """gradCell stores components of magnitude at most 2 (with grad_differences_are_not_tiny, on
+    every potential NavFn produces; the unit-length obligation gives 1 over the reals).
+
+    dx, dy each 0 or 2**-25 <= |.| <= 2**35  ==>  |gx|, |gy| <= 2
+    """
+    dx, dy = D.f32("dx"), D.f32("dy")
+    big = 2.0**35
+    pre = all_of(D, D.or_(D.eq(dx, D.f32const(0.0)), D.not_(_within(D, dx, 2.0**-25))),
+                 D.or_(D.eq(dy, D.f32const(0.0)), D.not_(_within(D, dy, 2.0**-25))),
+                 _within(D, dx, big), _within(D, dy, big))
+    gx, gy = K.normalise(D, dx, dy)
+    return pre, D.and_(_within(D, gx, UNIT_SLACK), _within(D, gy, UNIT_SLACK))
+
+
+@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
+            scope="calcPath's bilinear interpolation at any offset in the unit box: every map size")
+def interpolated_gradient_is_bounded(D):
+    """The interpolated gradient is at most 20 in each component (the offset may be negative, so
+    the interpolation can extrapolate: up to 3 * 3 times the largest stored component).
+
+    |dx|, |dy| <= 1, the four stored components |g| <= 2  ==>  |x| <= 20
+    """
+    dx, dy = D.f32("dx"), D.f32("dy")
+    g = [D.f32(f"g{k}") for k in range(4)]
+    x = K.interpolate_gradient(D, dx, dy, *g)
+    pre = all_of(D, InUnitBox(D, dx, dy), *(_within(D, v, UNIT_SLACK) for v in g))
+    return pre, _within(D, x, GRAD_BOUND)
+
+
+# Open in fp32: the bound 3/2 is tight (it rests on a tie rounding to even at 1.5), and no
+# solver of the portfolio decides it (bitwuzla, cvc5 and z3 each time out at 200 s on this
+# machine, also with hypotf constrained only by its ordering facts, and also for the looser
+# bound 3/2 + 2**-20 on the offset before normalisation).
+@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "unknown"},
+            scope="one gradient step at any interior cell of any map up to 2**23 cells a side",
+            hypotf_model="bounds", timeout=10)
+def next_point_stays_near_the_cell(D):
+    """After a gradient step from cell (sx, sy) the next point emitted lies within 3/2 of it in
+    each axis, so within 1/2 of one of the nine cells around it, all reached when the step is taken.
+
+    1 <= sx, sy < 2**23, |dx|, |dy| <= 1, |x|, |y| <= 20, max(|x|, |y|) >= 2**-100
+    ==>  |((float)(sx + cdx) + dx') - sx| <= 3/2  and the same for y
+    """
+    sx, sy = D.int32("sx"), D.int32("sy")
+    dx, dy, x, y = (D.f32(v) for v in ("dx", "dy", "x", "y"))
+    ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, D.f32const(PATH_STEP))
+    m = D.f32const(2.0**-100)
+    big_enough = D.or_(D.or_(D.ge(x, m), D.le(x, D.neg(m))), D.or_(D.ge(y, m), D.le(y, D.neg(m))))
+    pre = all_of(D, D.ge(sx, 1), D.lt(sx, 2**23), D.ge(sy, 1), D.lt(sy, 2**23), InUnitBox(D, dx, dy),
+                 _within(D, x, GRAD_BOUND), _within(D, y, GRAD_BOUND), big_enough)
+
+    def near(s, cell_move, offset):
+        # the point's coordinate as calcPath computes it (int to float, float add); its distance
+        # from s is computed in double, where it is exact
+        point = D.add(D.int_to_f32(D.add_int(s, cell_move)), offset)
+        dist = D.sub64(D.widen(point), D.int_to_f64(s))
+        return D.and_(D.le(dist, D.f64const(1.5)), D.ge(dist, D.f64const(-1.5)))
+
+    return pre, D.and_(near(sx, cdx, ndx), near(sy, cdy, ndy))

@@ -102,7 +102,9 @@ class FPDomain(Domain):
     """Bit-precise IEEE-754 semantics (``fp32``).
 
     ``hypotf_model``: ``"glibc"`` (default) defines ``hypotf`` as glibc computes it;
-    ``"ulp"`` uses only the documented one-ulp accuracy.
+    ``"ulp"`` uses only the documented one-ulp accuracy; ``"bounds"`` only the ordering
+    facts (between the larger magnitude and the sum of magnitudes), the weakest model: a
+    proof under it holds for every hypotf that respects them.
     """
 
     name = "fp32"
@@ -200,7 +202,10 @@ class FPDomain(Domain):
     add64, sub64, mul64, div64 = add, sub, mul, div
 
     # ------------------------------------------------------- library functions
-    def _hypot(self, a, b, sort, name):
+    def _hypot(self, a, b, sort, name, accurate=True):
+        """A fresh result constrained by the documented accuracy (``accurate``), or only by the
+        ordering facts every correct implementation satisfies (``accurate=False``: non-negative,
+        zero iff both arguments are, between the larger magnitude and the sum of magnitudes)."""
         h = self.library_result(name, sort, a, b)
         aa, ab = z3.fpAbs(a), z3.fpAbs(b)
         zero = z3.FPVal(0.0, sort)
@@ -221,6 +226,18 @@ class FPDomain(Domain):
                              z3.Not(z3.fpIsInf(b)), z3.Not(z3.fpIsNaN(b)))
         top = W(z3.fpMaxValue(sort) if hasattr(z3, "fpMaxValue") else z3.FPVal(_max_value(sort), sort))
         lo0 = z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo)
+        if not accurate:
+            self.assumptions.append(z3.Implies(finite_args, z3.And(
+                z3.Not(z3.fpIsNaN(h)), z3.fpGEQ(h, zero),
+                z3.fpEQ(h, zero) == z3.And(z3.fpIsZero(a), z3.fpIsZero(b)),
+                z3.fpGEQ(h, big),
+                z3.Implies(z3.fpLEQ(z3.fpAdd(RNE, W(aa), W(ab)), top),
+                           z3.And(z3.Not(z3.fpIsInf(h)), z3.fpLEQ(W(h), z3.fpAdd(RNE, W(aa), W(ab))))),
+            )))
+            self.assumption_notes.add(
+                f"{name}: only non-negative, zero iff both arguments are, between the larger magnitude "
+                f"and the sum of magnitudes (no accuracy assumed)")
+            return h
         self.assumptions.append(z3.Implies(finite_args, z3.And(
             z3.Not(z3.fpIsNaN(h)), z3.fpGEQ(h, zero),
             z3.fpEQ(h, zero) == z3.And(z3.fpIsZero(a), z3.fpIsZero(b)),
@@ -251,8 +268,8 @@ class FPDomain(Domain):
         An exact definition of the implementation the original links against, rather than
         the one-ulp bound (:meth:`_hypot`) its documentation gives; the equality test holds it
         bit-equal to the platform's ``hypotf`` on every test input."""
-        if self.hypotf_model == "ulp":
-            return self._hypot(a, b, F32, "hypotf")
+        if self.hypotf_model in ("ulp", "bounds"):
+            return self._hypot(a, b, F32, "hypotf", accurate=self.hypotf_model == "ulp")
         wa, wb = self.widen(a), self.widen(b)
         self.assumption_notes.add("hypotf: glibc's implementation, (float) sqrt((double) a * a + (double) b * b), "
                                   "held bit-equal to the platform libm by the equality test")

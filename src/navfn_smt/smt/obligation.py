@@ -52,22 +52,27 @@ class Obligation:
     doc: str
     source: str = ""
     bound: Optional[Bound] = None
-    hypotf_model: str = "glibc"  # fp32: glibc's exact implementation, or "ulp" (documented accuracy only)
+    timeout: Optional[float] = None  # a cap on the run's time limit (for questions known to be open)
+    hypotf_model: str = "glibc"  # fp32: glibc's exact implementation, "ulp" (documented accuracy) or "bounds" (ordering only)
 
     @property
     def title(self) -> str:
         return self.doc.strip().splitlines()[0] if self.doc else self.name
 
 
-def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc"):
-    """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``)."""
+def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc",
+               timeout: Optional[float] = None):
+    """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``).
+
+    ``timeout`` caps the run's time limit for this obligation: an open question (expected
+    ``unknown``) need not spend the whole limit of every run on a known timeout."""
 
     def wrap(fn):
         for sem, verdict in expect.items():
             if sem not in DOMAINS or verdict not in STATUSES:
                 raise ValueError(f"{fn.__name__}: bad expectation {sem}={verdict}")
         return Obligation(fn.__name__, predicate, fn, dict(expect), scope, fn.__doc__ or "", bound=bound,
-                          hypotf_model=hypotf_model)
+                          hypotf_model=hypotf_model, timeout=timeout)
 
     return wrap
 
@@ -293,6 +298,8 @@ def solve_z3(assertions, variables: dict, timeout: float):
 
 def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3, bounds: bool = True) -> Outcome:
     """Check one obligation in one semantics."""
+    if ob.timeout is not None:
+        timeout = min(timeout, ob.timeout)
     t0 = time.perf_counter()
     D, assertions = _query(ob, semantics)
     answer, values, solver, detail = solve(assertions, D.variables, timeout)
