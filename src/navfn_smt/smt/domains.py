@@ -210,49 +210,42 @@ class FPDomain(Domain):
         aa, ab = z3.fpAbs(a), z3.fpAbs(b)
         zero = z3.FPVal(0.0, sort)
         big = z3.If(z3.fpGEQ(aa, ab), aa, ab)
-        # exact value bracketed in a wider format: (h - ulp)^2 <= a^2 + b^2 <= (h + ulp)^2,
-        # with ulp = next(h) - h.  Squares of binary32 values (and of h +- ulp) are exact in
-        # binary64, squares of binary64 values in binary128; only the sum of the two squares
-        # rounds there (relative 2**-53, resp. 2**-113), far inside the one-ulp bracket.
         wide = F64 if sort == F32 else z3.FPSort(15, 113)
         W = lambda v: z3.fpFPToFP(RNE, v, wide)  # noqa: E731
-        hb = z3.fpToIEEEBV(h)
-        nxt = z3.fpBVToFP(hb + 1, sort)
-        ulp = z3.fpSub(RNE, W(nxt), W(h))
-        s = z3.fpAdd(RNE, z3.fpMul(RNE, W(a), W(a)), z3.fpMul(RNE, W(b), W(b)))
-        lo = z3.fpSub(RNE, W(h), ulp)
-        hi = z3.fpAdd(RNE, W(h), ulp)
         finite_args = z3.And(z3.Not(z3.fpIsInf(a)), z3.Not(z3.fpIsNaN(a)),
                              z3.Not(z3.fpIsInf(b)), z3.Not(z3.fpIsNaN(b)))
         top = W(z3.fpMaxValue(sort) if hasattr(z3, "fpMaxValue") else z3.FPVal(_max_value(sort), sort))
-        lo0 = z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo)
+        sum_of_magnitudes = z3.fpAdd(RNE, W(aa), W(ab))
+        facts = [z3.Not(z3.fpIsNaN(h)), z3.fpGEQ(h, zero),
+                 z3.fpEQ(h, zero) == z3.And(z3.fpIsZero(a), z3.fpIsZero(b)),
+                 z3.fpGEQ(h, big)]
         if not accurate:
-            self.assumptions.append(z3.Implies(finite_args, z3.And(
-                z3.Not(z3.fpIsNaN(h)), z3.fpGEQ(h, zero),
-                z3.fpEQ(h, zero) == z3.And(z3.fpIsZero(a), z3.fpIsZero(b)),
-                z3.fpGEQ(h, big),
-                z3.Implies(z3.fpLEQ(z3.fpAdd(RNE, W(aa), W(ab)), top),
-                           z3.And(z3.Not(z3.fpIsInf(h)), z3.fpLEQ(W(h), z3.fpAdd(RNE, W(aa), W(ab))))),
-            )))
-            self.assumption_notes.add(
-                f"{name}: only non-negative, zero iff both arguments are, between the larger magnitude "
-                f"and the sum of magnitudes (no accuracy assumed)")
-            return h
-        self.assumptions.append(z3.Implies(finite_args, z3.And(
-            z3.Not(z3.fpIsNaN(h)), z3.fpGEQ(h, zero),
-            z3.fpEQ(h, zero) == z3.And(z3.fpIsZero(a), z3.fpIsZero(b)),
-            z3.fpGEQ(h, big),
+            facts.append(z3.Implies(z3.fpLEQ(sum_of_magnitudes, top),
+                                    z3.And(z3.Not(z3.fpIsInf(h)), z3.fpLEQ(W(h), sum_of_magnitudes))))
+            note = (f"{name}: only non-negative, zero iff both arguments are, between the larger magnitude "
+                    f"and the sum of magnitudes (no accuracy assumed)")
+        else:
+            # exact value bracketed in a wider format: (h - ulp)^2 <= a^2 + b^2 <= (h + ulp)^2,
+            # with ulp = next(h) - h.  Squares of binary32 values (and of h +- ulp) are exact in
+            # binary64, squares of binary64 values in binary128; only the sum of the two squares
+            # rounds there (relative 2**-53, resp. 2**-113), far inside the one-ulp bracket.
+            nxt = z3.fpBVToFP(z3.fpToIEEEBV(h) + 1, sort)
+            ulp = z3.fpSub(RNE, W(nxt), W(h))
+            s = z3.fpAdd(RNE, z3.fpMul(RNE, W(a), W(a)), z3.fpMul(RNE, W(b), W(b)))
+            lo = z3.fpSub(RNE, W(h), ulp)
+            hi = z3.fpAdd(RNE, W(h), ulp)
+            lo0 = z3.If(z3.fpIsNegative(lo), z3.FPVal(0.0, wide), lo)
             # overflow: infinity only when the exact value is beyond the largest finite float
-            z3.If(z3.fpIsInf(h), z3.fpGT(s, z3.fpMul(RNE, top, top)), z3.And(
-                z3.fpLEQ(W(h), z3.fpAdd(RNE, W(aa), W(ab))),
+            facts.append(z3.If(z3.fpIsInf(h), z3.fpGT(s, z3.fpMul(RNE, top, top)), z3.And(
+                z3.fpLEQ(W(h), sum_of_magnitudes),
                 z3.Implies(z3.Not(z3.fpIsZero(h)), z3.And(
                     z3.fpLEQ(z3.fpMul(RNE, lo0, lo0), s),
-                    z3.fpLEQ(s, z3.fpMul(RNE, hi, hi)))))),
-        )))
-        self.assumption_notes.add(
-            f"{name}: non-negative, zero iff both arguments are, between the larger magnitude and "
-            f"the sum of magnitudes, infinite only beyond the largest float, and within 1 ulp of the "
-            f"exact sqrt(a*a + b*b) (glibc's documented accuracy on x86-64)")
+                    z3.fpLEQ(s, z3.fpMul(RNE, hi, hi)))))))
+            note = (f"{name}: non-negative, zero iff both arguments are, between the larger magnitude and "
+                    f"the sum of magnitudes, infinite only beyond the largest float, and within 1 ulp of the "
+                    f"exact sqrt(a*a + b*b) (glibc's documented accuracy on x86-64)")
+        self.assumptions.append(z3.Implies(finite_args, z3.And(*facts)))
+        self.assumption_notes.add(note)
         return h
 
     def library_result(self, name, sort, *args):
