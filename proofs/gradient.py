@@ -12,7 +12,7 @@ under that precondition the claim is proved.
 """
 
 from navfn_smt.smt.obligation import obligation
-from navfn_smt.smt.predicates import ValidPotential, all_of
+from navfn_smt.smt.predicates import GradDifference, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
 
 
@@ -30,11 +30,6 @@ def _unit_or_zero_of(D, gx, gy):
     return D.or_(D.and_(D.eq(gx, zero), D.eq(gy, zero)), unit)
 
 
-def _zero_or_at_least(D, v, m):
-    zero = D.f32const(0.0)
-    return D.or_(D.eq(v, zero), D.or_(D.ge(v, D.f32const(m)), D.le(v, D.f32const(-m))))
-
-
 @obligation("Gradient", expect={"real": "refuted", "fp32": "proved"},
             scope="gradCell's difference step at any interior cell whose potentials NavFn can produce")
 def grad_differences_are_not_tiny(D):
@@ -48,9 +43,7 @@ def grad_differences_are_not_tiny(D):
     cv, pl, pr, pu, pd = (D.f32(v) for v in ("cv", "l", "r", "u", "d"))
     dx, dy = K.grad_vector(D, cv, pl, pr, pu, pd)
     pre = all_of(D, *(D.and_(ValidPotential(D, p), _navfn_potential(D, p)) for p in (cv, pl, pr, pu, pd)))
-    small = D.f32const(2.0**35)
-    in_range = all_of(D, D.le(dx, small), D.ge(dx, D.neg(small)), D.le(dy, small), D.ge(dy, D.neg(small)))
-    return pre, all_of(D, _zero_or_at_least(D, dx, 2.0**-25), _zero_or_at_least(D, dy, 2.0**-25), in_range)
+    return pre, D.and_(GradDifference(D, dx), GradDifference(D, dy))
 
 
 # Open in fp32: no solver of the portfolio decides the normalisation (two binary64 squares,
@@ -68,11 +61,8 @@ def grad_is_unit_or_zero(D):
     dx, dy each 0 or 2**-25 <= |.| <= 2**35  ==>  (gx, gy) = (0, 0)  or  |gx*gx + gy*gy - 1| <= 2**-20
     """
     dx, dy = D.f32("dx"), D.f32("dy")
-    big = D.f32const(2.0**35)
-    pre = all_of(D, _zero_or_at_least(D, dx, 2.0**-25), _zero_or_at_least(D, dy, 2.0**-25),
-                 D.le(dx, big), D.ge(dx, D.neg(big)), D.le(dy, big), D.ge(dy, D.neg(big)))
     gx, gy = K.normalise(D, dx, dy)
-    return pre, _unit_or_zero_of(D, gx, gy)
+    return D.and_(GradDifference(D, dx), GradDifference(D, dy)), _unit_or_zero_of(D, gx, gy)
 
 
 # the counterexample only needs hypotf's documented accuracy (the exact glibc definition

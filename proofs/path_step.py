@@ -29,7 +29,7 @@ NavFn produces can interpolate to such a gradient is open.
 """
 
 from navfn_smt.smt.obligation import obligation
-from navfn_smt.smt.predicates import InUnitBox, all_of
+from navfn_smt.smt.predicates import GradDifference, InUnitBox, all_of
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import PATH_STEP
 
@@ -45,15 +45,26 @@ UNIT_SLACK = 2.0
 GRAD_BOUND = 20.0
 
 
-def _step(D, least):
+# the interpolated gradient's larger component is at least this (the undischarged precondition)
+LEAST_GRADIENT = 2.0**-100
+
+
+def _gradient_step(D, least=LEAST_GRADIENT):
+    """One gradient step from a symbolic offset: ``(pre, (dx', dy', cdx, cdy))``; ``pre`` holds
+    the offset in the unit box and the gradient bounded and, if ``least`` is given, with a
+    component of at least ``least`` (otherwise only not both zero)."""
     dx, dy, x, y = (D.f32(v) for v in ("dx", "dy", "x", "y"))
-    ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, D.f32const(PATH_STEP))
     zero = D.f32const(0.0)
     big_enough = D.not_(D.and_(D.eq(x, zero), D.eq(y, zero)))
     if least is not None:
         m = D.f32const(least)
         big_enough = D.or_(D.or_(D.ge(x, m), D.le(x, D.neg(m))), D.or_(D.ge(y, m), D.le(y, D.neg(m))))
     pre = all_of(D, InUnitBox(D, dx, dy), _within(D, x, GRAD_BOUND), _within(D, y, GRAD_BOUND), big_enough)
+    return pre, K.step_offsets(D, dx, dy, x, y, D.f32const(PATH_STEP))
+
+
+def _step(D, least):
+    pre, (ndx, ndy, cdx, cdy) = _gradient_step(D, least)
     moves = all_of(D, D.ge(cdx, -1), D.le(cdx, 1), D.ge(cdy, -1), D.le(cdy, 1))
     return pre, D.and_(InUnitBox(D, ndx, ndy), moves)
 
@@ -66,7 +77,7 @@ def step_keeps_offset_in_unit_box(D):
     |dx|, |dy| <= 1, |x|, |y| <= 20, max(|x|, |y|) >= 2**-100
     ==>  new |dx|, |dy| <= 1  and  cell moves in {-1, 0, 1}
     """
-    return _step(D, 2.0**-100)
+    return _step(D, LEAST_GRADIENT)
 
 
 # the counterexample needs only hypotf's documented accuracy (much faster for the solvers than
@@ -124,12 +135,8 @@ def stored_gradient_is_bounded(D):
     dx, dy each 0 or 2**-25 <= |.| <= 2**35  ==>  |gx|, |gy| <= 2
     """
     dx, dy = D.f32("dx"), D.f32("dy")
-    big = 2.0**35
-    pre = all_of(D, D.or_(D.eq(dx, D.f32const(0.0)), D.not_(_within(D, dx, 2.0**-25))),
-                 D.or_(D.eq(dy, D.f32const(0.0)), D.not_(_within(D, dy, 2.0**-25))),
-                 _within(D, dx, big), _within(D, dy, big))
     gx, gy = K.normalise(D, dx, dy)
-    return pre, D.and_(_within(D, gx, UNIT_SLACK), _within(D, gy, UNIT_SLACK))
+    return D.and_(GradDifference(D, dx), GradDifference(D, dy)), D.and_(_within(D, gx, UNIT_SLACK), _within(D, gy, UNIT_SLACK))
 
 
 @obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
@@ -162,12 +169,8 @@ def next_point_stays_near_the_cell(D):
     ==>  |((float)(sx + cdx) + dx') - sx| <= 3/2  and the same for y
     """
     sx, sy = D.int32("sx"), D.int32("sy")
-    dx, dy, x, y = (D.f32(v) for v in ("dx", "dy", "x", "y"))
-    ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, D.f32const(PATH_STEP))
-    m = D.f32const(2.0**-100)
-    big_enough = D.or_(D.or_(D.ge(x, m), D.le(x, D.neg(m))), D.or_(D.ge(y, m), D.le(y, D.neg(m))))
-    pre = all_of(D, D.ge(sx, 1), D.lt(sx, 2**23), D.ge(sy, 1), D.lt(sy, 2**23), InUnitBox(D, dx, dy),
-                 _within(D, x, GRAD_BOUND), _within(D, y, GRAD_BOUND), big_enough)
+    step_pre, (ndx, ndy, cdx, cdy) = _gradient_step(D)
+    pre = all_of(D, D.ge(sx, 1), D.lt(sx, 2**23), D.ge(sy, 1), D.lt(sy, 2**23), step_pre)
 
     def near(s, cell_move, offset):
         # the point's coordinate as calcPath computes it (int to float, float add); its distance

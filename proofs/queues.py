@@ -49,11 +49,8 @@ def _flag(D, name):
     return D.not_(D.eq(D.int32(name), 0))
 
 
-def _counts(D, prefix):
-    return {b: D.int32(f"{prefix}{b}") for b in ("cur", "nxt", "over")}
-
-
-def _fills(D, prefix):
+def _per_buffer(D, prefix):
+    """A symbolic int per buffer (an occurrence count of q, or a fill)."""
     return {b: D.int32(f"{prefix}{b}") for b in ("cur", "nxt", "over")}
 
 
@@ -126,7 +123,7 @@ def pending_matches_buffers_at_cycle_start(D):
     B(q), pending(q)' = pending(q) and q not in cur  ==>  P(q)
     """
     pending = _flag(D, "pending_q")
-    cnt, fill = _counts(D, "count_"), _fills(D, "fill_")
+    cnt, fill = _per_buffer(D, "count_"), _per_buffer(D, "fill_")
     cleared = D.and_(pending, D.eq(cnt["cur"], 0))
     return _between_cycles(D, pending, cnt, fill), _during_cycle(D, cleared, cnt, fill)
 
@@ -140,7 +137,7 @@ def pending_matches_buffers_after_push(D):
     """
     q, m = D.int32("q"), D.int32("m")
     pending = _flag(D, "pending_q")
-    cnt, fill = _counts(D, "count_"), _fills(D, "fill_")
+    cnt, fill = _per_buffer(D, "count_"), _per_buffer(D, "fill_")
     key, cur_t, neighbour = D.f32("key"), D.f32("curT"), D.f32("neighbour")
     cost = D.cost("cost")
     wanted = K.push_wanted(D, neighbour, key, K.edge_weight(D, D.cost_as_f32(cost)))
@@ -157,7 +154,7 @@ def pending_matches_buffers_at_cycle_end(D):
     P(q)  ==>  B(q) after the swap
     """
     pending = _flag(D, "pending_q")
-    cnt, fill = _counts(D, "count_"), _fills(D, "fill_")
+    cnt, fill = _per_buffer(D, "count_"), _per_buffer(D, "fill_")
     empty = D.eq(fill["nxt"], 0)
     cnt2 = {"cur": D.ite(empty, cnt["over"], cnt["nxt"]), "nxt": 0, "over": D.ite(empty, 0, cnt["over"])}
     fill2 = {"cur": D.ite(empty, fill["over"], fill["nxt"]), "nxt": 0, "over": D.ite(empty, 0, fill["over"])}

@@ -39,6 +39,14 @@ def InUnitBox(D, dx, dy):
     return D.and_(D.and_(D.ge(dx, mone), D.le(dx, one)), D.and_(D.ge(dy, mone), D.le(dy, one)))
 
 
+def GradDifference(D, v):
+    """``v == 0`` or ``2**-25 <= |v| <= 2**35``: a component of gradCell's unnormalised vector on
+    potentials NavFn produces (the claim of ``proofs/gradient.py:grad_differences_are_not_tiny``)."""
+    zero, least, most = D.f32const(0.0), D.f32const(2.0**-25), D.f32const(2.0**35)
+    not_tiny = D.or_(D.eq(v, zero), D.or_(D.ge(v, least), D.le(v, D.neg(least))))
+    return D.and_(not_tiny, D.and_(D.le(v, most), D.ge(v, D.neg(most))))
+
+
 def all_of(D, *conds):
     out = conds[0]
     for c in conds[1:]:
