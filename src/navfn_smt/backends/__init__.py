@@ -1,38 +1,71 @@
-"""Planner backends with one interface: the reference spec and the numba JIT.
+"""Planner backends: one declared interface, implemented by the reference spec and the JIT.
 
-``get_backend(name).prepare(costs)`` returns a runner for one map (NavFn-internal
-costs, a (height, width) uint8 array); ``runner.run(start, goal, astar, trace=True)`` returns a
-:class:`~navfn_smt.spec.planner.PlanResult` (its ``trace`` is None when ``trace`` is False).  A JIT result's arrays are views into the
-runner's work buffers and stay valid until its next ``run``.
+``get_backend(name).prepare(costs)`` checks a map (NavFn-internal costs, a (height, width)
+uint8 array) and returns a :class:`Runner` for it; ``runner.run(start, goal, astar,
+trace=True)`` returns a :class:`~navfn_smt.spec.planner.PlanResult` that owns its arrays
+(nothing in it changes when the runner plans again); ``runner.run_batch(cases, astar)``
+plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
 """
 
 from __future__ import annotations
 
+from typing import Protocol
+
 import numpy as np
 
 from ..errors import NavfnInputError
-from ..spec.costs import add_border
-from ..spec.extraction import ExtractionExit
 from ..inputs import check_inputs
-from ..spec.planner import PlanResult, plan
+from ..spec.costs import add_border
+from ..spec.extraction import ExtractionExit, UndefinedBehaviour
+from ..spec.planner import PlanResult, path_cycle_limit, plan
 from ..spec.propagation import cycle_limit
 
-BACKENDS = ("jit", "reference")
+
+class Runner(Protocol):
+    """A backend's planner for one map."""
+
+    def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult: ...
+
+    def run_batch(self, cases, astar: bool) -> dict: ...
+
+
+class Backend(Protocol):
+    name: str
+
+    def prepare(self, costs: np.ndarray) -> Runner: ...
 
 
 class ReferenceRunner:
     def __init__(self, costs: np.ndarray):
-        self.costs = costs
+        self.costs = check_inputs(costs, (0, 0), (0, 0))
 
     def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
         return plan(self.costs, start, goal, astar=astar, record_trace=trace)
 
+    def run_batch(self, cases, astar: bool) -> dict:
+        """The columns of :func:`.jit.run_cases`, planned one case at a time by the spec."""
+        results = [self.run((sx, sy), (gx, gy), astar, trace=False)
+                   for sx, sy, gx, gy in np.asarray(cases).reshape(-1, 4).tolist()]
+        offsets = np.cumsum([0] + [len(r.path) for r in results])
+        return {
+            "start_reached": np.array([r.start_reached for r in results], np.bool_),
+            "start_potential": np.array([r.start_potential for r in results], np.float32),
+            "cycles": np.array([r.cycles for r in results], np.int64),
+            "updates": np.array([r.updates for r in results], np.int64),
+            "dropped": np.array([r.dropped for r in results], np.int64),
+            "exit": np.array([list(ExtractionExit).index(r.exit) for r in results], np.int64),
+            "path_offsets": offsets.astype(np.int64),
+            "path": np.concatenate([r.path for r in results] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2),
+        }
+
 
 class ReferenceBackend:
+    """The executable specification itself (plain Python over the concrete domain)."""
+
     name = "reference"
 
     def prepare(self, costs: np.ndarray) -> ReferenceRunner:
-        return ReferenceRunner(check_inputs(costs, (0, 0), (0, 0)))
+        return ReferenceRunner(costs)
 
 
 class JitRunner:
@@ -43,33 +76,31 @@ class JitRunner:
         self.ny, self.nx = self.costs.shape
         self.planner = JitPlanner(add_border(self.costs))
         self.cycles = cycle_limit(self.nx, self.ny)
+        self.path_cycles = path_cycle_limit(self.nx)
 
     def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
-        from .jit import EXIT_NAMES, EXIT_UB
+        from .jit import EXIT_UB, EXITS
 
         check_inputs(self.costs, start, goal)
         p = self.planner
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
-        reached, code, npath = p.run(start, goal, astar, self.cycles, 4 * self.nx, trace)
+        reached, code, npath = p.run(start, goal, astar, self.cycles, self.path_cycles, trace)
         if code == EXIT_UB:
-            from ..spec.extraction import UndefinedBehaviour
-
             raise UndefinedBehaviour("calcPath reads outside the potential array")
-        pot = p.pot.reshape(self.ny, self.nx)
-        path = p.path[:npath] if code == 0 else p.path[:0]
+        pot = p.pot.reshape(self.ny, self.nx).copy()
+        exit_ = EXITS[code]
         return PlanResult(
             start_reached=reached,
             start_potential=pot[start[1], start[0]],
-            path=path,
+            path=p.path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32),
             potential=pot,
-            trace=p.trace[: p.counters[3]] if trace else None,
+            trace=p.trace[: p.counters[3]].copy() if trace else None,
             cycles=int(p.counters[0]),
             updates=int(p.counters[1]),
             dropped=int(p.counters[2]),
-            exit=ExtractionExit(EXIT_NAMES[code]),
+            exit=exit_,
         )
-
 
     def run_batch(self, cases, astar: bool) -> dict:
         """Plan many cases in one compiled call (no traces); see :func:`.jit.run_cases`."""
@@ -77,19 +108,24 @@ class JitRunner:
 
         for sx, sy, gx, gy in np.asarray(cases).reshape(-1, 4).tolist():
             check_inputs(self.costs, (sx, sy), (gx, gy))
-        return run_cases(self.planner, cases, astar, self.cycles, 4 * self.nx)
+        return run_cases(self.planner, cases, astar, self.cycles, self.path_cycles)
 
 
 class JitBackend:
+    """The kernels compiled by numba, with loops and buffers of its own (:mod:`.jit`)."""
+
     name = "jit"
 
     def prepare(self, costs: np.ndarray) -> JitRunner:
         return JitRunner(costs)
 
 
-def get_backend(name: str):
-    if name == "reference":
-        return ReferenceBackend()
-    if name == "jit":
-        return JitBackend()
-    raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})")
+_BACKENDS: dict[str, type] = {b.name: b for b in (JitBackend, ReferenceBackend)}
+BACKENDS = tuple(_BACKENDS)
+
+
+def get_backend(name: str) -> Backend:
+    try:
+        return _BACKENDS[name]()
+    except KeyError:
+        raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})") from None

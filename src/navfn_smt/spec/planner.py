@@ -20,6 +20,11 @@ from .extraction import ExtractionExit, calc_path
 from .propagation import TraceHook, cycle_limit, propagate, setup
 
 
+def path_cycle_limit(nx: int) -> int:
+    """``calcPath(nx * 4)``: the extraction budget ``calcNavFnAstar``/``calcNavFnDijkstra`` give."""
+    return 4 * nx
+
+
 @dataclass
 class PlanResult:
     start_reached: bool
@@ -73,7 +78,8 @@ def plan(
     limit = cycle_limit(nx, ny) if cycles is None else cycles
     reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
                         record_trace=record_trace)
-    ext = calc_path(st.potential, nx, ny, start, goal, 4 * nx if path_cycles is None else path_cycles)
+    ext = calc_path(st.potential, nx, ny, start, goal,
+                    path_cycle_limit(nx) if path_cycles is None else path_cycles)
     pot = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
     path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
     return PlanResult(

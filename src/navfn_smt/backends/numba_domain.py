@@ -1,0 +1,264 @@
+"""The compiled numeric domain: the kernels of :mod:`navfn_smt.spec.kernels`, run by numba.
+
+The fast backend does not restate the planner's arithmetic.  It calls the very functions
+the reference spec and the SMT obligations call, with ``D`` bound to :data:`ND`, an
+instance of :class:`NumbaDomain`: a value numba types as a zero-size constant whose
+methods (``ND.add``, ``ND.widen``, ``ND.ite``, ...) are compiled, inline, from the
+implementations below.  Every C++ ``float`` is a ``np.float32``, every ``double`` a
+``np.float64``, every ``int`` a machine integer.
+
+Float operations coerce their operands to float32 first, so an operand that arrives as a
+double by mistake is still computed as C++ does (the coercion of a float32 is free).  The
+library functions are the ones the other domains use: ``hypot``/``hypotf`` from the
+platform's libm (numba calls the same C functions), and ``roundf``, the x86-64 float to
+int conversion and the 32-bit int wrap compiled from :mod:`navfn_smt.spec.numeric`.
+
+:func:`jit` compiles a function with the backend's options and an on-disk cache keyed by
+the content of the sources it depends on, so an edited kernel is never run from a stale
+cache (numba itself only notices changes to the file of the function it caches).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import hashlib
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+from numba import config, njit, types
+from numba.core.imputils import lower_constant
+from numba.extending import NativeValue, models, overload, overload_method, register_model, typeof_impl, unbox
+
+from ..spec import kernels as K
+from ..spec import numeric
+
+JIT_OPTIONS = {"error_model": "numpy"}  # float division by zero gives inf/nan, as in C++
+
+_PACKAGE = Path(__file__).resolve().parents[1]
+_SOURCES = ("spec", "backends")
+
+
+def _source_digest() -> str:
+    """SHA-256 over every source the compiled planner is built from (spec/ and backends/)."""
+    h = hashlib.sha256()
+    for part in _SOURCES:
+        for p in sorted((_PACKAGE / part).glob("*.py")):
+            h.update(p.name.encode())
+            h.update(p.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def _cache_root() -> Path:
+    base = os.environ.get("NUMBA_CACHE_DIR") or os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    sub = "navfn-smt" if not os.environ.get("NUMBA_CACHE_DIR") else ""
+    return Path(base) / sub / f"jit-{_source_digest()}"
+
+
+CACHE_DIR = _cache_root()
+
+
+@contextlib.contextmanager
+def _cache_dir():
+    old = config.CACHE_DIR
+    config.CACHE_DIR = str(CACHE_DIR)
+    try:
+        yield
+    finally:
+        config.CACHE_DIR = old
+
+
+def jit(fn):
+    """``njit(cache=True)`` with the backend's options and the source-keyed cache."""
+    with _cache_dir():
+        return njit(cache=True, **JIT_OPTIONS)(fn)
+
+
+# --------------------------------------------------------------------------------------
+# The domain value and its type
+# --------------------------------------------------------------------------------------
+class NumbaDomain:
+    """The compiled domain; use :data:`ND`.  Only meaningful inside compiled code."""
+
+    name = "numba"
+
+
+class NumbaDomainType(types.Dummy):
+    def __init__(self):
+        super().__init__(name="NumbaDomain")
+
+
+_TYPE = NumbaDomainType()
+typeof_impl.register(NumbaDomain)(lambda val, c: _TYPE)
+register_model(NumbaDomainType)(models.OpaqueModel)
+lower_constant(NumbaDomainType)(lambda context, builder, ty, pyval: context.get_dummy_value())
+unbox(NumbaDomainType)(lambda typ, obj, c: NativeValue(c.context.get_dummy_value()))
+
+ND = NumbaDomain()
+
+# --------------------------------------------------------------------------------------
+# The operations (names and meaning as in navfn_smt.spec.numeric.ConcreteDomain)
+# --------------------------------------------------------------------------------------
+_cvt_to_int32 = njit(**JIT_OPTIONS)(numeric.cvt_to_int32)
+_roundf = njit(**JIT_OPTIONS)(numeric.c_roundf)
+_wrap_int32 = njit(**JIT_OPTIONS)(numeric.wrap_int32)
+F32, F64 = np.float32, np.float64
+
+
+def _f32const(self, x):
+    return F32(x)
+
+
+def _f64const(self, x):
+    return F64(x)
+
+
+def _widen(self, a):  # float -> double, exact
+    return F64(F32(a))
+
+
+def _narrow(self, a):  # double -> float, round to nearest even
+    return F32(F64(a))
+
+
+def _int_to_f32(self, n):
+    return F32(n)
+
+
+def _int_to_f64(self, n):
+    return F64(n)
+
+
+def _to_int32(self, a):  # cvttss2si / cvttsd2si
+    return _cvt_to_int32(a)
+
+
+def _add_int(self, a, b):
+    return _wrap_int32(a + b)
+
+
+def _add(self, a, b):
+    return F32(F32(a) + F32(b))
+
+
+def _sub(self, a, b):
+    return F32(F32(a) - F32(b))
+
+
+def _mul(self, a, b):
+    return F32(F32(a) * F32(b))
+
+
+def _div(self, a, b):
+    return F32(F32(a) / F32(b))
+
+
+def _neg(self, a):
+    return -F32(a)
+
+
+def _add64(self, a, b):
+    return F64(a) + F64(b)
+
+
+def _sub64(self, a, b):
+    return F64(a) - F64(b)
+
+
+def _mul64(self, a, b):
+    return F64(a) * F64(b)
+
+
+def _div64(self, a, b):
+    return F64(a) / F64(b)
+
+
+def _hypot64(self, a, b):  # libm hypot
+    return math.hypot(F64(a), F64(b))
+
+
+def _hypotf(self, a, b):  # libm hypotf
+    return F32(math.hypot(F32(a), F32(b)))
+
+
+def _roundf_op(self, a):
+    return F32(_roundf(F32(a)))
+
+
+def _lt(self, a, b):
+    return a < b
+
+
+def _le(self, a, b):
+    return a <= b
+
+
+def _gt(self, a, b):
+    return a > b
+
+
+def _ge(self, a, b):
+    return a >= b
+
+
+def _eq(self, a, b):
+    return a == b
+
+
+def _and(self, a, b):
+    return a and b
+
+
+def _or(self, a, b):
+    return a or b
+
+
+def _not(self, a):
+    return not a
+
+
+def _ite(self, c, a, b):
+    return a if c else b
+
+
+OPERATIONS = {
+    "f32const": _f32const, "f64const": _f64const, "widen": _widen, "narrow": _narrow,
+    "int_to_f32": _int_to_f32, "int_to_f64": _int_to_f64, "to_int32": _to_int32, "add_int": _add_int,
+    "add": _add, "sub": _sub, "mul": _mul, "div": _div, "neg": _neg,
+    "add64": _add64, "sub64": _sub64, "mul64": _mul64, "div64": _div64,
+    "hypot64": _hypot64, "hypotf": _hypotf, "roundf": _roundf_op,
+    "lt": _lt, "le": _le, "gt": _gt, "ge": _ge, "eq": _eq,
+    "and_": _and, "or_": _or, "not_": _not, "ite": _ite,
+}
+
+
+def _returning(impl):
+    """A typing function with ``impl``'s signature that always answers ``impl``."""
+
+    @functools.wraps(impl)
+    def typer(*args):
+        return impl
+
+    return typer
+
+
+def _register(name, impl):
+    overload_method(NumbaDomainType, name, jit_options=JIT_OPTIONS)(_returning(impl))
+
+
+for _name, _impl in OPERATIONS.items():
+    _register(_name, _impl)
+
+
+# --------------------------------------------------------------------------------------
+# The kernels become callable from compiled code, unchanged
+# --------------------------------------------------------------------------------------
+KERNELS = tuple(
+    name for name, fn in vars(K).items()
+    if callable(fn) and getattr(fn, "__module__", None) == K.__name__
+)
+for _name in KERNELS:
+    _fn = getattr(K, _name)
+    overload(_fn, jit_options=JIT_OPTIONS)(_returning(_fn))
