@@ -1,0 +1,135 @@
+"""Every backend agrees with the reference spec on every field, bit for bit, on generated maps.
+
+The conformance check for alternative backends: hypothesis draws maps (sizes, every cost
+byte 0..255, lethal blobs, uniform fields where potentials tie) and cases (starts and
+goals anywhere on the map, in obstacles, on the border, equal to each other), plans with
+the reference spec and with each other backend, and compares start_reached, the start
+potential's bits, every potential's bits, the path's bits, the trace, cycles, updates,
+dropped pushes and the extraction exit; a case the spec refuses as undefined behaviour
+must be refused by the backend too.  The batch entry point is held to the same results.
+Failing examples are kept by hypothesis and replayed first on the next run.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
+
+from navfn_smt.backends import BACKENDS, get_backend
+from navfn_smt.spec.extraction import ExtractionExit, UndefinedBehaviour
+
+OTHERS = [b for b in BACKENDS if b != "reference"]
+
+
+@st.composite
+def cost_maps(draw):
+    """A (height, width) uint8 map: random bytes, a uniform field, or blobs of one cost."""
+    w = draw(st.integers(3, 14))
+    h = draw(st.integers(3, 14))
+    kind = draw(st.sampled_from(["bytes", "uniform", "blobs", "passable"]))
+    if kind == "bytes":  # every cost byte, obstacles included
+        cells = draw(st.lists(st.integers(0, 255), min_size=w * h, max_size=w * h))
+        return np.array(cells, np.uint8).reshape(h, w)
+    if kind == "passable":  # what setCostmap produces for free space: 50..253
+        cells = draw(st.lists(st.integers(50, 253), min_size=w * h, max_size=w * h))
+        return np.array(cells, np.uint8).reshape(h, w)
+    base = draw(st.sampled_from([0, 1, 50, 128, 253]))
+    arr = np.full((h, w), base, np.uint8)  # uniform: potentials tie everywhere
+    if kind == "blobs":
+        for _ in range(draw(st.integers(1, 4))):
+            x, y = draw(st.integers(0, w - 1)), draw(st.integers(0, h - 1))
+            rw, rh = draw(st.integers(1, 3)), draw(st.integers(1, 3))
+            arr[y:y + rh, x:x + rw] = draw(st.sampled_from([254, 255, 253, 50]))
+    return arr
+
+
+@st.composite
+def planning_cases(draw):
+    costs = draw(cost_maps())
+    h, w = costs.shape
+    cell = st.tuples(st.integers(0, w - 1), st.integers(0, h - 1))
+    start = draw(cell)
+    goal = draw(st.one_of(cell, st.just(start)))
+    return costs, start, goal, draw(st.booleans())
+
+
+def _plan(backend: str, costs, start, goal, astar):
+    try:
+        return get_backend(backend).prepare(costs).run(start, goal, astar, trace=True)
+    except UndefinedBehaviour:
+        return "undefined"
+
+
+def _bits(a) -> bytes:
+    return np.ascontiguousarray(a, dtype="<f4").tobytes()
+
+
+def assert_same(ours, ref, backend: str) -> None:
+    if isinstance(ref, str) or isinstance(ours, str):
+        assert ours == ref, f"{backend}: {ours!r} where the reference gives {ref!r}"
+        return
+    assert ours.start_reached == ref.start_reached, backend
+    assert _bits(ours.start_potential) == _bits(ref.start_potential), backend
+    assert _bits(ours.potential) == _bits(ref.potential), f"{backend}: potentials differ"
+    assert ours.path.shape == ref.path.shape and _bits(ours.path) == _bits(ref.path), f"{backend}: paths differ"
+    assert np.array_equal(ours.trace, ref.trace), f"{backend}: traces differ"
+    assert (ours.cycles, ours.updates, ours.dropped) == (ref.cycles, ref.updates, ref.dropped), backend
+    assert ours.exit == ref.exit, backend
+
+
+@pytest.mark.parametrize("backend", OTHERS)
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case=planning_cases())
+@example(case=(np.full((5, 5), 50, np.uint8), (2, 2), (2, 2), True))  # start == goal
+@example(case=(np.full((3, 3), 0, np.uint8), (1, 1), (0, 0), False))  # cost 0, goal on the border
+@example(case=(np.full((6, 4), 50, np.uint8), (0, 1), (2, 3), True))  # undefined behaviour at (0, 1)
+def test_backend_agrees_with_reference(backend, case):
+    costs, start, goal, astar = case
+    assert_same(_plan(backend, costs, start, goal, astar), _plan("reference", costs, start, goal, astar), backend)
+
+
+@pytest.mark.parametrize("backend", OTHERS)
+@settings(max_examples=60, deadline=None)
+@given(costs=cost_maps(), data=st.data())
+def test_batch_agrees_with_single_runs(backend, costs, data):
+    """``run_batch`` (one compiled call for many cases) gives each case's ``run`` result."""
+    h, w = costs.shape
+    interior = st.tuples(st.integers(1, max(1, w - 2)), st.integers(1, max(1, h - 2)))
+    cases = data.draw(st.lists(st.tuples(interior, interior), min_size=1, max_size=6))
+    astar = data.draw(st.booleans())
+    flat = np.array([[s[0], s[1], g[0], g[1]] for s, g in cases], np.int64)
+    try:
+        singles = [get_backend("reference").prepare(costs).run(s, g, astar, trace=False) for s, g in cases]
+    except UndefinedBehaviour:
+        return  # an interior start next to a lethal corner can still be undefined; covered above
+    batch = get_backend(backend).prepare(costs).run_batch(flat, astar)
+    for i, ref in enumerate(singles):
+        assert batch["start_reached"][i] == ref.start_reached
+        assert _bits(batch["start_potential"][i]) == _bits(ref.start_potential)
+        assert (batch["cycles"][i], batch["updates"][i], batch["dropped"][i]) == (ref.cycles, ref.updates, ref.dropped)
+        assert list(ExtractionExit)[batch["exit"][i]] == ref.exit
+        lo, hi = batch["path_offsets"][i], batch["path_offsets"][i + 1]
+        assert _bits(batch["path"][lo:hi]) == _bits(ref.path)
+
+
+def test_results_do_not_alias_the_runner():
+    """A result keeps its values when the same runner plans another case."""
+    costs = np.full((8, 8), 50, np.uint8)
+    runner = get_backend("jit").prepare(costs)
+    first = runner.run((2, 2), (5, 5), True)
+    kept = (first.potential.copy(), first.path.copy(), first.trace.copy())
+    runner.run((5, 2), (2, 6), False)
+    assert np.array_equal(first.potential, kept[0])
+    assert np.array_equal(first.path, kept[1]) and np.array_equal(first.trace, kept[2])
+
+
+def test_conformance_check_can_fail():
+    """The comparison notices a single flipped potential bit."""
+    costs = np.full((6, 6), 60, np.uint8)
+    ref = _plan("reference", costs, (1, 1), (4, 4), True)
+    other = _plan("reference", costs, (1, 1), (4, 4), True)
+    other.potential[2, 2] = np.nextafter(other.potential[2, 2], np.float32(np.inf))
+    with pytest.raises(AssertionError):
+        assert_same(other, ref, "doctored")
