@@ -2,18 +2,27 @@
 
 Each mutant is one textual change to the kernels or to a numeric domain, of the kind a
 specification writer could make (drop the obstacle test, flip a comparison, forget the
-pending flag, compute in double where C++ narrows, ...).  A mutant runs in a subprocess
-on a copy of the package with the change applied, against three detectors:
+pending flag, compute in double where C++ narrows, ...).  The change is made in the one
+source of the arithmetic, so a kernel mutant reaches the reference spec, the compiled
+backend and the SMT encodings alike.  A mutant runs in a subprocess on a copy of the
+package with the change applied, against these detectors:
 
 * ``prove``: the proof obligations (a verdict that changes catches it);
 * ``equality``: the symbolic domains compared with the concrete spec on kernel inputs;
-* ``difftest``: the reference spec against C++ golden outputs on a few example maps.
+* ``difftest-reference``, ``difftest-jit``: each backend against the C++ golden outputs
+  of the example suite.
 
-The score is the share of mutants caught by at least one detector.
+A mutant meets only the detectors that can catch it: the obligations and kernel
+comparisons that execute the mutated function (found by tracing them once, unmutated),
+and the difftests when planning calls it (the kernels the planner's loops name, and
+what those call).  Within ``prove``, the first changed verdict ends the detector.
+The score is given per backend: caught by ``prove``, ``equality`` or that backend's
+difftest.
 """
 
 from __future__ import annotations
 
+import ast
 import json
 import os
 import shutil
@@ -21,8 +30,10 @@ import subprocess
 import sys
 import tempfile
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Callable, Optional
 
 PACKAGE = Path(__file__).resolve().parents[1]
 KERNELS = "spec/kernels.py"
@@ -74,12 +85,11 @@ MUTANTS = (
            "return z3.fpToSBV(z3.RTZ(), a, BV32)", "fp32 domain forgets cvttss2si's INT_MIN"),
 )
 
-EQUALITY_SCRIPT = """
-import json
-from navfn_smt.smt.evaluate import KERNELS, compare_kernel
-bad = {k: len(compare_kernel(k, 77, 150)) for k in KERNELS}
-print(json.dumps(bad))
-"""
+
+DETECTORS = ("equality", "difftest-reference", "difftest-jit", "prove")
+BACKEND_DETECTORS = {"reference": ("prove", "equality", "difftest-reference"),
+                     "jit": ("prove", "equality", "difftest-jit")}
+PLANNING_SOURCES = ("spec/propagation.py", "spec/extraction.py", "backends/jit.py")
 
 
 @dataclass
@@ -87,14 +97,122 @@ class MutantResult:
     name: str
     what: str
     caught_by: list = field(default_factory=list)
+    skipped: dict = field(default_factory=dict)  # detector -> why it cannot catch this mutant
     details: dict = field(default_factory=dict)
+    errors: dict = field(default_factory=dict)  # detector -> error (a broken detector is no catch)
     seconds: float = 0.0
 
     @property
     def caught(self) -> bool:
         return bool(self.caught_by)
 
+    def caught_with(self, backend: str) -> bool:
+        """Caught by a check that speaks for ``backend`` (the proofs, the equality test, its difftest)."""
+        return any(d in self.caught_by for d in BACKEND_DETECTORS[backend])
 
+
+# --------------------------------------------------------------------------------------
+# Which detectors can catch a mutant: the functions each one executes
+# --------------------------------------------------------------------------------------
+def mutated_function(m: Mutant) -> Optional[str]:
+    """``file:qualname`` of the function whose body the mutant changes (None: module level)."""
+    text = (PACKAGE / m.file).read_text()
+    line = text[: text.index(m.old)].count("\n") + 1
+    for node in ast.parse(text).body:
+        if isinstance(node, ast.ClassDef):
+            for f in node.body:
+                if isinstance(f, ast.FunctionDef) and f.lineno <= line <= f.end_lineno:
+                    return f"{m.file}:{node.name}.{f.name}"
+        elif isinstance(node, ast.FunctionDef) and node.lineno <= line <= node.end_lineno:
+            return f"{m.file}:{node.name}"
+    return None
+
+
+def _traced(fn: Callable) -> set:
+    """The ``file:qualname`` of every kernel or domain function that runs during ``fn()``."""
+    watched = {str(PACKAGE / f): f for f in (KERNELS, DOMAINS)}
+    seen: set = set()
+
+    def prof(frame, event, arg):
+        if event == "call":
+            rel = watched.get(frame.f_code.co_filename)
+            if rel:
+                seen.add(f"{rel}:{frame.f_code.co_qualname}")
+
+    old = sys.getprofile()
+    sys.setprofile(prof)
+    try:
+        fn()
+    finally:
+        sys.setprofile(old)
+    return seen
+
+
+def planning_kernels() -> set:
+    """Kernels the planner's loops name (``K.name``), closed over the kernels' own calls."""
+    kernel_tree = ast.parse((PACKAGE / KERNELS).read_text())
+    calls = {f.name: {n.id for n in ast.walk(f) if isinstance(n, ast.Name)}
+             for f in kernel_tree.body if isinstance(f, ast.FunctionDef)}
+    todo = set()
+    for src in PLANNING_SOURCES:
+        tree = ast.parse((PACKAGE / src).read_text())
+        todo |= {n.attr for n in ast.walk(tree)
+                 if isinstance(n, ast.Attribute) and isinstance(n.value, ast.Name) and n.value.id == "K"}
+    found: set = set()
+    while todo:
+        k = todo.pop()
+        if k in calls and k not in found:
+            found.add(k)
+            todo |= calls[k] & set(calls)
+    return {f"{KERNELS}:{k}" for k in found}
+
+
+@dataclass
+class Relevance:
+    """What each detector executes, traced once on the unmutated package."""
+
+    obligations: dict  # (file, name, semantics) -> functions run while building its query
+    kernels: dict  # equality kernel -> functions run while comparing it
+    planning: set
+
+    @classmethod
+    def trace(cls, proof_files) -> "Relevance":
+        from ..smt.evaluate import KERNELS as EQ_KERNELS
+        from ..smt.evaluate import compare_kernel
+        from ..smt.obligation import _query, load_obligations
+
+        obs = {}
+        for ob in load_obligations(proof_files):
+            for sem in ob.expect:
+                obs[(str(Path(ob.source).resolve()), ob.name, sem)] = _traced(lambda: _query(ob, sem))
+        kernels = {k: _traced(lambda: compare_kernel(k, 0, 2)) for k in EQ_KERNELS}
+        return cls(obs, kernels, planning_kernels())
+
+    def plan(self, m: Mutant) -> tuple[dict, dict]:
+        """``(work, skipped)``: what to run for ``m`` and why the rest cannot catch it."""
+        fn = mutated_function(m)
+        runs = (lambda calls: True) if fn is None else (lambda calls: fn in calls)
+        work, skipped = {}, {}
+        obs = [list(k) for k, calls in self.obligations.items() if runs(calls)]
+        obs.sort(key=lambda k: k[2] != "real")  # real semantics first: they decide fastest
+        kernels = [k for k, calls in self.kernels.items() if runs(calls)]
+        planning = runs(self.planning)
+        for det, todo in (("prove", obs), ("equality", kernels)):
+            if todo:
+                work[det] = todo
+            else:
+                skipped[det] = f"no {'obligation' if det == 'prove' else 'kernel comparison'} runs {fn}"
+        for backend in ("reference", "jit"):
+            if planning:
+                work[f"difftest-{backend}"] = backend
+            else:
+                skipped[f"difftest-{backend}"] = f"planning does not run {fn}"
+        return work, skipped
+
+
+# --------------------------------------------------------------------------------------
+# Running a mutant: a subprocess on a mutated copy of the package
+# --------------------------------------------------------------------------------------
 def _apply(root: Path, m: Mutant) -> None:
     p = root / "navfn_smt" / m.file
     text = p.read_text()
@@ -103,56 +221,122 @@ def _apply(root: Path, m: Mutant) -> None:
     p.write_text(text.replace(m.old, m.new))
 
 
-def run_mutant(m: Mutant, proof_files, suite, timeout: float = 20.0, solvers=("bitwuzla", "z3", "cvc5")) -> MutantResult:
+def run_mutant(m: Mutant, rel: Relevance, suite, timeout: float = 30.0, solvers=("bitwuzla", "z3", "cvc5"),
+               progress: Optional[Callable[[str, str, dict], None]] = None) -> MutantResult:
+    """Seed ``m`` in a copy of the package and run the detectors that can catch it.
+
+    ``progress(mutant, detector, line)`` is called as each detector finishes."""
     t0 = time.perf_counter()
     res = MutantResult(m.name, m.what)
+    work, res.skipped = rel.plan(m)
     with tempfile.TemporaryDirectory(prefix=f"mutant-{m.name}-") as tmp:
         root = Path(tmp)
         shutil.copytree(PACKAGE, root / "navfn_smt", ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
         _apply(root, m)
+        plan = root / "plan.json"
+        plan.write_text(json.dumps({"work": work, "suite": str(Path(suite).resolve()), "timeout": timeout, "solvers": list(solvers)}))
         env = {**os.environ, "PYTHONPATH": str(root), "NUMBA_CACHE_DIR": str(root / "numba-cache")}
-        py = [sys.executable]
-        # 1. proofs
-        report = root / "prove.json"
-        cmd = py + ["-m", "navfn_smt", "prove", *map(str, proof_files), "--timeout", str(timeout),
-                    "--report", str(report), "--witness-dir", str(root / "witnesses"), "--no-bound-search", "--jobs", "2"]
-        for s in solvers:
-            cmd += ["--solver", s]
-        p = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=tmp)
-        if p.returncode == 1 and report.exists():
-            doc = json.loads(report.read_text())
-            # a verdict that changes to another definitive verdict catches the mutant, and so
-            # does a solver model the concrete spec refuses (the domain no longer matches the
-            # spec); a timeout does not: it says nothing about the mutant
-            changed = [f"{o['name']}[{o['semantics']}]: {o['status']}" for o in doc["obligations"]
-                       if o["status"] != o["expected"]
-                       and (o["status"] != "unknown" or "not confirmed" in (o.get("detail") or ""))]
-            timeouts = [f"{o['name']}[{o['semantics']}]" for o in doc["obligations"]
-                        if o["status"] != o["expected"] and o["name"] + "[" + o["semantics"] + "]: unknown"
-                        not in changed and o["status"] == "unknown"]
-            if changed:
-                res.caught_by.append("prove")
-                res.details["prove"] = changed
-            if timeouts:
-                res.details["prove_timeouts"] = timeouts
-        elif p.returncode not in (0, 1):
-            res.details["prove_error"] = (p.stderr or p.stdout).strip().splitlines()[-1:]
-        # 2. equality of the symbolic domains with the concrete spec
-        p = subprocess.run(py + ["-c", EQUALITY_SCRIPT], env=env, capture_output=True, text=True, cwd=tmp)
-        if p.returncode == 0:
-            bad = json.loads(p.stdout.strip().splitlines()[-1])
-            if any(bad.values()):
-                res.caught_by.append("equality")
-                res.details["equality"] = {k: v for k, v in bad.items() if v}
-        else:
-            res.details["equality_error"] = (p.stderr or "").strip().splitlines()[-1:]
-        # 3. difftest of the reference spec against C++ golden outputs
-        p = subprocess.run(py + ["-m", "navfn_smt", "difftest", str(suite), "--backend", "reference", "--quiet"],
-                           env=env, capture_output=True, text=True, cwd=tmp)
-        if p.returncode == 1:
-            res.caught_by.append("difftest")
-            res.details["difftest"] = p.stdout.strip().splitlines()[-1]
-        elif p.returncode != 0:
-            res.details["difftest_error"] = (p.stderr or p.stdout).strip().splitlines()[-1:]
+        proc = subprocess.Popen([sys.executable, "-m", "navfn_smt.search.mutation", str(plan)], env=env, cwd=tmp,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        for line in proc.stdout:
+            if not line.startswith("{"):
+                continue
+            d = json.loads(line)
+            if d.get("caught"):
+                res.caught_by.append(d["detector"])
+            if d.get("error"):
+                res.errors[d["detector"]] = d["error"]
+            elif d.get("detail"):
+                res.details[d["detector"]] = d["detail"]
+            if progress:
+                progress(m.name, d["detector"], d)
+        err = proc.stderr.read()
+        if proc.wait() != 0:
+            res.errors["worker"] = " | ".join(err.strip().splitlines()[-3:])
+    res.caught_by.sort(key=DETECTORS.index)
     res.seconds = round(time.perf_counter() - t0, 1)
     return res
+
+
+def run_mutants(mutants, proof_files, suite, timeout: float = 30.0, jobs: int = 2,
+                progress: Optional[Callable[[str, str, dict], None]] = None) -> list[MutantResult]:
+    """Every mutant, ``jobs`` at a time, in the order given."""
+    rel = Relevance.trace(proof_files)
+    with ThreadPoolExecutor(max_workers=jobs) as ex:
+        return list(ex.map(lambda m: run_mutant(m, rel, suite, timeout, progress=progress), mutants))
+
+
+# --------------------------------------------------------------------------------------
+# Inside the mutated copy: the detectors
+# --------------------------------------------------------------------------------------
+def _emit(detector: str, caught: bool, detail, t0: float, error: Optional[str] = None) -> None:
+    print(json.dumps({"detector": detector, "caught": caught, "detail": detail, "error": error,
+                      "seconds": round(time.perf_counter() - t0, 1)}, default=str), flush=True)
+
+
+def _detect_equality(kernels) -> tuple[bool, dict]:
+    from navfn_smt.smt.evaluate import compare_kernel
+
+    bad = {k: len(compare_kernel(k, 77, 150)) for k in kernels}
+    bad = {k: v for k, v in bad.items() if v}
+    return bool(bad), bad
+
+
+def _detect_difftest(suite: str, backend: str) -> tuple[bool, str]:
+    """The suite's cases, smallest maps first; the first disagreeing case catches the mutant."""
+    from navfn_smt.difftest.runner import _map_cells, plan_tasks, run_task
+
+    tasks = sorted(plan_tasks(Path(suite), ("astar", "dijkstra"), backend), key=lambda t: _map_cells(t.map_dir))
+    runs = 0
+    for t in tasks:
+        o = run_task(t)
+        runs += o.cases
+        if o.disagreements:
+            d = o.disagreements[0]
+            return True, f"{d.map} {d.mode} case {d.case_index}: {d.field} differs (after {runs} case runs)"
+    return False, f"all {runs} case runs agree"
+
+
+def _detect_prove(obligations, timeout: float, solvers) -> tuple[bool, list]:
+    """Check the obligations in order; the first verdict that changes catches the mutant.
+    A timeout does not catch it (it says nothing about the mutant), but a solver model the
+    concrete spec refuses does (the domain no longer matches the spec)."""
+    from navfn_smt.smt.obligation import check, load_obligations
+    from navfn_smt.smt.runner import solve_query
+
+    loaded = {}
+    notes = []
+    for path, name, sem in obligations:
+        if path not in loaded:
+            loaded[path] = {o.name: o for o in load_obligations([Path(path)])}
+        o = check(loaded[path][name], sem, timeout, solve_query(tuple(solvers)), bounds=False)
+        if o.status != o.expected and (o.status != "unknown" or "not confirmed" in (o.detail or "")):
+            return True, notes + [f"{name}[{sem}]: {o.status} (expected {o.expected})"]
+        if o.status != o.expected:
+            notes.append(f"{name}[{sem}]: unknown (timeout, not counted)")
+    return False, notes
+
+
+def worker_main(plan_file: str) -> int:
+    plan = json.loads(Path(plan_file).read_text())
+    work = plan["work"]
+    for det in DETECTORS:
+        if det not in work:
+            continue
+        t0 = time.perf_counter()
+        error = None
+        try:
+            if det == "equality":
+                caught, detail = _detect_equality(work[det])
+            elif det.startswith("difftest-"):
+                caught, detail = _detect_difftest(plan["suite"], work[det])
+            else:
+                caught, detail = _detect_prove(work[det], plan["timeout"], plan["solvers"])
+        except Exception as e:  # a detector that breaks is reported, and is not a catch
+            caught, detail, error = False, None, f"{type(e).__name__}: {e}"[:300]
+        _emit(det, caught, detail, t0, error)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(worker_main(sys.argv[1]))
