@@ -344,38 +344,34 @@ def cmd_prove(args) -> int:
 
 # --------------------------------------------------------------------------------- mutate
 def cmd_mutate(args) -> int:
-    from rich.table import Table
+    import time
 
-    from .report.tables import console, progress_bar
-    from .search.mutation import MUTANTS, run_mutant
+    from .report import mutation as rm
+    from .search.mutation import MUTANTS, run_mutants
     from .smt.runner import default_proof_files
 
     chosen = [m for m in MUTANTS if not args.mutant or m.name in args.mutant]
     unknown = set(args.mutant or []) - {m.name for m in MUTANTS}
     if unknown:
         raise NavfnInputError(f"unknown mutant(s): {', '.join(sorted(unknown))}")
+    if args.jobs < 1:
+        raise NavfnInputError("--jobs must be at least 1")
     if args.json:
         check_writable(args.json)
     files = default_proof_files(PROOFS_DIR)
     suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
-    results = []
-    with progress_bar(len(chosen), "mutants") as advance:
-        for m in chosen:
-            results.append(run_mutant(m, files, suite, args.timeout))
-            advance(1)
-    t = Table(title="mutation check: seeded bugs and what caught them")
-    for c in ("mutant", "seeded bug", "caught by", "seconds"):
-        t.add_column(c, overflow="fold")
-    for r in results:
-        t.add_row(r.name, r.what, ", ".join(r.caught_by) or "[red]survived[/]", f"{r.seconds:.0f}")
-    console.print(t)
-    caught = sum(r.caught for r in results)
+    t0 = time.perf_counter()
+    done: list = []
+    results = run_mutants(chosen, files, suite, args.timeout, args.jobs,
+                          progress=rm.progress_line(done, len(chosen)), on_done=done.append)
+    rm.table(results)
     if args.json:
-        atomic_write_text(args.json, json.dumps({"score": f"{caught}/{len(results)}", "mutants": [
-            {"name": r.name, "what": r.what, "caught_by": r.caught_by, "details": r.details, "seconds": r.seconds}
-            for r in results]}, indent=1, default=str))
-    print(f"mutation score: {caught} of {len(results)} seeded bugs caught")
-    return 0
+        rm.write_json(args.json, results, time.perf_counter() - t0)
+    caught = sum(r.caught for r in results)
+    per = rm.scores(results)
+    print(f"mutation score: {caught} of {len(results)} seeded bugs caught "
+          f"(reference {per['reference']}, jit {per['jit']}) in {time.perf_counter() - t0:.0f} s")
+    return 1 if any(r.errors for r in results) else 0
 
 
 # ---------------------------------------------------------------------------------- bench
@@ -492,6 +488,7 @@ def build_parser() -> argparse.ArgumentParser:
     mu.add_argument("--mutant", action="append", metavar="NAME", help="run only this mutant (repeatable)")
     mu.add_argument("--suite", help="suite for the difftest detector (default: the example suite)")
     mu.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query")
+    mu.add_argument("--jobs", type=int, default=2, help="mutants checked at the same time (default 2)")
     mu.add_argument("--json", metavar="FILE", help="write every mutant's result as JSON")
     mu.set_defaults(func=cmd_mutate)
 

@@ -259,11 +259,19 @@ def run_mutant(m: Mutant, rel: Relevance, suite, timeout: float = 30.0, solvers=
 
 
 def run_mutants(mutants, proof_files, suite, timeout: float = 30.0, jobs: int = 2,
-                progress: Optional[Callable[[str, str, dict], None]] = None) -> list[MutantResult]:
-    """Every mutant, ``jobs`` at a time, in the order given."""
+                progress: Optional[Callable[[str, str, dict], None]] = None,
+                on_done: Optional[Callable[[MutantResult], None]] = None) -> list[MutantResult]:
+    """Every mutant, ``jobs`` at a time; results in the order given."""
     rel = Relevance.trace(proof_files)
+
+    def one(m: Mutant) -> MutantResult:
+        r = run_mutant(m, rel, suite, timeout, progress=progress)
+        if on_done:
+            on_done(r)
+        return r
+
     with ThreadPoolExecutor(max_workers=jobs) as ex:
-        return list(ex.map(lambda m: run_mutant(m, rel, suite, timeout, progress=progress), mutants))
+        return list(ex.map(one, mutants))
 
 
 # --------------------------------------------------------------------------------------
