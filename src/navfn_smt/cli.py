@@ -467,9 +467,13 @@ def build_parser() -> argparse.ArgumentParser:
     cv.add_argument("--json", metavar="FILE", help="write the figures and every uncovered branch as JSON")
     cv.set_defaults(func=cmd_coverage)
 
-    from .maps.suite_cli import register as register_suite
+    from .difftest.record_cli import register as register_record
+    from .maps.suite_cli import register as register_generate
 
-    register_suite(sub)
+    su = sub.add_parser("suite", help="generate map suites and record golden files from the spec")
+    suite_sub = su.add_subparsers(dest="suite_command", required=True, metavar="SUBCOMMAND")
+    register_generate(suite_sub)
+    register_record(suite_sub)
 
     pr = sub.add_parser("prove", help="check the proof obligations in proofs/ (or the given files)")
     pr.add_argument("files", nargs="*", help="proof files (default: every proofs/*.py)")
