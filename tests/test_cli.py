@@ -4,6 +4,7 @@ Bad input must give exit status 2, exactly one line on stderr naming the problem
 no traceback, and no partially written output file.
 """
 
+import argparse
 import json
 import os
 import shutil
@@ -188,3 +189,60 @@ def test_plan_cells_on_map_server_yaml_and_bad_world_input(tmp_path):
     bad.write_text("image: [unclosed\n")
     rc, out, err = run("plan", bad, "--world", "--start", 0, 0, "--goal", 1, 1)
     assert_clean_error(rc, err, "bad.yaml")
+
+
+def test_version():
+    from importlib.metadata import version
+
+    rc, out, err = run("--version")
+    assert rc == 0, err
+    assert out.strip() == f"navfn-smt {version('navfn-smt')}"
+
+
+def test_every_option_has_help_and_shows_its_default():
+    from navfn_smt.cli import build_parser
+
+    def parsers(p):
+        yield p
+        for a in p._actions:
+            if isinstance(a, argparse._SubParsersAction):
+                for sp in a.choices.values():
+                    yield from parsers(sp)
+
+    for p in parsers(build_parser()):
+        for a in p._actions:
+            assert a.help or isinstance(a, argparse._SubParsersAction), f"{p.prog} {a.dest}: no help"
+        text = p.format_help()
+        for a in p._actions:
+            if a.option_strings and a.default not in (None, False, argparse.SUPPRESS):
+                assert f"(default: {a.default})" in " ".join(text.split()), f"{p.prog} {a.dest}"
+
+
+@pytest.mark.parametrize("argv", [
+    ["difftest", "--json", "{missing}/r.json"],
+    ["bench", "--size", "12", "--backend", "reference", "--json", "{missing}/b.json"],
+    ["bench", "--json", "{missing}/b.json"],
+    ["metamorphic", "--relation", "rot90", "--json", "{missing}/m.json", "--save", "{tmp}/cx"],
+    ["metamorphic", "--relation", "rot90", "--json", "{tmp}/m.json", "--save", "{tmp}/a-file"],
+    ["coverage", "--max-cases", "1", "--json", "{missing}/c.json"],
+    ["prove", "--junit", "{tmp}/j.xml", "--report", "{missing}/r.json"],
+    ["prove", "--report", "{tmp}/r.json", "--markdown", "{tmp}/a-dir"],
+    ["prove", "--report", "{tmp}/r.json", "--smt2", "{tmp}/a-file"],
+    ["prove", "--report", "{tmp}/r.json", "--witness-dir", "{tmp}/a-file/w"],
+    ["render", str(FREE), "-o", "{missing}/p.png"],
+])
+def test_unwritable_output_is_rejected_before_any_work(tmp_path, argv):
+    """Exit 2 with one line, nothing printed on stdout (no run happened), nothing written,
+    and an existing file at an output path left as it was."""
+    work = tmp_path / "work"
+    work.mkdir()
+    (work / "a-dir").mkdir()
+    (work / "a-file").write_text("kept")
+    (work / "m.json").write_text("kept")
+    args = [a.format(missing=tmp_path / "missing", tmp=work) for a in argv]
+    rc, out, err = run(*args, cwd=work)
+    assert_clean_error(rc, err)
+    assert out == ""
+    assert sorted(p.name for p in work.iterdir()) == ["a-dir", "a-file", "m.json"]
+    assert (work / "a-file").read_text() == "kept" and (work / "m.json").read_text() == "kept"
+    assert not any((work / "a-dir").iterdir()) and not (tmp_path / "missing").exists()

@@ -2,7 +2,6 @@
 deterministically, and a generated suite is written whole, refused over itself, and
 records and difftests clean against its own recording."""
 
-import argparse
 import math
 
 import numpy as np
@@ -17,7 +16,6 @@ from navfn_smt.maps.generators import (
     inflate, inflation_cost, passable_cells,
 )
 from navfn_smt.maps.suite import discover, load_map
-from navfn_smt.maps.suite_cli import register
 
 SMALL = {  # sizes that keep the whole file fast
     "circus": (5, 9), "columns": (11, 9), "free": (6, 5), "obstacle": (8, 7), "radial": (8, 8),
@@ -374,8 +372,9 @@ def test_bad_input_is_one_navfn_input_error(tmp_path):
 
 
 def test_cli_register_generate_and_record(tmp_path, capsys):
-    p = argparse.ArgumentParser(prog="navfn-smt")
-    register(p.add_subparsers(dest="command", required=True))
+    from navfn_smt.cli import build_parser
+
+    p = build_parser()
     out = tmp_path / "suite"
     args = p.parse_args(["suite", "generate", str(out), "--category", "radial", "--count", "2", "--seed", "7",
                          "--size", "7", "6", "--paths", "all"])

@@ -90,6 +90,41 @@ def adding_one_always_increases(D):
     assert x >= 2.0**24 and x + np.float32(1.0) == x  # the counterexample: 1 is absorbed
 
 
+WRONG = '''
+from navfn_smt.smt.obligation import obligation
+from navfn_smt.smt.predicates import ValidPotential
+
+@obligation("Demo", expect={"real": "proved", "fp32": "proved"}, scope="one addition")
+def adding_one_always_increases(D):
+    """x + 1 > x for every valid potential (false in float32: absorbed above 2**24)."""
+    x = D.f32("x")
+    return ValidPotential(D, x), D.gt(D.add(x, D.f32const(1.0)), x)
+'''
+
+
+def test_witnesses_go_next_to_the_report_and_never_into_the_working_directory(tmp_path):
+    proofs, work = tmp_path / "proofs", tmp_path / "work"
+    proofs.mkdir()
+    work.mkdir()
+    (proofs / "wrong.py").write_text(WRONG)
+    # no report asked: no witness file anywhere, and the run says so
+    rc, stdout, stderr = run("prove", proofs / "wrong.py", "--no-bound-search", cwd=work)
+    assert rc == 1, stdout + stderr
+    assert "1 counterexample not written to files" in stdout
+    assert not any(work.iterdir())
+    # a report asked: witnesses in a folder next to it, named after it
+    (tmp_path / "out").mkdir()
+    rc, stdout, stderr = run("prove", proofs / "wrong.py", "--no-bound-search", "--report", tmp_path / "out" / "r.json",
+                             cwd=work)
+    assert rc == 1, stdout + stderr
+    w = tmp_path / "out" / "r-witnesses" / "adding_one_always_increases.fp32.json"
+    assert f"1 counterexample written under {w.parent}" in stdout
+    assert json.loads(w.read_text())["replayed_on_spec"] is True
+    o = {x["semantics"]: x for x in json.loads((tmp_path / "out" / "r.json").read_text())["obligations"]}
+    assert o["fp32"]["witness"] == str(w) and o["real"]["witness"] is None
+    assert not any(work.iterdir())
+
+
 @pytest.mark.parametrize("content,words", [(None, "no such proof file"), ("this is not python(", "cannot load"),
                                            ("x = 1\n", "defines no obligations")])
 def test_bad_proof_files(tmp_path, content, words):

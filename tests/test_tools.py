@@ -103,6 +103,16 @@ def test_metamorphic_saves_replayable_counterexamples(tmp_path):
             assert not (v["potential"] and v["path"] and v["reached"])
 
 
+def test_metamorphic_saves_nothing_unasked(tmp_path):
+    suite, work = tmp_path / "suite", tmp_path / "work"
+    shutil.copytree(EXAMPLE_SUITE / "walls" / "5x5_2walls", suite / "walls" / "5x5_2walls")
+    work.mkdir()
+    rc, o, e = run("metamorphic", suite, "--relation", "rot90", "--mode", "astar", cwd=work)
+    assert rc == 0, e
+    assert not any(work.iterdir())
+    assert "counterexamples not saved" in o
+
+
 def test_coverage_report(tmp_path):
     suite = tmp_path / "suite"
     shutil.copytree(EXAMPLE_SUITE / "free" / "3x3_free", suite / "free" / "3x3_free")

@@ -11,17 +11,16 @@
 
 from __future__ import annotations
 
-import json
 import time
 from pathlib import Path
 
 import numpy as np
 
-from .backends import get_backend
+from .backends import BACKENDS, get_backend
+from .difftest.runner import modes_of
 from .errors import NavfnInputError
-from .fileio import atomic_write_text
 from .maps.suite import discover, load_map
-from .report.tables import console, progress_bar
+from .report.tables import progress_bar
 
 SEED = 12345
 
@@ -38,24 +37,18 @@ def generated_map(kind: str, n: int) -> np.ndarray:
     return c
 
 
-def _backends(name: str) -> list[str]:
-    return ["jit", "reference"] if name == "all" else [name]
+def backends_of(choice: str) -> tuple[str, ...]:
+    """The backends a ``--backend`` choice stands for: ``all`` is every one in ``BACKENDS``."""
+    return tuple(BACKENDS) if choice == "all" else (choice,)
 
 
-def _modes(name: str) -> list[str]:
-    return ["astar", "dijkstra"] if name == "both" else [name]
-
-
-def _write(path, doc) -> None:
-    atomic_write_text(path, json.dumps(doc, indent=1))
-
-
-def bench_suite(suite: Path, backend: str, mode: str, json_path=None) -> list[dict]:
+def bench_suite(suite: Path, backend: str, mode: str) -> list[dict]:
+    """Time every case of ``suite`` per backend and mode; one row of figures each."""
     maps = [load_map(d, suite) for d in discover(suite)]
     ncases = sum(len(m.cases) for m in maps)
     rows = []
-    for b in _backends(backend):
-        for md in _modes(mode):
+    for b in backends_of(backend):
+        for md in modes_of(mode):
             astar = md == "astar"
             runners = [get_backend(b).prepare(m.costs) for m in maps]
             if b == "jit":  # warm-up: compile or load the cache before timing
@@ -74,28 +67,30 @@ def bench_suite(suite: Path, backend: str, mode: str, json_path=None) -> list[di
                     advance(len(m.cases))
             rows.append({"backend": b, "mode": md, "cases": ncases, "seconds": round(elapsed, 3),
                          "cases_per_second": round(ncases / elapsed, 1) if elapsed else None})
-    _table("bench: whole suite " + str(suite), rows, ["backend", "mode", "cases", "seconds", "cases_per_second"],
-           headers={"cases_per_second": "cases/s"})
-    if json_path:
-        _write(json_path, {"suite": str(suite), "results": rows})
     return rows
 
 
-def bench_sizes(sizes, backend: str, repeat: int, json_path=None, modes: str = "both") -> list[dict]:
+def check_sizes(sizes, repeat: int) -> None:
+    """Reject benchmark sizes below 12 cells a side and fewer than one plan per map."""
     for n in sizes:
         if n < 12:
             raise NavfnInputError(f"--size {n}: benchmark maps must be at least 12 cells a side")
     if repeat < 1:
         raise NavfnInputError("--repeat must be at least 1")
+
+
+def bench_sizes(sizes, backend: str, repeat: int, modes: str = "both") -> list[dict]:
+    """Time plans on generated open and random NxN maps per backend and mode; one row each."""
+    check_sizes(sizes, repeat)
     rows = []
-    for b in _backends(backend):
+    for b in backends_of(backend):
         if b == "jit":  # warm-up: load the compiled code before timing
             get_backend(b).prepare(generated_map("open", 12)).run((5, 5), (6, 6), True, trace=False)
         for n in sizes:
             for kind in ("open", "random"):
                 costs = generated_map(kind, n)
                 runner = get_backend(b).prepare(costs)
-                for md in _modes(modes):
+                for md in modes_of(modes):
                     astar = md == "astar"
                     best = None
                     res = None
@@ -110,13 +105,6 @@ def bench_sizes(sizes, backend: str, repeat: int, json_path=None, modes: str = "
                         "path_points": int(len(res.path)), "dropped_pushes": int(res.dropped),
                         "work_bytes": _work_bytes(runner),
                     })
-    _table("bench: generated maps, seconds per plan", rows,
-           ["backend", "size", "map", "mode", "seconds_per_plan", "path_points", "dropped_pushes", "work_bytes"],
-           headers={"seconds_per_plan": "s/plan", "path_points": "points", "dropped_pushes": "dropped",
-                    "work_bytes": "work MiB"},
-           fmt={"work_bytes": lambda b: f"{b / 2**20:.1f}"})
-    if json_path:
-        _write(json_path, {"seed": SEED, "results": rows})
     return rows
 
 
@@ -127,15 +115,3 @@ def _work_bytes(runner) -> int:
         return 0
     return int(sum(a.nbytes for a in vars(p).values() if isinstance(a, np.ndarray)))
 
-
-def _table(title, rows, cols, headers=None, fmt=None) -> None:
-    from rich.table import Table
-
-    headers = headers or {}
-    fmt = fmt or {}
-    t = Table(title=title)
-    for c in cols:
-        t.add_column(headers.get(c, c), justify="right" if c not in ("backend", "mode", "map") else "left")
-    for r in rows:
-        t.add_row(*(fmt.get(c, str)(r[c]) for c in cols))
-    console.print(t)

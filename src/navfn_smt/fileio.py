@@ -48,6 +48,36 @@ def atomic_write_text(path, text: str) -> None:
 
 
 def check_writable(path) -> None:
-    """Fail before a long run when its report could not be written at the end."""
-    atomic_write_bytes(path, b"")
-    Path(path).unlink()
+    """Fail before a long run when its report could not be written at the end.
+
+    Probes with a temporary file beside ``path``, so an existing file at ``path`` is left
+    as it is until the run replaces it.
+    """
+    p = Path(path)
+    if not p.parent.is_dir():
+        raise NavfnInputError(f"{path}: directory {p.parent} does not exist")
+    if p.is_dir():
+        raise NavfnInputError(f"{path}: is a directory")
+    probe = p.with_name(f".{p.name}.probe{os.getpid()}")
+    try:
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as e:
+        raise NavfnInputError(f"{path}: cannot write ({e.strerror or e})") from None
+
+
+def check_writable_dir(path) -> None:
+    """Fail before a long run when the directory it writes into could not be created or written.
+
+    Nothing is created: the nearest existing ancestor of ``path`` must be a writable directory.
+    """
+    p = Path(path)
+    if p.exists() and not p.is_dir():
+        raise NavfnInputError(f"{path}: not a directory")
+    existing = p
+    while not existing.exists():
+        existing = existing.parent
+    if not existing.is_dir():
+        raise NavfnInputError(f"{path}: {existing} is not a directory")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise NavfnInputError(f"{path}: cannot write into {existing}")

@@ -29,6 +29,7 @@ from ..maps.suite import GOLDEN_FIELDS, MODES, SuiteMap, discover, load_map
 from ..spec.constants import POT_HIGH
 from ..spec.extraction import UndefinedBehaviour
 from ..spec.planner import sha256_f32, sha256_i32
+from .runner import modes_of
 
 _UNREACHED = np.float32(POT_HIGH)
 
@@ -119,7 +120,7 @@ def write_golden(path: Path, fields: dict) -> None:
 
 def _modes(modes: Iterable[str]) -> tuple[str, ...]:
     if isinstance(modes, str):
-        modes = ("astar", "dijkstra") if modes == "both" else (modes,)
+        modes = modes_of(modes)
     out = tuple(modes)
     bad = [m for m in out if m not in MODES]
     if bad or not out:

@@ -23,6 +23,12 @@ from ..maps.suite import MODES, discover, golden_path_of, load_golden, load_map
 
 FIELDS = ("path", "potential", "trace", "start_reached", "cycles", "updates")
 CHUNK = 2000  # cases per task, so that progress moves on large maps
+MODE_CHOICES = (*MODES, "both")  # what a command's --mode accepts
+
+
+def modes_of(choice: str) -> tuple[str, ...]:
+    """The planner modes a ``--mode`` choice stands for: ``both`` is every mode in ``MODES``."""
+    return tuple(MODES) if choice == "both" else (choice,)
 
 
 @dataclass

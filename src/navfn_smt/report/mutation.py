@@ -43,6 +43,13 @@ def table(results) -> None:
             console.print(f"[red]{r.name}: {det} failed to run: {err}[/]")
 
 
+def score_line(results, seconds: float) -> None:
+    """Print how many seeded bugs were caught, in all and per backend."""
+    per = scores(results)
+    print(f"mutation score: {sum(r.caught for r in results)} of {len(results)} seeded bugs caught "
+          f"(reference {per['reference']}, jit {per['jit']}) in {seconds:.0f} s")
+
+
 def scores(results) -> dict:
     return {b: f"{sum(r.caught_with(b) for r in results)}/{len(results)}" for b in BACKENDS}
 

@@ -1,0 +1,84 @@
+"""What ``plan`` prints: one planning result as text or as one JSON object."""
+
+from __future__ import annotations
+
+import json
+
+
+def _points(path) -> list[list[float]]:
+    """Path points as plain ``[x, y]`` floats."""
+    return [[float(x), float(y)] for x, y in path]
+
+
+def _exit_name(res) -> str:
+    """How extraction ended, or ``unknown`` without a NavFn call."""
+    return res.exit.value if res and res.exit else "unknown"
+
+
+def print_path(path: list, unit: str, res) -> None:
+    """The path's points one a line, or why there is none."""
+    if path:
+        print(f"path: {len(path)} {unit}")
+        for x, y in path:
+            print(f"  {x:.9g} {y:.9g}")
+    else:
+        print(f"no path (calcPath returned 0: {_exit_name(res)})")
+
+
+def cell_plan_doc(res, mode: str, backend: str, start, goal) -> dict:
+    """The JSON object of a plan between two cells."""
+    return {
+        "mode": mode,
+        "backend": backend,
+        "start": list(start),
+        "goal": list(goal),
+        "start_reached": bool(res.start_reached),
+        "start_potential": float(res.start_potential),
+        "cycles": int(res.cycles),
+        "updates": int(res.updates),
+        "dropped_pushes": int(res.dropped),
+        "exit": res.exit.value if res.exit else None,
+        "path": _points(res.path),
+    }
+
+
+def cell_plan(res, mode: str, backend: str, start, goal, as_json: bool) -> None:
+    """Print a plan between two cells: its JSON object, or a summary and the path's points."""
+    if as_json:
+        print(json.dumps(cell_plan_doc(res, mode, backend, start, goal)))
+        return
+    print(f"mode {mode}, start {start}, goal {goal}")
+    print(f"start reached: {res.start_reached}; start potential: {float(res.start_potential):.9g}; "
+          f"cycles: {res.cycles}; updates: {res.updates}; dropped pushes: {res.dropped}")
+    print_path(_points(res.path), "points", res)
+
+
+def world_plan_doc(wp, mode: str, backend: str, start, goal) -> dict:
+    """The JSON object of a plan between two world positions (``res`` None: poses equal, no call)."""
+    res = wp.result
+    return {
+        "mode": mode, "backend": backend, "world": True,
+        "start": list(start), "goal": list(goal),
+        "start_cell": list(wp.start_cell), "goal_cell": list(wp.goal_cell),
+        "start_reached": None if res is None else bool(res.start_reached),
+        "start_potential": None if res is None else float(res.start_potential),
+        "cycles": None if res is None else int(res.cycles),
+        "exit": None if res is None or res.exit is None else res.exit.value,
+        "path": _points(wp.path_world),
+    }
+
+
+def world_plan(wp, mode: str, backend: str, start, goal, as_json: bool) -> None:
+    """Print a plan between world positions: its JSON object, or the cells, the NavFn call and the poses."""
+    if as_json:
+        print(json.dumps(world_plan_doc(wp, mode, backend, start, goal)))
+        return
+    res = wp.result
+    print(f"map {wp.map.path} ({wp.map.width}x{wp.map.height} cells of {wp.map.resolution} m)")
+    print(f"robot {tuple(start)} -> cell {wp.start_cell}; goal {tuple(goal)} -> cell {wp.goal_cell}")
+    if res is None:
+        print("start and goal poses are equal: Nav2 returns the pose without planning")
+    else:
+        print(f"NavFn runs from the goal cell back to the robot's (Nav2 swaps them); start reached: "
+              f"{res.start_reached}; cycles: {res.cycles}")
+    print_path(_points(wp.path_world), "poses (world coordinates)", res)
