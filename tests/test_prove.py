@@ -111,7 +111,7 @@ def test_committed_invariants_page_matches_the_obligations():
         parts = [p.strip() for p in line.strip().strip("|").split("|")]
         if len(parts) == 4 and parts[1].startswith("`"):
             rows[parts[1].strip("`")] = {"real": parts[2], "fp32": parts[3]}
-    obs = load_obligations(default_proof_files(REPO / "proofs"))
+    obs = load_obligations(default_proof_files())
     assert set(rows) == {o.name for o in obs}
     for o in obs:
         assert rows[o.name] == o.expect, o.name

@@ -287,9 +287,6 @@ def cmd_coverage(args) -> int:
 
 
 # ---------------------------------------------------------------------------------- prove
-PROOFS_DIR = Path(__file__).resolve().parents[2] / "proofs"
-
-
 def cmd_prove(args) -> int:
     import datetime
 
@@ -297,7 +294,7 @@ def cmd_prove(args) -> int:
     from .report.tables import progress_bar
     from .smt.runner import SEMANTICS, default_proof_files, run
 
-    files = [Path(f) for f in args.files] if args.files else default_proof_files(PROOFS_DIR)
+    files = [Path(f) for f in args.files] if args.files else default_proof_files()
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
     if args.timeout <= 0:
         raise NavfnInputError("--timeout must be positive")
@@ -315,7 +312,7 @@ def cmd_prove(args) -> int:
                        bounds=not args.no_bound_search)
     witness_files = {}
     for o in outcomes:
-        if o.witness:
+        if o.witness and args.witness_dir:
             wdir = Path(args.witness_dir)
             wdir.mkdir(parents=True, exist_ok=True)
             w = wdir / f"{o.name}.{o.semantics}.json"
@@ -356,7 +353,7 @@ def cmd_mutate(args) -> int:
         raise NavfnInputError(f"unknown mutant(s): {', '.join(sorted(unknown))}")
     if args.json:
         check_writable(args.json)
-    files = default_proof_files(PROOFS_DIR)
+    files = default_proof_files()
     suite = Path(args.suite) if args.suite else EXAMPLE_SUITE
     results = []
     with progress_bar(len(chosen), "mutants") as advance:
@@ -471,8 +468,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     register_suite(sub)
 
-    pr = sub.add_parser("prove", help="check the proof obligations in proofs/ (or the given files)")
-    pr.add_argument("files", nargs="*", help="proof files (default: every proofs/*.py)")
+    pr = sub.add_parser("prove", help="check the proof obligations shipped in the package (or the given files)")
+    pr.add_argument("files", nargs="*", help="proof files (default: every proof file of navfn_smt/proofs)")
     pr.add_argument("--semantics", choices=("real", "fp32", "both"), default="both")
     pr.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query (default 30)")
     pr.add_argument("--jobs", type=int, default=1, help="obligations checked in parallel (default 1)")
@@ -484,8 +481,9 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--smt2", metavar="DIR", help="also write every query as SMT-LIB2")
     pr.add_argument("--no-bound-search", action="store_true",
                     help="do not search bounds for properties refuted in fp32 (verdicts only)")
-    pr.add_argument("--witness-dir", default="proof-witnesses", metavar="DIR",
-                    help="where counterexamples are written (default proof-witnesses)")
+    pr.add_argument("--witness-dir", metavar="DIR",
+                    help="write each counterexample to a file in DIR (default: none; the JSON report and the "
+                    "markdown page carry them)")
     pr.set_defaults(func=cmd_prove)
 
     mu = sub.add_parser("mutate", help="seed bugs in the kernels and domains; report which checks catch them")

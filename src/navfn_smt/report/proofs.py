@@ -28,7 +28,8 @@ def table(outcomes) -> None:
     for o in outcomes:
         if o.bound and o.bound.get("holds_below") is not None:
             console.print(f"  {o.name} [{o.semantics}]: holds for {o.bound['var']} < {o.bound['holds_below']!r}"
-                          f" (refuted below {o.bound.get('refuted_below')!r}; {o.bound.get('solver_calls')} solver calls)")
+                          f" (refuted below {o.bound.get('refuted_below')!r}; {o.bound.get('solver_calls')} solver calls)"
+                          + (f"; bound {o.bound['cache']}" if o.bound.get("cache") else ""))
 
 
 def to_json(outcomes, witness_files: dict) -> list:

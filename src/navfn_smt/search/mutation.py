@@ -103,6 +103,15 @@ def _apply(root: Path, m: Mutant) -> None:
     p.write_text(text.replace(m.old, m.new))
 
 
+def _in_copy(path: Path, root: Path) -> Path:
+    """A proof file shipped in the package, taken from the mutant's copy of the package (so
+    the mutant's proofs, bound cache included, are the copy's); any other file as it is."""
+    try:
+        return root / "navfn_smt" / path.resolve().relative_to(PACKAGE)
+    except ValueError:
+        return path
+
+
 def run_mutant(m: Mutant, proof_files, suite, timeout: float = 20.0, solvers=("bitwuzla", "z3", "cvc5")) -> MutantResult:
     t0 = time.perf_counter()
     res = MutantResult(m.name, m.what)
@@ -110,11 +119,12 @@ def run_mutant(m: Mutant, proof_files, suite, timeout: float = 20.0, solvers=("b
         root = Path(tmp)
         shutil.copytree(PACKAGE, root / "navfn_smt", ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
         _apply(root, m)
+        files = [_in_copy(Path(f), root) for f in proof_files]
         env = {**os.environ, "PYTHONPATH": str(root), "NUMBA_CACHE_DIR": str(root / "numba-cache")}
         py = [sys.executable]
         # 1. proofs
         report = root / "prove.json"
-        cmd = py + ["-m", "navfn_smt", "prove", *map(str, proof_files), "--timeout", str(timeout),
+        cmd = py + ["-m", "navfn_smt", "prove", *map(str, files), "--timeout", str(timeout),
                     "--report", str(report), "--witness-dir", str(root / "witnesses"), "--no-bound-search", "--jobs", "2"]
         for s in solvers:
             cmd += ["--solver", s]
