@@ -60,9 +60,10 @@ class Obligation:
         return self.doc.strip().splitlines()[0] if self.doc else self.name
 
 
-def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc",
+def obligation(predicate, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc",
                timeout: Optional[float] = None):
-    """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``).
+    """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``) as part of
+    ``predicate`` (a :class:`~navfn_smt.smt.chains.Predicate`, or just a name).
 
     ``timeout`` caps the run's time limit for this obligation: an open question (expected
     ``unknown``) need not spend the whole limit of every run on a known timeout."""
@@ -71,7 +72,8 @@ def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] 
         for sem, verdict in expect.items():
             if sem not in DOMAINS or verdict not in STATUSES:
                 raise ValueError(f"{fn.__name__}: bad expectation {sem}={verdict}")
-        return Obligation(fn.__name__, predicate, fn, dict(expect), scope, fn.__doc__ or "", bound=bound,
+        name = getattr(predicate, "name", predicate)
+        return Obligation(fn.__name__, name, fn, dict(expect), scope, fn.__doc__ or "", bound=bound,
                           hypotf_model=hypotf_model, timeout=timeout)
 
     return wrap
