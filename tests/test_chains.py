@@ -105,4 +105,4 @@ def test_status_is_the_worst_link(table, status):
 def test_status_takes_the_predicates_it_rests_on():
     table = {"a0": Verdict("unknown"), "a1": Verdict("proved"), "b0": Verdict("proved")}
     got = derive(B, "fp32", _verdicts(table), [A, B])
-    assert got["status"] == "open" and got["open"] == ["A.a0"]
+    assert got["status"] == "open" and got["open"] == ["a0 (via A)"]

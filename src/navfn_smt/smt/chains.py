@@ -64,8 +64,8 @@ def link_owner(pred: Predicate, link: str) -> str:
     return owner or pred.name
 
 
-def chained(predicates: Iterable[Predicate]) -> set:
-    """Every obligation name some chain holds as its own link or limit."""
+def own_obligations(predicates: Iterable[Predicate]) -> set:
+    """Every obligation some predicate's chain holds as its own (not borrowed) link or limit."""
     out = set()
     for p in predicates:
         out |= {split_link(x)[1] for x in p.links if split_link(x)[0] is None} | set(p.limits)
@@ -92,7 +92,7 @@ def check_chains(predicates, obligations, complete: bool = True) -> list[str]:
         problems += _check_links(p, preds, declared, complete)
         problems += [f"{p.name}: rests on {r}, which is not a predicate" for r in p.rests_on if r not in preds]
     problems += _check_cycles(preds)
-    own = chained(preds.values())
+    own = own_obligations(preds.values())
     for name, pred in declared.items():
         if name not in own:
             problems.append(f"{name} (declared for {pred}) is in no predicate's chain")
@@ -158,8 +158,8 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
     predicates it rests on): ``proved`` only when every link is; ``bounded`` when the only
     failures are refutations below which a bound holds; ``open`` when a link is unknown (or
     was not checked) and none is refuted; ``refuted`` when a link has a counterexample.
-    Returns the status and the links behind it (``Owner.name`` for links of rested-on
-    predicates)."""
+    Returns the status and, for each status but proved, the links behind it (``link (via
+    Owner)`` for those of a predicate it rests on)."""
     preds = {p.name: p for p in predicates}
     by_status: dict = {s: [] for s in STATUS_RANK}
     for x in pred.links:
@@ -169,7 +169,7 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
         if r in preds:
             sub = derive(preds[r], semantics, verdict_of, predicates)
             for s in STATUS_RANK[1:]:
-                by_status[s] += [y if "." in y.split(" ")[0] else f"{r}.{y}" for y in sub[s]]
+                by_status[s] += [f"{y} (via {r})" for y in sub[s]]
     status = max((s for s in STATUS_RANK if by_status[s] or s == "proved"), key=STATUS_RANK.index)
     return {"status": status, **{s: by_status[s] for s in STATUS_RANK[1:]}}
 
