@@ -129,10 +129,11 @@ def markdown_summary(outcomes) -> list:
              "|---" * (len(sems) + 3) + "|"]
     for p in doc["predicates"]:
         base = ", ".join(f"`{r['link']}`" for r in p["chain"] if r["role"] == "base") or "-"
-        step = ", ".join(f"`{r['link']}`" for r in p["chain"] if r["role"] == "step") or "-"
+        step = ", ".join(f"`{r['link']}`" for r in p["chain"] if r["role"] == "step")
         if p["rests_on"]:
-            step += "; rests on " + ", ".join(p["rests_on"])
-        lines.append(f"| {p['name']} | " + " | ".join(p["status"][s]["status"] for s in sems) + f" | {base} | {step} |")
+            step += ("; " if step else "") + "rests on " + ", ".join(p["rests_on"])
+        statuses = " | ".join(p["status"][s]["status"] for s in sems)
+        lines.append(f"| {p['name']} | {statuses} | {base} | {step or '-'} |")
     lines.append("")
     if doc["unchained_obligations"]:
         lines += ["Obligations of no chain: " + ", ".join(f"`{n}`" for n in doc["unchained_obligations"]) + ".", ""]
