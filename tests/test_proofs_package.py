@@ -68,3 +68,14 @@ def test_unwritable_bound_cache_keeps_the_bound_and_says_so(tmp_path):
     assert o["bound"]["holds_below"] == 2.0**24
     assert "not cached" in o["bound"]["cache"] and "not cached" in p.stdout
     assert list(work.iterdir()) == []  # nothing written into the current directory unasked
+
+
+def test_a_mutant_proves_the_proofs_of_its_own_copy(tmp_path):
+    """The mutation check copies the package: the shipped proof files are taken from the copy."""
+    from navfn_smt.search.mutation import _in_copy
+    from navfn_smt.smt.runner import default_proof_files
+
+    for f in default_proof_files():
+        assert _in_copy(f, tmp_path) == tmp_path / "navfn_smt" / "proofs" / f.name
+    other = tmp_path / "mine.py"
+    assert _in_copy(other, tmp_path) == other
