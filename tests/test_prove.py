@@ -45,8 +45,8 @@ def test_every_obligation_gets_its_expected_verdict(proof_run):
         else:
             assert o["witness"] is None
     props = {o["property"] for o in obs}
-    assert {"PositionSafe", "Progress", "Monotone", "ObstacleFreeQueue", "FinitePotentialPath", "ValidPath",
-            "NoPathWithoutFinitePotential", "Gradient"} <= props
+    assert {"PositionSafe", "Progress", "Monotone", "ObstacleFreeQueue", "PendingMatchesBuffers",
+            "FinitePotentialPath", "ValidPath", "NoPathWithoutFinitePotential", "Gradient"} <= props
     # every obligation in both semantics
     names = {o["name"] for o in obs}
     assert all({(n, "real"), (n, "fp32")} <= {(o["name"], o["semantics"]) for o in obs} for n in names)
@@ -67,6 +67,28 @@ def test_reports_junit_and_markdown(proof_run):
     md = (out / "inv.md").read_text()
     assert md.startswith("# NavFn invariants") and "do not edit by hand" in md
     assert "update_keeps_a_lower_neighbour" in md and "holds for `l < 1073741824.0`" in md
+
+
+def test_predicates_in_the_reports(proof_run):
+    """Per paper predicate: its chain with each link's verdicts, the derived status (as the
+    expected verdicts derive it) and what is open, in the JSON, the terminal and the page."""
+    from test_chains import EXPECTED
+
+    rc, stdout, _, out = proof_run
+    doc = json.loads((out / "r.json").read_text())
+    assert doc["chain_problems"] == [] and doc["unchained_obligations"] == []
+    preds = {p["name"]: p for p in doc["predicates"]}
+    assert set(preds) == set(EXPECTED)
+    for name, (real, fp32) in EXPECTED.items():
+        p = preds[name]
+        assert (p["status"]["real"]["status"], p["status"]["fp32"]["status"]) == (real, fp32), name
+        assert p["as_expected"] and p["chain"] and all(set(r["verdicts"]) == {"real", "fp32"} for r in p["chain"])
+    assert preds["Progress"]["status"]["fp32"]["bounded"] == ["update_keeps_a_lower_neighbour (l < 1073741824.0)"]
+    assert preds["FinitePotentialPath"]["status"]["fp32"]["open"] == ["next_point_stays_near_the_cell"]
+    assert "the paper's predicates" in stdout and "PendingMatchesBuffers" in stdout
+    md = (out / "inv.md").read_text()
+    assert "## The paper's predicates" in md
+    assert "| 1 | base | `ValidPath.first_point_is_the_start` | proved | proved |" in md
 
 
 def test_changed_verdict_fails_the_run(tmp_path):
@@ -146,7 +168,28 @@ def test_committed_invariants_page_matches_the_obligations():
         parts = [p.strip() for p in line.strip().strip("|").split("|")]
         if len(parts) == 4 and parts[1].startswith("`"):
             rows[parts[1].strip("`")] = {"real": parts[2], "fp32": parts[3]}
-    obs = load_obligations(default_proof_files(REPO / "proofs"))
+    obs = load_obligations(default_proof_files())
     assert set(rows) == {o.name for o in obs}
     for o in obs:
         assert rows[o.name] == o.expect, o.name
+
+
+def test_committed_invariants_page_shows_the_predicates():
+    """The page's table of predicates has every predicate with the status its chain derives
+    from the expected verdicts, and every link of its chain."""
+    from navfn_smt.proofs import PREDICATES
+    from navfn_smt.smt.chains import declared_verdicts, derive
+    from navfn_smt.smt.obligation import load_obligations
+    from navfn_smt.smt.runner import default_proof_files
+
+    verdict_of = declared_verdicts(load_obligations(default_proof_files()))
+    rows = {}
+    for line in (REPO / "docs" / "invariants.md").read_text().splitlines():
+        parts = [p.strip() for p in line.strip().strip("|").split("|")]
+        if len(parts) == 5 and parts[0] in {p.name for p in PREDICATES}:
+            rows[parts[0]] = parts
+    assert set(rows) == {p.name for p in PREDICATES}
+    for p in PREDICATES:
+        name, real, fp32, base, step = rows[p.name]
+        assert (real, fp32) == tuple(derive(p, s, verdict_of, PREDICATES)["status"] for s in ("real", "fp32")), name
+        assert all(f"`{x}`" in base for x in p.base) and all(f"`{x}`" in step for x in p.lemmas), name

@@ -21,7 +21,6 @@ from .errors import NavfnInputError
 from .fileio import check_writable, check_writable_dir
 
 EXAMPLE_SUITE = Path(__file__).parent / "examples" / "suite"
-PROOFS_DIR = Path(__file__).resolve().parents[2] / "proofs"
 
 
 def _suite(arg) -> Path:
@@ -197,7 +196,7 @@ def cmd_prove(args) -> int:
     from .smt.portfolio import SOLVERS
     from .smt.runner import SEMANTICS, default_proof_files, run, write_smt2
 
-    files = [Path(f) for f in args.files] if args.files else default_proof_files(PROOFS_DIR)
+    files = [Path(f) for f in args.files] if args.files else default_proof_files()
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
     if args.timeout <= 0:
         raise NavfnInputError("--timeout must be positive")
@@ -245,7 +244,7 @@ def cmd_mutate(args) -> int:
         raise NavfnInputError("--jobs must be at least 1")
     _check_files(args.json)
     chosen = [m for m in MUTANTS if not args.mutant or m.name in args.mutant]
-    files = default_proof_files(PROOFS_DIR)
+    files = default_proof_files()
     t0 = time.perf_counter()
     done: list = []
     results = run_mutants(chosen, files, _suite(args.suite), args.timeout, args.jobs,
@@ -399,8 +398,8 @@ def build_parser() -> argparse.ArgumentParser:
     register_generate(suite_sub)
     register_record(suite_sub)
 
-    pr = sub.add_parser("prove", help="check the proof obligations in proofs/ (or the given files)")
-    pr.add_argument("files", nargs="*", help="proof files (default: every proofs/*.py)")
+    pr = sub.add_parser("prove", help="check the proof obligations shipped in the package (or the given files)")
+    pr.add_argument("files", nargs="*", help="proof files (default: every proof file of navfn_smt/proofs)")
     pr.add_argument("--semantics", choices=(*SEMANTICS, "both"), default="both",
                     help="real (no rounding), fp32 (bit-precise IEEE-754) or both")
     pr.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query")

@@ -221,6 +221,15 @@ def _apply(root: Path, m: Mutant) -> None:
     p.write_text(text.replace(m.old, m.new))
 
 
+def _in_copy(path: Path, root: Path) -> Path:
+    """A proof file shipped in the package, taken from the mutant's copy of the package (so
+    the mutant's proofs, bound cache included, are the copy's); any other file as it is."""
+    try:
+        return root / "navfn_smt" / path.resolve().relative_to(PACKAGE)
+    except ValueError:
+        return path
+
+
 def run_mutant(m: Mutant, rel: Relevance, suite, timeout: float = 30.0, solvers=("bitwuzla", "z3", "cvc5"),
                progress: Optional[Callable[[str, str, dict], None]] = None) -> MutantResult:
     """Seed ``m`` in a copy of the package and run the detectors that can catch it.
@@ -233,6 +242,8 @@ def run_mutant(m: Mutant, rel: Relevance, suite, timeout: float = 30.0, solvers=
         root = Path(tmp)
         shutil.copytree(PACKAGE, root / "navfn_smt", ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
         _apply(root, m)
+        if "prove" in work:  # the proofs shipped in the package are taken from the mutant's copy
+            work["prove"] = [[str(_in_copy(Path(f), root)), name, sem] for f, name, sem in work["prove"]]
         plan = root / "plan.json"
         plan.write_text(json.dumps({"work": work, "suite": str(Path(suite).resolve()), "timeout": timeout, "solvers": list(solvers)}))
         env = {**os.environ, "PYTHONPATH": str(root), "NUMBA_CACHE_DIR": str(root / "numba-cache")}

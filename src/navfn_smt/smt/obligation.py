@@ -60,9 +60,10 @@ class Obligation:
         return self.doc.strip().splitlines()[0] if self.doc else self.name
 
 
-def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc",
+def obligation(predicate, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc",
                timeout: Optional[float] = None):
-    """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``).
+    """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``) as part of
+    ``predicate`` (a :class:`~navfn_smt.smt.chains.Predicate`, or just a name).
 
     ``timeout`` caps the run's time limit for this obligation: an open question (expected
     ``unknown``) need not spend the whole limit of every run on a known timeout."""
@@ -71,7 +72,8 @@ def obligation(predicate: str, expect: dict, scope: str, bound: Optional[Bound] 
         for sem, verdict in expect.items():
             if sem not in DOMAINS or verdict not in STATUSES:
                 raise ValueError(f"{fn.__name__}: bad expectation {sem}={verdict}")
-        return Obligation(fn.__name__, predicate, fn, dict(expect), scope, fn.__doc__ or "", bound=bound,
+        name = getattr(predicate, "name", predicate)
+        return Obligation(fn.__name__, name, fn, dict(expect), scope, fn.__doc__ or "", bound=bound,
                           hypotf_model=hypotf_model, timeout=timeout)
 
     return wrap
@@ -396,9 +398,12 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
             lo = mid
         else:  # a confirmed counterexample with var = w < mid: refuted below w + 1 ulp as well
             hi = min(mid, _bits(witness_at[mid]) + 1)
-    cache.put(_f32_from_bits(lo))
-    return {"var": b.var, "holds_below": _f32_from_bits(lo), "refuted_below": _f32_from_bits(hi),
-            "solver_calls": calls}
+    out = {"var": b.var, "holds_below": _f32_from_bits(lo), "refuted_below": _f32_from_bits(hi),
+           "solver_calls": calls}
+    not_cached = cache.put(_f32_from_bits(lo))
+    if not_cached:
+        out["cache"] = not_cached
+    return out
 
 
 class _BoundCache:
@@ -430,16 +435,19 @@ class _BoundCache:
     def get(self) -> Optional[float]:
         return self._load().get(self.key)
 
-    def put(self, value: float) -> None:
+    def put(self, value: float) -> Optional[str]:
+        """Keep ``value``; when the file cannot be written (a read-only install), say why
+        instead: the bound found stands, the next run searches again."""
         import json
 
         from ..fileio import atomic_write_text
 
         if self.path is None:
-            return
+            return "not cached (the obligation has no proof file)"
         doc = {k: v for k, v in self._load().items() if not k.startswith(self.ob.name + ":")}
         doc[self.key] = value
         try:
             atomic_write_text(self.path, json.dumps(doc, indent=1, sort_keys=True) + "\n")
-        except NavfnInputError:
-            pass  # a read-only checkout: the next run searches again
+        except (NavfnInputError, OSError) as e:
+            return f"not cached ({e}); the next run searches again"
+        return None

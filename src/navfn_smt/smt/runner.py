@@ -102,13 +102,24 @@ def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: int = 1, solver
     return outcomes
 
 
-def default_proof_files(root: Path) -> list[Path]:
-    files = sorted(p for p in Path(root).glob("*.py") if not p.name.startswith("_"))
+def proofs_dir() -> Path:
+    """The folder of the proof files shipped in the package (``navfn_smt/proofs``), found
+    through the package itself: the same in a source checkout and in any install."""
+    from importlib.resources import files
+
+    root = files("navfn_smt.proofs")
+    if not isinstance(root, Path):  # e.g. a zipped install: the proofs need real files
+        raise NavfnInputError(f"{root}: the proof files are not on the file system")
+    return root
+
+
+def default_proof_files(root: Optional[Path] = None) -> list[Path]:
+    """Every proof file in ``root`` (default: the package's own, :func:`proofs_dir`)."""
+    root = proofs_dir() if root is None else Path(root)
+    files = sorted(p for p in root.glob("*.py") if not p.name.startswith("_"))
     if not files:
         raise NavfnInputError(f"{root}: no proof files (*.py)")
     return files
-
-
 
 
 def write_smt2(paths, semantics, out_dir: Path) -> list[Path]:

@@ -8,13 +8,14 @@ rounding once the neighbour's potential is large enough; the toolkit reports the
 counterexample and the largest bound below which the property still holds.
 """
 
+from navfn_smt.proofs import Progress
 from navfn_smt.smt.obligation import Bound, obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of, any_of, minimum
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import POT_HIGH
 
 
-@obligation("Progress", expect={"real": "proved", "fp32": "refuted"},
+@obligation(Progress, expect={"real": "proved", "fp32": "refuted"},
             scope="one update with any neighbours: every map size",
             bound=Bound(var="l", lo=1.0, hi=POT_HIGH))
 def update_keeps_a_lower_neighbour(D):

@@ -6,12 +6,13 @@ Propagation starts with every potential at POT_HIGH and changes potentials only 
 makes: ``initCost`` sets its potential to 0 whatever its cost.
 """
 
+from navfn_smt.proofs import PositionSafe
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Lethal, Unreached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
 
 
-@obligation("PositionSafe", expect={"real": "proved", "fp32": "proved"},
+@obligation(PositionSafe, expect={"real": "proved", "fp32": "proved"},
             scope="one update of any cell with any neighbours: inductive, every map size")
 def update_keeps_obstacles_unreached(D):
     """An update never gives an obstacle a finite potential.

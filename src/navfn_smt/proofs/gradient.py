@@ -11,6 +11,7 @@ smallest candidate ``0 + 1 * 0.704`` above it, so their differences are never su
 under that precondition the claim is proved.
 """
 
+from navfn_smt.proofs import Gradient
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import GradDifference, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
@@ -30,7 +31,7 @@ def _unit_or_zero_of(D, gx, gy):
     return D.or_(D.and_(D.eq(gx, zero), D.eq(gy, zero)), unit)
 
 
-@obligation("Gradient", expect={"real": "refuted", "fp32": "proved"},
+@obligation(Gradient, expect={"real": "refuted", "fp32": "proved"},
             scope="gradCell's difference step at any interior cell whose potentials NavFn can produce")
 def grad_differences_are_not_tiny(D):
     """On the potentials NavFn produces, gradCell's unnormalised components are 0 or at least 2**-25.
@@ -51,7 +52,7 @@ def grad_differences_are_not_tiny(D):
 # time limit (bitwuzla, cvc5 and z3 all time out at 300 s on this machine).  The expected
 # verdict records that honestly; a solver that decides it changes the verdict and fails the
 # run, so the expectation is then updated deliberately.
-@obligation("Gradient", expect={"real": "proved", "fp32": "unknown"},
+@obligation(Gradient, expect={"real": "proved", "fp32": "unknown"},
             scope="gradCell's normalisation of any vector whose components are 0 or in [2**-25, 2**35]",
             timeout=10)
 def grad_is_unit_or_zero(D):
@@ -67,7 +68,7 @@ def grad_is_unit_or_zero(D):
 
 # the counterexample only needs hypotf's documented accuracy (the exact glibc definition
 # makes the query much harder for the solvers); it is replayed with the real libm
-@obligation("Gradient", expect={"real": "proved", "fp32": "refuted"},
+@obligation(Gradient, expect={"real": "proved", "fp32": "refuted"},
             scope="gradCell's normalisation of any finite vector: every map size", hypotf_model="ulp")
 def grad_is_unit_or_zero_any_float(D):
     """gradCell's normalisation returns a unit or zero vector for any finite vector along an axis

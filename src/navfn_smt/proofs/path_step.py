@@ -2,22 +2,15 @@
 
 The paper's FinitePotentialPath: each point of the path lies within 1/2 (each axis, ends
 included) of a cell whose potential is finite; with PositionSafe that cell is no obstacle,
-so the path is a ValidPath.  The argument is an induction over calcPath's iterations, each
-case an obligation below or in ``no_path.py``:
+so the path is a ValidPath.  The argument is an induction over calcPath's iterations: the
+first point is the start cell exactly (or calcPath fails at an unreached start); a
+fallback step lands on a reached cell exactly; a gradient step, taken only when the nine
+cells around are reached, keeps the offset in [-1, 1] with a bounded gradient and puts the
+next point within 3/2 of the old cell, hence within 1/2 of one of those nine.  Its chain
+(base case, lemmas in order, the steps taken from calcPath's control flow, what is open) is
+stated as data in :data:`navfn_smt.proofs.FinitePotentialPath` and
+:data:`navfn_smt.proofs.ValidPath`, and checked against the obligations below.
 
-* the first point is the start cell exactly (``first_point_is_the_start``), and an
-  unreached start emits nothing more (``unreached_cell_stays_put``: calcPath fails);
-* the grid-following fallback moves to a cell with offset 0 and stops unless that cell is
-  reached (control flow of calcPath), so the next point is a reached cell exactly;
-* the gradient step is taken only when the cell and its eight neighbours are all reached
-  (control flow); the interpolated gradient is bounded (``stored_gradient_is_bounded``,
-  ``interpolated_gradient_is_bounded``), one step keeps the offset in [-1, 1] and moves
-  the cell by at most one (``step_keeps_offset_in_unit_box``), and the next point lies
-  within 3/2 of the previous cell (``next_point_stays_near_the_cell``), hence within 1/2
-  of one of those nine reached cells;
-* the last point is the goal exactly (potential 0).
-
-The near-goal probe reads a cell at most one away (``near_goal_probe_reads_a_neighbour``).
 Each obligation is about one step over a symbolic neighbourhood, so the induction holds
 for maps of every size (up to the stated coordinate bounds).
 
@@ -28,6 +21,7 @@ infinite (``step_keeps_offset_in_unit_box_any_gradient`` is refuted); whether po
 NavFn produces can interpolate to such a gradient is open.
 """
 
+from navfn_smt.proofs import FinitePotentialPath, ValidPath
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import GradDifference, InUnitBox, all_of
 from navfn_smt.spec import kernels as K
@@ -69,7 +63,7 @@ def _step(D, least):
     return pre, D.and_(InUnitBox(D, ndx, ndy), moves)
 
 
-@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
             scope="one gradient step from any offset in the unit box: every map size")
 def step_keeps_offset_in_unit_box(D):
     """One step of calcPath keeps the offset in [-1, 1] and moves at most one cell per axis.
@@ -82,7 +76,7 @@ def step_keeps_offset_in_unit_box(D):
 
 # the counterexample needs only hypotf's documented accuracy (much faster for the solvers than
 # glibc's exact definition); it is replayed with the real libm
-@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "refuted"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "refuted"},
             scope="one gradient step from any offset in the unit box, any non-zero gradient: every map size",
             hypotf_model="ulp")
 def step_keeps_offset_in_unit_box_any_gradient(D):
@@ -93,7 +87,7 @@ def step_keeps_offset_in_unit_box_any_gradient(D):
     return _step(D, None)
 
 
-@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
             scope="any offset in the unit box, any interior cell of any map up to 2**12 cells a side")
 def near_goal_probe_reads_a_neighbour(D):
     """The near-goal probe reads a cell at most one away in each direction.
@@ -107,7 +101,7 @@ def near_goal_probe_reads_a_neighbour(D):
     return pre, all_of(D, D.ge(ox, -1), D.le(ox, 1), D.ge(oy, -1), D.le(oy, 1))
 
 
-@obligation("ValidPath", expect={"real": "proved", "fp32": "proved"},
+@obligation(ValidPath, expect={"real": "proved", "fp32": "proved"},
             scope="any start cell of any map up to 2**24 cells a side")
 def first_point_is_the_start(D):
     """The first point calcPath emits is the start cell exactly (offset 0, int converted to float).
@@ -125,7 +119,7 @@ def first_point_is_the_start(D):
 
 
 # needs only that hypotf lies between the larger magnitude and the sum of magnitudes
-@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
             scope="gradCell's normalisation of any vector whose components are 0 or in [2**-25, 2**35]",
             hypotf_model="bounds")
 def stored_gradient_is_bounded(D):
@@ -139,7 +133,7 @@ def stored_gradient_is_bounded(D):
     return D.and_(GradDifference(D, dx), GradDifference(D, dy)), D.and_(_within(D, gx, UNIT_SLACK), _within(D, gy, UNIT_SLACK))
 
 
-@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
             scope="calcPath's bilinear interpolation at any offset in the unit box: every map size")
 def interpolated_gradient_is_bounded(D):
     """The interpolated gradient is at most 20 in each component (the offset may be negative, so
@@ -159,7 +153,7 @@ def interpolated_gradient_is_bounded(D):
 # at 120 s; the offset before normalisation (|dx + step| <= 3/2), the core of it, times out
 # at 200 s with glibc's hypotf and with the 1-ulp model, at 120 s with the ordering facts
 # only, and at 60 s even for the looser bound 3/2 + 2**-20.
-@obligation("FinitePotentialPath", expect={"real": "proved", "fp32": "unknown"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "unknown"},
             scope="one gradient step at any interior cell of any map up to 2**23 cells a side",
             hypotf_model="bounds", timeout=10)
 def next_point_stays_near_the_cell(D):

@@ -1,17 +1,20 @@
-"""ObstacleFreeQueue: the priority buffers never hold an obstacle or a cell off the map.
+"""ObstacleFreeQueue: the priority buffers never hold an obstacle or a cell off the map;
+PendingMatchesBuffers: a cell's pending flag says whether it is in the buffers.
 
 Every push goes through the guard of the ``push_cur/push_next/push_over`` macros; a cell
 is in a buffer only if that guard admitted it, and the guard sets its pending flag in the
-same step.
+same step.  The chains (base case and lemmas in order) are stated as data in
+:data:`navfn_smt.proofs.ObstacleFreeQueue` and :data:`navfn_smt.proofs.PendingMatchesBuffers`.
 """
 
+from navfn_smt.proofs import ObstacleFreeQueue, PendingMatchesBuffers
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import all_of
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import COST_OBS, PRIORITYBUFSIZE
 
 
-@obligation("ObstacleFreeQueue", expect={"real": "proved", "fp32": "proved"},
+@obligation(ObstacleFreeQueue, expect={"real": "proved", "fp32": "proved"},
             scope="one push, any cell index, map size, buffer fill: every map size")
 def push_admits_only_passable_cells_on_the_map(D):
     """A push enqueues only a passable cell on the map, and only into a buffer with room.
@@ -28,7 +31,7 @@ def push_admits_only_passable_cells_on_the_map(D):
 
 
 # --------------------------------------------------------------------------------------
-# Pending flags match buffer contents
+# PendingMatchesBuffers: pending flags match buffer contents
 #
 # The state is abstracted to one arbitrary cell ``q``: its pending flag and how often it
 # occurs in each buffer (``cur``, ``nxt``, ``over``), with each buffer's fill.  Since ``q``
@@ -96,7 +99,7 @@ def _push(D, q, pending_q, cnt, fill, target, m, pending_other, cost, wanted=Tru
     return D.or_(pending_q, D.and_(admitted, is_q)), cnt, fill
 
 
-@obligation("ObstacleFreeQueue", expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
             scope="setupNavFn and initCost at any goal of any map: base case of the induction")
 def pending_matches_buffers_after_setup(D):
     """After setupNavFn and initCost's four pushes, pending flags match buffer contents (B).
@@ -115,7 +118,7 @@ def pending_matches_buffers_after_setup(D):
     return pre, _between_cycles(D, pending, cnt, fill)
 
 
-@obligation("ObstacleFreeQueue", expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
             scope="the start of any cycle (flags of cur cleared): every map size, every capacity")
 def pending_matches_buffers_at_cycle_start(D):
     """Clearing the flags of the current buffer's cells turns B into P.
@@ -128,7 +131,7 @@ def pending_matches_buffers_at_cycle_start(D):
     return _between_cycles(D, pending, cnt, fill), _during_cycle(D, cleared, cnt, fill)
 
 
-@obligation("ObstacleFreeQueue", expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
             scope="one push of updateCell or updateCellAstar, any potentials, key and threshold: every map size")
 def pending_matches_buffers_after_push(D):
     """A push from an update keeps P: the flag is set exactly when the cell enters a buffer.
@@ -146,7 +149,7 @@ def pending_matches_buffers_after_push(D):
     return _during_cycle(D, pending, cnt, fill), _during_cycle(D, pending2, cnt2, fill2)
 
 
-@obligation("ObstacleFreeQueue", expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
             scope="the end of any cycle (buffer swap): every map size, every capacity")
 def pending_matches_buffers_at_cycle_end(D):
     """The swap (cur <- nxt; when that is empty, cur <- over) turns P back into B.

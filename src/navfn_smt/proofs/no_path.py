@@ -8,12 +8,13 @@ Over the reals, where the conversion has no range, the fallback would move to an
 reached neighbour instead: the paper's abstraction does not capture this behaviour.
 """
 
+from navfn_smt.proofs import NoPathWithoutFinitePotential
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Unreached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
 
 
-@obligation("NoPathWithoutFinitePotential", expect={"real": "refuted", "fp32": "proved"},
+@obligation(NoPathWithoutFinitePotential, expect={"real": "refuted", "fp32": "proved"},
             scope="the fallback step at any cell with any eight neighbours: every map size")
 def unreached_cell_stays_put(D):
     """From an unreached cell the fallback keeps the cell (so calcPath fails at once).

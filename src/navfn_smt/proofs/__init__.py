@@ -1,0 +1,138 @@
+"""The proof obligations of NavFn's invariants, shipped with the package, and the paper's
+predicates they establish.
+
+Each module here is a proof file: obligations declared with
+:func:`navfn_smt.smt.obligation.obligation` for one of the predicates below.
+``navfn-smt prove`` checks every one of them by default
+(:func:`navfn_smt.smt.runner.default_proof_files`), wherever the package is installed;
+``.bounds.json`` beside them caches the bounds found by search.
+
+Each predicate is a chain of obligations (:class:`navfn_smt.smt.chains.Predicate`): the
+base case, then the lemmas of the inductive step, in order; ``Owner.name`` borrows a link
+from another predicate's chain.  :func:`navfn_smt.smt.chains.check_chains` holds the chains
+and the declarations consistent, and the proof run derives each predicate's status.
+"""
+
+from ..smt.chains import Predicate
+
+PositionSafe = Predicate(
+    "PositionSafe",
+    statement="A cell with a finite potential is no obstacle: potarr[n] < POT_HIGH implies "
+              "costarr[n] < COST_OBS, the goal excepted.",
+    applies="propagation: the potential array after setupNavFn, initCost and every updateCell / "
+            "updateCellAstar; the paper's PositionSafe",
+    lemmas=("update_keeps_obstacles_unreached",),
+    trusted=("base case: setupNavFn sets every potential to POT_HIGH, and initCost sets only the goal's to 0 "
+             "(the one exception: a lethal goal has a finite potential)",
+             "after initCost, updateCell is the only write to the potential array"),
+)
+
+Monotone = Predicate(
+    "Monotone",
+    statement="Potentials only go down, and the goal keeps potential 0.",
+    applies="propagation: every updateCell / updateCellAstar; Progress relies on it (a lower neighbour "
+            "stays lower)",
+    lemmas=("update_never_raises", "goal_stays_zero"),
+    trusted=("base case: initCost sets the goal's potential to 0, setupNavFn every other to POT_HIGH",),
+)
+
+Progress = Predicate(
+    "Progress",
+    statement="A reached cell other than the goal has a 4-neighbour with a strictly lower potential.",
+    applies="propagation, for path extraction, which descends the potential; the paper's Progress",
+    lemmas=("update_keeps_a_lower_neighbour", "Monotone.update_never_raises"),
+    trusted=("base case: after initCost the goal is the only reached cell",
+             "the lowest neighbour is named l without loss of generality: the update depends on min(l, r) and "
+             "min(u, d) only, symmetrically",
+             "a cell's potential changes only through its own update (then update_keeps_a_lower_neighbour "
+             "applies); its neighbours' updates only lower them (update_never_raises), so a lower neighbour "
+             "stays lower"),
+    open=("that every passable cell's cost is in [COST_NEUTRAL, COST_OBS) (what setCostmap produces, the "
+          "precondition of update_keeps_a_lower_neighbour) rests on the spec's setCostmap, tested by difftest, "
+          "not on an obligation",),
+)
+
+ObstacleFreeQueue = Predicate(
+    "ObstacleFreeQueue",
+    statement="The priority buffers never hold an obstacle or a cell off the map, and a push never writes "
+              "past a buffer's capacity.",
+    applies="propagation: the three priority buffers (current, next, overflow) and every push_cur / "
+            "push_next / push_over",
+    lemmas=("push_admits_only_passable_cells_on_the_map",),
+    trusted=("base case: setupNavFn empties the buffers",
+             "a cell enters a buffer only through a push macro's guard; the end of a cycle only swaps buffers"),
+)
+
+PendingMatchesBuffers = Predicate(
+    "PendingMatchesBuffers",
+    statement="A cell's pending flag is set exactly when the cell is in the buffers, and then once: between "
+              "cycles (B) once in current + overflow with next empty, during a cycle (P) once in next + "
+              "overflow. So no cell is twice in the buffers, which never hold more cells than the map.",
+    applies="propagation: the pending array and the buffers, by induction over cycles, for every map size "
+            "and buffer capacity (one arbitrary cell q stands for every cell)",
+    base=("pending_matches_buffers_after_setup",),
+    lemmas=("pending_matches_buffers_at_cycle_start", "pending_matches_buffers_after_push",
+            "pending_matches_buffers_at_cycle_end"),
+    trusted=("setup, a cycle's start, the pushes and the swap are all the changes propagation makes to flags "
+             "and buffers (spec/propagation.py: setup, propagate, _push); tests/test_invariants_runtime.py "
+             "checks B at every cycle boundary of the spec's own loops",),
+)
+
+NoPathWithoutFinitePotential = Predicate(
+    "NoPathWithoutFinitePotential",
+    statement="From a start cell without a finite potential, calcPath returns no path.",
+    applies="path extraction (calcPath) at an unreached start: its first iteration",
+    base=("unreached_cell_stays_put",),
+    trusted=("an unreached start takes the grid-following fallback (a cell of the nine around it is "
+             "unreached)",
+             "when the fallback keeps the cell, calcPath returns 0 at once ('high potential')"),
+)
+
+Gradient = Predicate(
+    "Gradient",
+    statement="gradCell stores a unit vector (squared length within 2**-20 of 1) or the zero vector, on "
+              "every potential NavFn produces.",
+    applies="path extraction: the gradient gradCell caches per cell, which calcPath interpolates",
+    lemmas=("grad_differences_are_not_tiny", "grad_is_unit_or_zero"),
+    limits=("grad_is_unit_or_zero_any_float",),
+    open=("that every potential propagation produces is 0 or at least 1/2 (the precondition of "
+          "grad_differences_are_not_tiny) is argued in gradient.py, not an obligation",
+          "over the reals the chain is float32's: differences of real potentials can be arbitrarily small, and "
+          "no obligation normalises an arbitrary real vector (grad_is_unit_or_zero_any_float only one along "
+          "an axis)"),
+)
+
+FinitePotentialPath = Predicate(
+    "FinitePotentialPath",
+    statement="Every point calcPath emits lies within 1/2 (each axis, ends included) of a cell with a finite "
+              "potential.",
+    applies="path extraction (calcPath), by induction over its iterations, for every map size up to the "
+            "coordinate bounds of the links; the paper's FinitePotentialPath",
+    base=("ValidPath.first_point_is_the_start", "NoPathWithoutFinitePotential.unreached_cell_stays_put"),
+    lemmas=("Gradient.grad_differences_are_not_tiny", "stored_gradient_is_bounded", "interpolated_gradient_is_bounded",
+            "step_keeps_offset_in_unit_box", "next_point_stays_near_the_cell", "near_goal_probe_reads_a_neighbour"),
+    limits=("step_keeps_offset_in_unit_box_any_gradient",),
+    trusted=("a fallback step moves to a cell with offset 0 and stops unless that cell is reached",
+             "a gradient step is taken only when the cell and its eight neighbours are all reached",
+             "the last point is the goal exactly (potential 0)"),
+    open=("the interpolated gradient is exactly zero (calcPath then fails) or has a component of at least "
+          "2**-100: a precondition of step_keeps_offset_in_unit_box and next_point_stays_near_the_cell, not "
+          "discharged (step_keeps_offset_in_unit_box_any_gradient shows what a smaller one does in float32)",
+          "the precondition of the borrowed grad_differences_are_not_tiny (potentials 0 or at least 1/2) is "
+          "argued, not an obligation (see Gradient)"),
+)
+
+ValidPath = Predicate(
+    "ValidPath",
+    statement="The path calcPath returns begins at the start cell, and every point of it lies within 1/2 of "
+              "a cell that is no obstacle (the goal excepted, where the path ends).",
+    applies="path extraction (calcPath): the path NavFn hands to Nav2; the paper's ValidPath",
+    base=("first_point_is_the_start",),
+    rests_on=("FinitePotentialPath", "PositionSafe"),
+    trusted=("FinitePotentialPath puts every point within 1/2 of a reached cell, and PositionSafe makes that "
+             "cell no obstacle unless it is the goal",),
+)
+
+# in the order the invariants page lists them: propagation, then path extraction
+PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
+              NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath)

@@ -1,0 +1,177 @@
+"""The paper's predicates in the reports of a proof run: per predicate, its chain of
+obligations with each link's verdict in each semantics, the status derived from them and
+what is still open (for the JSON report, the terminal and the invariants page)."""
+
+from __future__ import annotations
+
+from rich.table import Table
+
+from ..smt.chains import (
+    STATUS_RANK,
+    check_chains,
+    derive,
+    link_owner,
+    outcome_verdicts,
+    split_link,
+)
+from .tables import console
+
+
+def registry() -> tuple:
+    """The predicates shipped with the proofs."""
+    from ..proofs import PREDICATES
+
+    return PREDICATES
+
+
+def run_semantics(outcomes) -> list:
+    """The semantics of the run, in the order the outcomes have them."""
+    return list(dict.fromkeys(o.semantics for o in outcomes))
+
+
+def in_run(outcomes, predicates=None) -> list:
+    """The predicates that have an obligation of their own in the run, in registry order."""
+    declared = {o.predicate for o in outcomes}
+    return [p for p in (predicates or registry()) if p.name in declared]
+
+
+def link_verdict(outcomes_by_key: dict, name: str, semantics: str) -> str:
+    """One link's verdict as the reports show it: the status, its bound, a changed verdict."""
+    o = outcomes_by_key.get((name, semantics))
+    if o is None:
+        return "not checked"
+    text = o.status
+    if o.bound and o.bound.get("holds_below") is not None:
+        text += f" (holds for {o.bound['var']} < {o.bound['holds_below']!r})"
+    if not o.as_expected:
+        text += f" (expected {o.expected})"
+    return text
+
+
+def _chain_rows(p, by_key: dict, sems: list) -> list:
+    """The chain of ``p`` as rows: base case, step, then limits."""
+    rows = [("base", x) for x in p.base] + [("step", x) for x in p.lemmas] + [("limit", x) for x in p.limits]
+    return [{"role": role, "link": x, "obligation": split_link(x)[1], "declared_for": link_owner(p, x),
+             "verdicts": {s: link_verdict(by_key, split_link(x)[1], s) for s in sems}} for role, x in rows]
+
+
+def summary(outcomes, predicates=None) -> dict:
+    """The ``predicates`` section of the JSON report: every predicate of the run with its
+    chain, its status per semantics (derived from the verdicts and from the expected
+    verdicts), the steps it takes from control flow and what is still open; the obligations
+    of predicates without a chain (``unchained_obligations``: those of proof files given by
+    hand); and any inconsistency between chains and obligations (``chain_problems``)."""
+    preds = tuple(predicates or registry())
+    names = {p.name for p in preds}
+    sems = run_semantics(outcomes)
+    by_key = {(o.name, o.semantics): o for o in outcomes}
+    got, wanted = outcome_verdicts(outcomes), outcome_verdicts(outcomes, expected=True)
+    out = []
+    for p in in_run(outcomes, preds):
+        status = {s: derive(p, s, got, preds) for s in sems}
+        expected = {s: derive(p, s, wanted, preds)["status"] for s in sems}
+        out.append({"name": p.name, "statement": p.statement, "applies": p.applies,
+                    "chain": _chain_rows(p, by_key, sems), "rests_on": list(p.rests_on),
+                    "trusted": list(p.trusted), "open": list(p.open), "status": status,
+                    "expected_status": expected,
+                    "as_expected": all(status[s]["status"] == expected[s] for s in sems)})
+    chained = [o for o in outcomes if o.predicate in names]
+    return {"predicates": out,
+            "unchained_obligations": sorted({o.name for o in outcomes if o.predicate not in names}),
+            "chain_problems": check_chains(preds, chained, complete=False)}
+
+
+def not_proved(st: dict) -> str:
+    """The links behind a status other than proved: ``open at x; refuted at y``."""
+    parts = [f"{s} at " + ", ".join(st[s]) for s in reversed(STATUS_RANK[1:]) if st[s]]
+    return "; ".join(parts)
+
+
+def table(outcomes) -> None:
+    """The terminal summary: one row per predicate, its status per semantics and the links
+    that keep it from proved."""
+    doc = summary(outcomes)
+    if not doc["predicates"]:
+        return
+    sems = run_semantics(outcomes)
+    t = Table(title="the paper's predicates: status derived from their chains of obligations")
+    for c in ("predicate", *sems, "links", "not proved"):
+        t.add_column(c, overflow="fold")
+    for p in doc["predicates"]:
+        cells = [p["status"][s]["status"] + ("" if p["status"][s]["status"] == p["expected_status"][s]
+                                             else f" (expected {p['expected_status'][s]})") for s in sems]
+        gaps = "\n".join(f"{s}: {not_proved(p['status'][s])}" for s in sems if not_proved(p["status"][s]))
+        colour = "green" if p["as_expected"] else "red"
+        t.add_row(f"[{colour}]{p['name']}[/]", *cells, str(sum(r["role"] != "limit" for r in p["chain"])), gaps)
+    console.print(t)
+    for problem in doc["chain_problems"]:
+        console.print(f"  [red]chain problem:[/] {problem}")
+
+
+# ------------------------------------------------------------------------------ markdown
+STATUS_NOTE = ("A predicate's status in a semantics is derived from its chain: **proved** when every link is "
+               "proved (and every predicate it rests on is); **bounded** when the only failures are refutations "
+               "below which a bound found by search holds; **open** when a link is unknown and none is refuted; "
+               "**refuted** when a link has a confirmed counterexample, so that the chain does not establish the "
+               "predicate in that semantics. A link written `Owner.name` is borrowed from another predicate's "
+               "chain; a *limit* is a stronger variant expected to fail, which shows why a precondition is "
+               "needed; the steps the argument takes from the planner's control flow are listed as such.")
+
+
+def markdown_summary(outcomes) -> list:
+    """The table of predicates at the top of the invariants page."""
+    doc = summary(outcomes)
+    if not doc["predicates"]:
+        return []
+    sems = run_semantics(outcomes)
+    lines = ["## The paper's predicates", "", STATUS_NOTE, "",
+             "| predicate | " + " | ".join(sems) + " | base case | step |",
+             "|---" * (len(sems) + 3) + "|"]
+    for p in doc["predicates"]:
+        base = ", ".join(f"`{r['link']}`" for r in p["chain"] if r["role"] == "base") or "-"
+        step = ", ".join(f"`{r['link']}`" for r in p["chain"] if r["role"] == "step")
+        if p["rests_on"]:
+            step += ("; " if step else "") + "rests on " + ", ".join(p["rests_on"])
+        statuses = " | ".join(p["status"][s]["status"] for s in sems)
+        lines.append(f"| {p['name']} | {statuses} | {base} | {step or '-'} |")
+    lines.append("")
+    if doc["unchained_obligations"]:
+        lines += ["Obligations of no chain: " + ", ".join(f"`{n}`" for n in doc["unchained_obligations"]) + ".", ""]
+    if doc["chain_problems"]:
+        lines += ["Chain problems:", ""] + [f"- {x}" for x in doc["chain_problems"]] + [""]
+    return lines
+
+
+def markdown_chain(name: str, outcomes) -> list:
+    """The head of a predicate's section: statement, where it applies, its chain with each
+    link's verdicts, its status and what is still open (nothing for a predicate without a
+    chain)."""
+    doc = summary(outcomes)
+    p = next((x for x in doc["predicates"] if x["name"] == name), None)
+    if p is None:
+        return []
+    sems = run_semantics(outcomes)
+    lines = [p["statement"], "", f"*Applies to:* {p['applies']}.", "",
+             "| # | role | link | " + " | ".join(sems) + " |", "|---" * (len(sems) + 3) + "|"]
+    step = 0
+    for r in p["chain"]:
+        step += r["role"] != "limit"
+        num = str(step) if r["role"] != "limit" else "-"
+        lines.append(f"| {num} | {r['role']} | `{r['link']}` | " + " | ".join(r["verdicts"][s] for s in sems) + " |")
+    lines.append("")
+    if p["rests_on"]:
+        statuses = {x["name"]: x["status"] for x in doc["predicates"]}
+        rests = [f"{r} ({', '.join(f'{s}: ' + statuses[r][s]['status'] for s in sems)})" if r in statuses else r
+                 for r in p["rests_on"]]
+        lines += ["*Rests on:* " + ", ".join(rests) + ".", ""]
+    if p["trusted"]:
+        lines += ["*Taken from the planner's control flow, not checked by a solver:*", ""]
+        lines += [f"- {t}" for t in p["trusted"]] + [""]
+    lines.append("*Status:* " + "; ".join(
+        f"{s} **{p['status'][s]['status']}**" + (f" ({not_proved(p['status'][s])})" if not_proved(p["status"][s]) else "")
+        for s in sems) + ".")
+    lines.append("")
+    still = [f"{s}: " + ", ".join(f"`{x}`" for x in p["status"][s]["open"]) + " undecided"
+             for s in sems if p["status"][s]["open"]] + list(p["open"])
+    lines += ["*Still open:*", ""] + ([f"- {x}" for x in still] if still else ["- nothing"]) + [""]
+    return lines

@@ -1,0 +1,207 @@
+"""The paper's predicates as chains of obligations.
+
+A :class:`Predicate` (PositionSafe, Progress, ValidPath, FinitePotentialPath, ...) names
+its English statement, where in the planner it applies, and the obligations that
+establish it, in order: the base case, then the lemmas of the inductive step (for a
+predicate that is not an induction, the lemmas that give it).  A link is the name of an
+obligation declared for the predicate itself, or ``Owner.name`` for one borrowed from
+another predicate's chain.  What the argument takes from the planner's control flow
+without a solver is listed as *trusted*; stronger variants expected to fail, which show
+why a precondition is needed, are its *limits*; what no obligation covers is *open*.
+
+The chains are data, checked (:func:`check_chains`): every link names an obligation
+declared for the predicate it says, every obligation belongs to some chain.  A predicate's
+status in a semantics is derived from its links' verdicts (:func:`derive`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Iterable, Optional
+
+# a predicate's status, best first; a chain takes the worst of its links
+STATUS_RANK = ("proved", "bounded", "open", "refuted")
+
+
+@dataclass(frozen=True)
+class Predicate:
+    """One of the paper's predicates and the chain of obligations that establishes it."""
+
+    name: str  # the paper's name, exactly
+    statement: str  # what it says, in English
+    applies: str  # where in the paper and the planner it applies
+    base: tuple = ()  # links of the base case, in order
+    lemmas: tuple = ()  # links of the inductive step (or the lemmas that give it), in order
+    limits: tuple = ()  # own obligations expected to fail: where the chain's preconditions are needed
+    rests_on: tuple = ()  # other predicates the argument needs whole
+    trusted: tuple = ()  # steps taken from the planner's control flow, not checked by a solver
+    open: tuple = ()  # what the chain leaves open beyond its links' verdicts
+
+    @property
+    def links(self) -> tuple:
+        """The chain in order: base case, then the step."""
+        return tuple(self.base) + tuple(self.lemmas)
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """An obligation's verdict in one semantics; ``bound`` when refuted but proved below a
+    bound found by search (``"l < 1073741824.0"``)."""
+
+    status: str  # proved | refuted | unknown
+    bound: Optional[str] = None
+
+
+def split_link(link: str) -> tuple[Optional[str], str]:
+    """``"Owner.name"`` -> ``("Owner", "name")``; an own link -> ``(None, name)``."""
+    owner, _, name = link.rpartition(".")
+    return (owner or None), name
+
+
+def link_owner(pred: Predicate, link: str) -> str:
+    """The predicate a link's obligation is declared for."""
+    owner, _ = split_link(link)
+    return owner or pred.name
+
+
+def own_obligations(predicates: Iterable[Predicate]) -> set:
+    """Every obligation some predicate's chain holds as its own (not borrowed) link or limit."""
+    out = set()
+    for p in predicates:
+        out |= {split_link(x)[1] for x in p.links if split_link(x)[0] is None} | set(p.limits)
+    return out
+
+
+# ----------------------------------------------------------------------------- the check
+def check_chains(predicates, obligations, complete: bool = True) -> list[str]:
+    """What is inconsistent between the chains and the obligations (empty when nothing).
+
+    ``obligations`` are anything with ``name`` and ``predicate`` (declarations or outcomes).
+    Every link must name an obligation declared for the predicate it says (its own, or the
+    owner of a borrowed link, which must hold it as a link); every obligation must belong to
+    the chain of the predicate it is declared for.  With ``complete=False`` (a run of some
+    proof files only) links to obligations that were not loaded are not problems."""
+    preds = {}
+    problems = []
+    for p in predicates:
+        if p.name in preds:
+            problems.append(f"{p.name}: defined twice")
+        preds[p.name] = p
+    declared = {o.name: o.predicate for o in obligations}
+    for p in preds.values():
+        problems += _check_links(p, preds, declared, complete)
+        problems += [f"{p.name}: rests on {r}, which is not a predicate" for r in p.rests_on if r not in preds]
+    problems += _check_cycles(preds)
+    own = own_obligations(preds.values())
+    for name, pred in declared.items():
+        if name not in own:
+            problems.append(f"{name} (declared for {pred}) is in no predicate's chain")
+    return problems
+
+
+def _check_links(p: Predicate, preds: dict, declared: dict, complete: bool) -> list[str]:
+    """The links and limits of one predicate against the declarations."""
+    problems = []
+    entries = [(x, "link") for x in p.links] + [(x, "limit") for x in p.limits]
+    seen = [split_link(x)[1] for x, _ in entries]
+    problems += [f"{p.name}: {n} appears twice in the chain" for n in sorted(set(seen)) if seen.count(n) > 1]
+    for x, role in entries:
+        owner, name = split_link(x)
+        want = owner or p.name
+        if role == "limit" and owner is not None:
+            problems.append(f"{p.name}: limit {x} is borrowed (a limit is the predicate's own)")
+        elif owner == p.name:
+            problems.append(f"{p.name}: link {x} borrows from the predicate itself")
+        elif owner is not None and owner not in preds:
+            problems.append(f"{p.name}: link {x} borrows from {owner}, which is not a predicate")
+        elif owner is not None and name not in {split_link(y)[1] for y in preds[owner].links
+                                                if split_link(y)[0] is None}:
+            problems.append(f"{p.name}: link {x} is not a link of {owner}'s chain")
+        if name not in declared:
+            if complete:
+                problems.append(f"{p.name}: {role} {x} names no obligation")
+        elif declared[name] != want:
+            problems.append(f"{p.name}: {role} {x} is declared for {declared[name]}, not {want}")
+    return problems
+
+
+def _check_cycles(preds: dict) -> list[str]:
+    """A predicate may not rest on itself, directly or through others."""
+    problems = []
+
+    def reach(name, path):
+        for r in preds[name].rests_on:
+            if r == path[0]:
+                problems.append(f"{path[0]}: rests on itself ({' -> '.join(path + (r,))})")
+            elif r in preds and r not in path:
+                reach(r, path + (r,))
+
+    for name in preds:
+        reach(name, (name,))
+    return problems
+
+
+# ---------------------------------------------------------------------------- the status
+def link_status(v: Optional[Verdict]) -> str:
+    """A link's part in its chain: proved, bounded (refuted, proved below a bound),
+    refuted, or open (unknown, or not checked)."""
+    if v is None or v.status == "unknown":
+        return "open"
+    if v.status == "refuted":
+        return "bounded" if v.bound else "refuted"
+    return "proved"
+
+
+def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Optional[Verdict]],
+           predicates: Iterable[Predicate] = ()) -> dict:
+    """The predicate's status in one semantics from its links' verdicts (and those of the
+    predicates it rests on): ``proved`` only when every link is; ``bounded`` when the only
+    failures are refutations below which a bound holds; ``open`` when a link is unknown (or
+    was not checked) and none is refuted; ``refuted`` when a link has a counterexample.
+    Returns the status and, for each status but proved, the links behind it (``link (via
+    Owner)`` for those of a predicate it rests on)."""
+    preds = {p.name: p for p in predicates}
+    by_status: dict = {s: [] for s in STATUS_RANK}
+    for x in pred.links:
+        v = verdict_of(split_link(x)[1], semantics)
+        by_status[link_status(v)].append(x if v is None or not v.bound else f"{x} ({v.bound})")
+    for r in pred.rests_on:
+        if r in preds:
+            sub = derive(preds[r], semantics, verdict_of, predicates)
+            for s in STATUS_RANK[1:]:
+                by_status[s] += [f"{y} (via {r})" for y in sub[s]]
+    status = max((s for s in STATUS_RANK if by_status[s] or s == "proved"), key=STATUS_RANK.index)
+    return {"status": status, **{s: by_status[s] for s in STATUS_RANK[1:]}}
+
+
+def declared_verdicts(obligations) -> Callable[[str, str], Optional[Verdict]]:
+    """``verdict_of`` from the declarations: each obligation's expected verdict, a declared
+    bound search counting as a bound (it runs in fp32 only)."""
+    obs = {o.name: o for o in obligations}
+
+    def verdict_of(name, semantics):
+        o = obs.get(name)
+        if o is None or semantics not in o.expect:
+            return None
+        status = o.expect[semantics]
+        searched = o.bound is not None and semantics == "fp32" and status == "refuted"
+        return Verdict(status, f"{o.bound.var} < a bound found by search" if searched else None)
+
+    return verdict_of
+
+
+def outcome_verdicts(outcomes, expected: bool = False) -> Callable[[str, str], Optional[Verdict]]:
+    """``verdict_of`` from a run's outcomes (their verdicts, or with ``expected`` the
+    verdicts they were expected to get; a bound counts when the run found one)."""
+    table = {(o.name, o.semantics): o for o in outcomes}
+
+    def verdict_of(name, semantics):
+        o = table.get((name, semantics))
+        if o is None:
+            return None
+        status = o.expected if expected else o.status
+        b = o.bound or {}
+        found = status == "refuted" == o.status and b.get("holds_below") is not None
+        return Verdict(status, f"{b['var']} < {b['holds_below']!r}" if found else None)
+
+    return verdict_of

@@ -1,0 +1,108 @@
+"""The paper's predicates as chains of obligations: the shipped chains agree with the
+obligations' declarations, the check catches a chain that does not, and a predicate's
+status follows from its links' verdicts."""
+
+from types import SimpleNamespace as NS
+
+import pytest
+
+from navfn_smt.proofs import PREDICATES
+from navfn_smt.smt.chains import Predicate, Verdict, check_chains, declared_verdicts, derive
+from navfn_smt.smt.obligation import load_obligations
+from navfn_smt.smt.runner import default_proof_files
+
+# the status each predicate's chain gets from the verdicts its obligations are expected to get
+EXPECTED = {
+    "PositionSafe": ("proved", "proved"),
+    "Monotone": ("proved", "proved"),
+    "Progress": ("proved", "bounded"),
+    "ObstacleFreeQueue": ("proved", "proved"),
+    "PendingMatchesBuffers": ("proved", "proved"),
+    "NoPathWithoutFinitePotential": ("refuted", "proved"),
+    "Gradient": ("refuted", "open"),
+    "FinitePotentialPath": ("refuted", "open"),
+    "ValidPath": ("refuted", "open"),
+}
+
+
+@pytest.fixture(scope="module")
+def obligations():
+    return load_obligations(default_proof_files())
+
+
+def test_the_paper_predicates_are_there_by_name():
+    names = [p.name for p in PREDICATES]
+    assert {"PositionSafe", "Progress", "ValidPath", "FinitePotentialPath", "ObstacleFreeQueue",
+            "NoPathWithoutFinitePotential"} <= set(names)
+    assert all(p.statement and p.applies and p.links for p in PREDICATES)
+
+
+def test_shipped_chains_agree_with_the_obligations(obligations):
+    assert check_chains(PREDICATES, obligations) == []
+    assert {o.predicate for o in obligations} == {p.name for p in PREDICATES}
+
+
+def test_statuses_derived_from_the_expected_verdicts(obligations):
+    verdict_of = declared_verdicts(obligations)
+    got = {p.name: tuple(derive(p, s, verdict_of, PREDICATES)["status"] for s in ("real", "fp32"))
+           for p in PREDICATES}
+    assert got == EXPECTED
+    fpp = next(p for p in PREDICATES if p.name == "FinitePotentialPath")
+    assert derive(fpp, "fp32", verdict_of, PREDICATES)["open"] == ["next_point_stays_near_the_cell"]
+    assert set(derive(fpp, "real", verdict_of, PREDICATES)["refuted"]) == {
+        "NoPathWithoutFinitePotential.unreached_cell_stays_put", "Gradient.grad_differences_are_not_tiny"}
+
+
+def _ob(name, predicate):
+    return NS(name=name, predicate=predicate)
+
+
+A = Predicate("A", "a", "here", base=("a0",), lemmas=("a1",), limits=("a2",))
+B = Predicate("B", "b", "here", lemmas=("b0", "A.a1"), rests_on=("A",))
+OBS = [_ob("a0", "A"), _ob("a1", "A"), _ob("a2", "A"), _ob("b0", "B")]
+
+
+def test_check_passes_a_consistent_chain():
+    assert check_chains([A, B], OBS) == []
+
+
+@pytest.mark.parametrize("preds,obs,words", [
+    ([A, B], OBS + [_ob("b1", "B")], "b1 (declared for B) is in no predicate's chain"),
+    ([A, B], OBS[:-1], "B: link b0 names no obligation"),
+    ([A, B], OBS[:-1] + [_ob("b0", "A")], "B: link b0 is declared for A, not B"),
+    ([A, Predicate("B", "b", "here", lemmas=("b0", "a1"))], OBS, "B: link a1 is declared for A, not B"),
+    ([A, Predicate("B", "b", "here", lemmas=("b0", "A.a2"))], OBS, "B: link A.a2 is not a link of A's chain"),
+    ([A, Predicate("B", "b", "here", lemmas=("b0", "C.a1"))], OBS, "borrows from C, which is not a predicate"),
+    ([A, Predicate("B", "b", "here", lemmas=("b0",), rests_on=("B",))], OBS, "B: rests on itself"),
+    ([A, Predicate("B", "b", "here", lemmas=("b0", "b0"))], OBS, "B: b0 appears twice"),
+    ([A, B, A], OBS, "A: defined twice"),
+])
+def test_check_finds_an_inconsistent_chain(preds, obs, words):
+    assert any(words in p for p in check_chains(preds, obs)), check_chains(preds, obs)
+
+
+def test_partial_run_is_no_problem():
+    assert check_chains([A, B], OBS[:2], complete=False) == []
+
+
+def _verdicts(table):
+    return lambda name, sem: table.get(name)
+
+
+@pytest.mark.parametrize("table,status", [
+    ({"a0": Verdict("proved"), "a1": Verdict("proved")}, "proved"),
+    ({"a0": Verdict("proved"), "a1": Verdict("refuted", "x < 2.0")}, "bounded"),
+    ({"a0": Verdict("unknown"), "a1": Verdict("refuted", "x < 2.0")}, "open"),
+    ({"a0": Verdict("proved")}, "open"),  # a link not checked is not proved
+    ({"a0": Verdict("unknown"), "a1": Verdict("refuted")}, "refuted"),
+])
+def test_status_is_the_worst_link(table, status):
+    # the limit a2 is expected to fail and never counts
+    full = {**table, "a2": Verdict("refuted")}
+    assert derive(A, "fp32", _verdicts(full), [A, B])["status"] == status
+
+
+def test_status_takes_the_predicates_it_rests_on():
+    table = {"a0": Verdict("unknown"), "a1": Verdict("proved"), "b0": Verdict("proved")}
+    got = derive(B, "fp32", _verdicts(table), [A, B])
+    assert got["status"] == "open" and got["open"] == ["a0 (via A)"]
