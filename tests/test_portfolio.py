@@ -14,6 +14,7 @@ z3 = pytest.importorskip("z3")
 bitwuzla = pytest.importorskip("bitwuzla")
 cvc5 = pytest.importorskip("cvc5")
 
+from navfn_smt.smt import codec  # noqa: E402
 from navfn_smt.smt import portfolio as P  # noqa: E402
 from navfn_smt.smt.portfolio import PortfolioResult, SolverAnswer, decide  # noqa: E402
 
@@ -332,10 +333,10 @@ def test_hanging_and_crashing_solvers_do_not_block_the_caller():
 
 def test_a_model_z3_rejects_never_wins():
     query = P.prepare(Q_ABSORB)
-    assert P.check_model(query, {"x": P._fp_entry(0x3F800000, 8, 24)}) is False  # 1.0f
-    assert P.check_model(query, {"x": P._fp_entry(0x4B800000, 8, 24)}) is True  # 2^24
+    assert P.check_model(query, {"x": codec.fp_entry(0x3F800000, 8, 24)}) is False  # 1.0f
+    assert P.check_model(query, {"x": codec.fp_entry(0x4B800000, 8, 24)}) is True  # 2^24
     ans = P._finish_sat(query, SolverAnswer("cvc5", "sat", 0.1,
-                                            model={"x": P._fp_entry(0x3F800000, 8, 24)}))
+                                            model={"x": codec.fp_entry(0x3F800000, 8, 24)}))
     assert ans.status == "error" and ans.model_checked is False
 
 

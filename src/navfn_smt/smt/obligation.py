@@ -17,7 +17,6 @@ verdict changes.
 from __future__ import annotations
 
 import importlib.util
-import struct
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,7 +26,8 @@ import z3
 
 from ..errors import NavfnInputError
 from ..spec.numeric import ConcreteDomain, c_hypot, c_hypotf
-from .domains import DOMAINS, F32, F64, ExactArithmetic
+from . import codec
+from .domains import DOMAINS, ExactArithmetic
 
 STATUSES = ("proved", "refuted", "unknown")
 
@@ -212,32 +212,6 @@ class ExactReplayDomain(ExactArithmetic, ReplayDomain):
         return (1 if a >= 0 else -1) * math.floor(abs(a) + Fraction(1, 2))
 
 
-def model_values(model: z3.ModelRef, variables: dict) -> dict:
-    """Python values of the obligation's variables: float32/float64 by exact bit pattern,
-    bit-vectors and integers as ints (costs unsigned), reals as fractions."""
-    from fractions import Fraction
-
-    out = {}
-    for name, v in variables.items():
-        val = model.eval(v, model_completion=True)
-        s = v.sort()
-        if s == F32:
-            b = model.eval(z3.fpToIEEEBV(v), model_completion=True).as_long()
-            out[name] = struct.unpack("<f", struct.pack("<I", b))[0]
-        elif s == F64:
-            b = model.eval(z3.fpToIEEEBV(v), model_completion=True).as_long()
-            out[name] = struct.unpack("<d", struct.pack("<Q", b))[0]
-        elif z3.is_bv_sort(s):
-            out[name] = val.as_long() if s.size() == 8 else val.as_signed_long()
-        elif s == z3.IntSort():
-            out[name] = val.as_long()
-        elif s == z3.RealSort():
-            out[name] = Fraction(val.numerator_as_long(), val.denominator_as_long())
-        else:
-            out[name] = str(val)
-    return out
-
-
 def replay(ob: Obligation, values: dict, extra_pre=None) -> Optional[bool]:
     """Does the concrete spec confirm the counterexample (pre true, claim false)?
 
@@ -292,7 +266,10 @@ def solve_z3(assertions, variables: dict, timeout: float):
     if r == z3.unsat:
         return "unsat", None, "z3", ""
     if r == z3.sat:
-        return "sat", model_values(s.model(), variables), "z3", ""
+        values = codec.replay_values(codec.z3_model(s.model(), variables.values()), variables)
+        if values is None:
+            return "unknown", None, "z3", "the model gives a variable no number"
+        return "sat", values, "z3", ""
     return "unknown", None, "z3", s.reason_unknown()
 
 
@@ -309,7 +286,7 @@ def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3,
         out.status = "proved"
     elif answer == "sat":
         confirmed = replay(ob, values)
-        out.witness = {"values": _jsonable(values), "replayed_on_spec": confirmed,
+        out.witness = {"values": codec.witness_values(values), "replayed_on_spec": confirmed,
                        "replayed_in": "rationals (real semantics)" if semantics == "real" else "float32 spec"}
         if confirmed is False:
             # the model satisfies the library-function model but not the real libm: it is not
@@ -324,42 +301,18 @@ def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3,
     return out
 
 
-def _jsonable(values: dict) -> dict:
-    from fractions import Fraction
-
-    out = {}
-    for k, v in values.items():
-        if isinstance(v, float):
-            out[k] = {"value": v, "bits32": f"0x{struct.unpack('<I', struct.pack('<f', v))[0]:08x}"}
-        elif isinstance(v, Fraction):
-            out[k] = {"value": str(v)}
-        else:
-            out[k] = {"value": v}
-    return out
-
-
-def _f32_from_bits(b: int) -> float:
-    return struct.unpack("<f", struct.pack("<I", b))[0]
-
-
-def _bits(x: float) -> int:
-    return struct.unpack("<I", struct.pack("<f", x))[0]
-
-
 def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
     """The largest float32 X in [lo, hi] with ``var < X`` added to the precondition such
     that the obligation is proved, by bisection over positive float32 bit patterns (the
     property is monotone in X: a smaller X only strengthens the precondition)."""
-    from .domains import fp32_val
-
     b = ob.bound
-    lo, hi = _bits(b.lo), _bits(b.hi)  # invariant: proved at lo, refuted at hi
+    lo, hi = codec.f32_to_bits(b.lo), codec.f32_to_bits(b.hi)  # invariant: proved at lo, refuted at hi
 
     witness_at: dict = {}
 
     def proved_below(bits_x: int) -> Optional[bool]:
-        x = _f32_from_bits(bits_x)
-        extra = lambda D: z3.fpLT(D.variables[b.var], fp32_val(x))  # noqa: E731
+        x = codec.f32_from_bits(bits_x)
+        extra = lambda D: z3.fpLT(D.variables[b.var], codec.fp32_val(x))  # noqa: E731
         D, assertions = _query(ob, "fp32", extra)
         ans, values, _, _ = solve(assertions, D.variables, timeout)
         if ans == "unsat":
@@ -374,9 +327,9 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
     cache = _BoundCache(ob)
     known = cache.get()
     if known is not None:
-        kb = _bits(known)
+        kb = codec.f32_to_bits(known)
         if proved_below(kb) is True and proved_below(kb + 1) is False:
-            return {"var": b.var, "holds_below": known, "refuted_below": _f32_from_bits(kb + 1), "solver_calls": 2,
+            return {"var": b.var, "holds_below": known, "refuted_below": codec.f32_from_bits(kb + 1), "solver_calls": 2,
                     "note": "bound from an earlier search, verified tight (proved below it, refuted one ulp above)"}
     first = proved_below(lo)
     if first is not True:
@@ -384,20 +337,20 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
     if proved_below(hi) is not False:
         return {"var": b.var, "holds_below": None, "note": f"no confirmed counterexample below {b.hi}"}
     calls = 2
-    hi = min(hi, _bits(witness_at[hi]) + 1)  # refuted already below the counterexample's value + 1 ulp
+    hi = min(hi, codec.f32_to_bits(witness_at[hi]) + 1)  # refuted already below the counterexample's value + 1 ulp
     while hi - lo > 1:
         mid = (lo + hi) // 2
         r = proved_below(mid)
         calls += 1
         if r is None:
-            return {"var": b.var, "holds_below": _f32_from_bits(lo), "note": "search stopped on an unknown answer",
+            return {"var": b.var, "holds_below": codec.f32_from_bits(lo), "note": "search stopped on an unknown answer",
                     "solver_calls": calls}
         if r:
             lo = mid
         else:  # a confirmed counterexample with var = w < mid: refuted below w + 1 ulp as well
-            hi = min(mid, _bits(witness_at[mid]) + 1)
-    cache.put(_f32_from_bits(lo))
-    return {"var": b.var, "holds_below": _f32_from_bits(lo), "refuted_below": _f32_from_bits(hi),
+            hi = min(mid, codec.f32_to_bits(witness_at[mid]) + 1)
+    cache.put(codec.f32_from_bits(lo))
+    return {"var": b.var, "holds_below": codec.f32_from_bits(lo), "refuted_below": codec.f32_from_bits(hi),
             "solver_calls": calls}
 
 

@@ -33,20 +33,19 @@ an ``"error"`` (so it can never win), see ``SolverAnswer.model_checked``.
 from __future__ import annotations
 
 import functools
-import math
 import os
 import pickle
 import queue
-import struct
 import subprocess
 import sys
 import threading
 import time
 from dataclasses import dataclass, field
-from fractions import Fraction
 from typing import Any, Iterable
 
 import z3  # lazily loaded in bitwuzla/cvc5 solver processes, see _WORKER_CODE
+
+from . import codec
 
 __all__ = [
     "SOLVERS",
@@ -58,8 +57,6 @@ __all__ = [
     "solve",
     "decide",
     "check_model",
-    "fp_value",
-    "fp_sort_name",
 ]
 
 SOLVERS = ("z3", "bitwuzla", "cvc5")
@@ -426,10 +423,6 @@ def _fp_sort_key(s) -> tuple[int, int]:
     return (s.ebits(), s.sbits())
 
 
-def _canonical_nan_bits(eb: int, sb: int) -> int:
-    return (((1 << eb) - 1) << (sb - 1)) | (1 << (sb - 2))
-
-
 def _has_var(e) -> bool:
     """Whether ``e`` contains a bound variable (de Bruijn index)."""
     seen: set[int] = set()
@@ -583,127 +576,7 @@ def to_smt2(solver_or_assertions, logic: str | None = None) -> str:
 
 
 # --------------------------------------------------------------------------
-# Model values
-
-
-_RM_NAMES = {
-    "roundNearestTiesToEven": "RNE", "RNE": "RNE",
-    "roundNearestTiesToAway": "RNA", "RNA": "RNA",
-    "roundTowardPositive": "RTP", "RTP": "RTP",
-    "roundTowardNegative": "RTN", "RTN": "RTN",
-    "roundTowardZero": "RTZ", "RTZ": "RTZ",
-    "ROUND_NEAREST_TIES_TO_EVEN": "RNE",
-    "ROUND_NEAREST_TIES_TO_AWAY": "RNA",
-    "ROUND_TOWARD_POSITIVE": "RTP",
-    "ROUND_TOWARD_NEGATIVE": "RTN",
-    "ROUND_TOWARD_ZERO": "RTZ",
-}
-
-
-def _rm_name(x) -> str:
-    s = getattr(x, "name", None) or str(x)
-    s = s.split(".")[-1]
-    return _RM_NAMES.get(s, s)
-
-
-def fp_sort_name(eb: int, sb: int) -> str:
-    return {(5, 11): "FP16", (8, 24): "FP32", (11, 53): "FP64", (15, 113): "FP128"}.get(
-        (eb, sb), f"FP({eb},{sb})"
-    )
-
-
-def fp_value(bits: int, eb: int, sb: int) -> float:
-    """The Python float of an IEEE bit pattern (exact for FP16/FP32/FP64)."""
-    if (eb, sb) == (8, 24):
-        return struct.unpack(">f", bits.to_bytes(4, "big"))[0]
-    if (eb, sb) == (11, 53):
-        return struct.unpack(">d", bits.to_bytes(8, "big"))[0]
-    sign = -1.0 if bits >> (eb + sb - 1) & 1 else 1.0
-    exp = (bits >> (sb - 1)) & ((1 << eb) - 1)
-    man = bits & ((1 << (sb - 1)) - 1)
-    bias = (1 << (eb - 1)) - 1
-    if exp == (1 << eb) - 1:
-        return math.nan if man else sign * math.inf
-    if exp == 0:
-        frac = Fraction(man) * Fraction(2) ** (1 - bias - (sb - 1))
-    else:
-        frac = Fraction((1 << (sb - 1)) | man) * Fraction(2) ** (exp - bias - (sb - 1))
-    try:
-        return sign * float(frac)
-    except OverflowError:
-        return sign * math.inf
-
-
-def _fp_entry(bits: int, eb: int, sb: int) -> dict:
-    return {"sort": fp_sort_name(eb, sb), "bits": bits, "value": fp_value(bits, eb, sb),
-            "ebits": eb, "sbits": sb}
-
-
-def _is_nan_bits(bits: int, eb: int, sb: int) -> bool:
-    exp = (bits >> (sb - 1)) & ((1 << eb) - 1)
-    return exp == (1 << eb) - 1 and bits & ((1 << (sb - 1)) - 1) != 0
-
-
-def _strip_bars(name: str) -> str:
-    if len(name) >= 2 and name[0] == "|" and name[-1] == "|":
-        return name[1:-1]
-    return name
-
-
-def _z3_value(m, c) -> Any:
-    v = m.eval(c, model_completion=True)
-    s = c.sort()
-    if z3.is_fp_sort(s):
-        eb, sb = s.ebits(), s.sbits()
-        if isinstance(v, z3.FPNumRef) and v.isNaN():
-            # Z3 maps all NaNs to one unspecified pattern; if the query used
-            # fp.to_ieee_bv the model says which one.
-            bits = None
-            ieee = m.eval(z3.fpToIEEEBV(c), model_completion=True)
-            if z3.is_bv_value(ieee) and _is_nan_bits(ieee.as_long(), eb, sb):
-                bits = ieee.as_long()
-            return _fp_entry(bits if bits is not None else _canonical_nan_bits(eb, sb), eb, sb)
-        b = z3.simplify(z3.fpToIEEEBV(v))
-        if not z3.is_bv_value(b):
-            return v.sexpr()
-        return _fp_entry(b.as_long(), eb, sb)
-    if z3.is_bv_sort(s):
-        return v.as_long() if z3.is_bv_value(v) else v.sexpr()
-    if s.kind() == z3.Z3_BOOL_SORT:
-        return z3.is_true(v) if (z3.is_true(v) or z3.is_false(v)) else v.sexpr()
-    if s.kind() == z3.Z3_INT_SORT:
-        return v.as_long() if z3.is_int_value(v) else v.sexpr()
-    if s.kind() == z3.Z3_REAL_SORT:
-        if z3.is_rational_value(v):
-            return Fraction(v.numerator_as_long(), v.denominator_as_long())
-        return v.sexpr()
-    if s.kind() == z3.Z3_ROUNDING_MODE_SORT:
-        return _rm_name(v.sexpr())
-    return v.sexpr()
-
-
-def _value_to_z3(value, c):
-    """A z3 value expression for a model value of constant ``c`` (None: cannot)."""
-    s = c.sort()
-    ctx = c.ctx
-    if z3.is_fp_sort(s):
-        if not isinstance(value, dict):
-            return None
-        return z3.fpBVToFP(z3.BitVecVal(value["bits"], s.ebits() + s.sbits(), ctx), s, ctx)
-    if z3.is_bv_sort(s):
-        return z3.BitVecVal(value, s.size(), ctx) if isinstance(value, int) else None
-    if s.kind() == z3.Z3_BOOL_SORT:
-        return z3.BoolVal(value, ctx) if isinstance(value, bool) else None
-    if s.kind() == z3.Z3_INT_SORT:
-        return z3.IntVal(value, ctx) if isinstance(value, int) else None
-    if s.kind() == z3.Z3_REAL_SORT:
-        if isinstance(value, (int, Fraction)):
-            return z3.RealVal(f"{Fraction(value).numerator}/{Fraction(value).denominator}", ctx)
-        return None
-    if s.kind() == z3.Z3_ROUNDING_MODE_SORT:
-        f = {"RNE": z3.RNE, "RNA": z3.RNA, "RTP": z3.RTP, "RTN": z3.RTN, "RTZ": z3.RTZ}.get(value)
-        return f(ctx) if f else None
-    return None
+# Model check
 
 
 def check_model(query: Query, model: dict) -> bool | None:
@@ -717,7 +590,7 @@ def check_model(query: Query, model: dict) -> bool | None:
     for name, c in query.consts.items():
         if name not in model:
             return None
-        v = _value_to_z3(model[name], c)
+        v = codec.entry_to_z3(model[name], c)
         if v is None:
             return None
         pairs.append((c, v))
@@ -759,12 +632,7 @@ def _run_z3(text: str, timeout: float, names: dict[str, str], logic: str) -> dic
                 f"(declare-fun {_smt_quote(n)} () {srt})" for n, srt in names.items()
             )
             eqs = "".join(f"(assert (= {_smt_quote(n)} {_smt_quote(n)}))" for n in names)
-            for eq in z3.parse_smt2_string(decls + eqs):
-                c = eq.arg(0)
-                try:
-                    model[c.decl().name()] = _z3_value(m, c)
-                except Exception:  # keep the answer; the value as text
-                    model[c.decl().name()] = m.eval(c, model_completion=True).sexpr()
+            model = codec.z3_model(m, [eq.arg(0) for eq in z3.parse_smt2_string(decls + eqs)])
         return {"status": "sat", "model": model, "solve_seconds": dt}
     if r == z3.unsat:
         return {"status": "unsat", "solve_seconds": dt}
@@ -779,6 +647,12 @@ def _smt_quote(name: str) -> str:
     if "|" in name or "\\" in name:
         raise ValueError(f"constant name {name!r} cannot be written in SMT-LIB2")
     return f"|{name}|"
+
+
+def _strip_bars(name: str) -> str:
+    if len(name) >= 2 and name[0] == "|" and name[-1] == "|":
+        return name[1:-1]
+    return name
 
 
 def _run_bitwuzla(text: str, timeout: float, names: dict[str, str], logic: str) -> dict:
@@ -803,21 +677,7 @@ def _run_bitwuzla(text: str, timeout: float, names: dict[str, str], logic: str) 
             srt = f.sort()
             if srt.is_fun():
                 continue
-            v = solver.get_value(f)
-            try:
-                if srt.is_fp():
-                    eb, sb = srt.fp_exp_size(), srt.fp_sig_size()
-                    model[name] = _fp_entry(int(v.value(2, False), 2), eb, sb)
-                elif srt.is_bv():
-                    model[name] = int(v.value(2), 2)
-                elif srt.is_bool():
-                    model[name] = bool(v.value())
-                elif srt.is_rm():
-                    model[name] = _rm_name(v.value())
-                else:
-                    model[name] = str(v)
-            except Exception:  # keep the answer; the value as text
-                model[name] = str(v)
+            model[name] = codec.bitwuzla_entry(solver.get_value(f), srt)
         return {"status": "sat", "model": model, "solve_seconds": dt}
     if r == bw.Result.UNSAT:
         return {"status": "unsat", "solve_seconds": dt}
@@ -858,25 +718,7 @@ def _run_cvc5(text: str, timeout: float, names: dict[str, str], logic: str,
             srt = t.getSort()
             if srt.isFunction():
                 continue
-            v = solver.getValue(t)
-            try:
-                if srt.isFloatingPoint():
-                    eb, sb, bv = v.getFloatingPointValue()
-                    model[name] = _fp_entry(int(bv.getBitVectorValue(2), 2), eb, sb)
-                elif srt.isBitVector():
-                    model[name] = int(v.getBitVectorValue(2), 2)
-                elif srt.isBoolean():
-                    model[name] = bool(v.getBooleanValue())
-                elif srt.isInteger():
-                    model[name] = int(v.getIntegerValue())
-                elif srt.isReal():
-                    model[name] = Fraction(v.getRealValue()) if v.isRealValue() else str(v)
-                elif srt.isRoundingMode():
-                    model[name] = _rm_name(v.getRoundingModeValue())
-                else:
-                    model[name] = str(v)
-            except Exception:  # keep the answer; the value as text
-                model[name] = str(v)
+            model[name] = codec.cvc5_entry(solver.getValue(t), srt)
         return {"status": "sat", "model": model, "solve_seconds": dt}
     if r.isUnsat():
         return {"status": "unsat", "solve_seconds": dt}
@@ -988,16 +830,7 @@ def _check_solvers(solvers) -> tuple[str, ...]:
 
 
 def _finish_sat(query: Query, ans: SolverAnswer) -> SolverAnswer:
-    model = dict(ans.model or {})
-    # NaN constants: report the pattern fp.to_ieee_bv gives NaN in this model.
-    for key, aux in query.nan_consts.items():
-        pattern = model.get(aux)
-        if not isinstance(pattern, int):
-            continue
-        for name, v in model.items():
-            if isinstance(v, dict) and (v.get("ebits"), v.get("sbits")) == key and \
-                    _is_nan_bits(v["bits"], *key):
-                model[name] = _fp_entry(pattern, *key)
+    model = codec.pin_nan_patterns(ans.model or {}, query.nan_consts)
     model = {n: v for n, v in model.items() if n in query.consts}
     ans.model = model
     try:
