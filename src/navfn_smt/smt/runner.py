@@ -14,7 +14,8 @@ from typing import Callable, Optional
 
 from ..errors import NavfnInputError
 from . import codec
-from .obligation import Outcome, check, load_obligations, solve_z3
+from .checking import Outcome, check, solve_z3
+from .obligation import load_obligations
 
 SEMANTICS = ("real", "fp32")
 
@@ -88,7 +89,7 @@ def write_smt2(paths, semantics, out_dir: Path) -> list[Path]:
     import z3
 
     from ..fileio import atomic_write_text
-    from .obligation import _query
+    from .checking import query
 
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -99,7 +100,7 @@ def write_smt2(paths, semantics, out_dir: Path) -> list[Path]:
         for sem in semantics:
             if sem not in ob.expect:
                 continue
-            _, assertions = _query(ob, sem)
+            _, assertions = query(ob, sem)
             s = z3.Solver()
             s.add(*assertions)
             p = out_dir / f"{ob.name}.{sem}.smt2"
