@@ -296,6 +296,7 @@ def cmd_prove(args) -> int:
     from .report import proofs as rp
     from .report.tables import progress_bar
     from .smt.runner import SEMANTICS, default_proof_files, run
+    from .smt.solvers import SOLVERS
 
     files = [Path(f) for f in args.files] if args.files else default_proof_files(PROOFS_DIR)
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
@@ -306,7 +307,7 @@ def cmd_prove(args) -> int:
     for f in (args.report, args.junit, args.markdown):
         if f:
             check_writable(f)
-    solvers = tuple(args.solver) if args.solver else ("z3", "bitwuzla", "cvc5")
+    solvers = tuple(args.solver) if args.solver else SOLVERS
     from .smt.obligation import load_obligations
 
     n = sum(len([s for s in semantics if s in o.expect]) for o in load_obligations(files))
@@ -471,12 +472,14 @@ def build_parser() -> argparse.ArgumentParser:
 
     register_suite(sub)
 
+    from .smt.solvers import SOLVERS
+
     pr = sub.add_parser("prove", help="check the proof obligations in proofs/ (or the given files)")
     pr.add_argument("files", nargs="*", help="proof files (default: every proofs/*.py)")
     pr.add_argument("--semantics", choices=("real", "fp32", "both"), default="both")
     pr.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query (default 30)")
     pr.add_argument("--jobs", type=int, default=1, help="obligations checked in parallel (default 1)")
-    pr.add_argument("--solver", action="append", choices=("z3", "bitwuzla", "cvc5"),
+    pr.add_argument("--solver", action="append", choices=SOLVERS,
                     help="solvers of the portfolio (repeatable; default all three)")
     pr.add_argument("--report", metavar="FILE.json", help="machine-readable report")
     pr.add_argument("--junit", metavar="FILE.xml", help="JUnit XML, one test case per obligation and semantics")
