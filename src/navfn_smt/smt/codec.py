@@ -126,6 +126,7 @@ def rm_name(x) -> str:
 # ------------------------------------------------------------ floats as Z3 terms
 @functools.cache
 def _fp_sort(eb: int, sb: int):
+    """The Z3 floating-point sort (eb, sb) of the main context, made once."""
     return z3.FPSort(eb, sb)
 
 

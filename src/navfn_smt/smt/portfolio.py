@@ -276,4 +276,5 @@ def _answer(query: Query, name: str, seconds: float, msg: dict) -> SolverAnswer:
 
 
 def _decided(answers: list) -> bool:
+    """Whether some answer is definitive (sat or unsat)."""
     return any(a.status in DEFINITIVE for a in answers)

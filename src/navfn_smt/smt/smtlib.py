@@ -42,6 +42,7 @@ class Query:
 
 
 def _assertions_of(obj) -> list:
+    """The Boolean assertions of a query given in any of the accepted forms."""
     if isinstance(obj, z3.Solver):
         return list(obj.assertions())
     if isinstance(obj, z3.Goal):
@@ -66,6 +67,7 @@ def _assertions_of(obj) -> list:
 
 @functools.cache
 def _nonstd_ops() -> dict[int, str]:
+    """Z3's operators that standard SMT-LIB lacks (operator kind -> name)."""
     return {
         z3.Z3_OP_FPA_TO_IEEE_BV: "fp.to_ieee_bv",
         z3.Z3_OP_EXT_ROTATE_LEFT: "ext_rotate_left",
@@ -78,10 +80,12 @@ def _nonstd_ops() -> dict[int, str]:
 
 @functools.cache
 def _arith_div_ops() -> tuple[int, ...]:
+    """Arithmetic division operators (nonlinear unless the divisor is a numeral)."""
     return (z3.Z3_OP_DIV, z3.Z3_OP_IDIV, z3.Z3_OP_MOD, z3.Z3_OP_REM)
 
 
 def _children(e) -> list:
+    """The direct subterms of ``e`` (a quantifier's body)."""
     if z3.is_quantifier(e):
         return [e.body()]
     if z3.is_app(e):
@@ -90,6 +94,8 @@ def _children(e) -> list:
 
 
 class _Analysis:
+    """What a query uses: constants, sorts, operators, FP formats."""
+
     def __init__(self) -> None:
         self.consts: dict[str, Any] = {}
         self.int = self.real = self.real_literal = self.nonlinear = False
@@ -187,6 +193,7 @@ def _analyze(assertions: list) -> _Analysis:
 
 
 def _add_const(e, an: _Analysis) -> None:
+    """Record an uninterpreted constant; two different ones with one name are an error."""
     name = e.decl().name()
     old = an.consts.get(name)
     if old is None:
@@ -199,6 +206,7 @@ def _add_const(e, an: _Analysis) -> None:
 
 
 def _classify_decl(d, an: _Analysis) -> int:
+    """Record what a function declaration uses; its kind."""
     k = d.kind()
     _classify_sort(d.range(), an, False)
     if k == z3.Z3_OP_UNINTERPRETED and d.arity() > 0:
@@ -209,6 +217,7 @@ def _classify_decl(d, an: _Analysis) -> int:
 
 
 def _classify_sort(s, an: _Analysis, numeral: bool) -> None:
+    """Record what a sort adds to the logic (a numeral's Int/Real sort: only a literal)."""
     k = s.kind()
     if k == z3.Z3_BOOL_SORT:
         return
@@ -247,6 +256,7 @@ def _classify(q, an: _Analysis) -> None:
 
 
 def _logic_name(an: _Analysis) -> str:
+    """The SMT-LIB logic of the analysed query (``ALL`` beyond the standard logics)."""
     if an.other:
         return "ALL"
     arith = ""
@@ -282,6 +292,7 @@ def _skip_reasons(an: _Analysis) -> dict[str, str]:
 
 
 def _fp_sort_key(s) -> tuple[int, int]:
+    """A floating-point sort's format (eb, sb)."""
     return (s.ebits(), s.sbits())
 
 
@@ -382,6 +393,7 @@ def _rewrite(assertions: list, an: _Analysis):
 
 
 def _benchmark(assertions: list, logic: str, ctx) -> str:
+    """Z3's SMT-LIB2 text of the assertions with the given ``set-logic`` (none for empty)."""
     if not assertions:
         assertions = [z3.BoolVal(True, ctx)]
     n = len(assertions) - 1

@@ -90,6 +90,7 @@ def _smt_quote(name: str) -> str:
 
 
 def _strip_bars(name: str) -> str:
+    """A symbol's name without its SMT-LIB quoting bars."""
     if len(name) >= 2 and name[0] == "|" and name[-1] == "|":
         return name[1:-1]
     return name

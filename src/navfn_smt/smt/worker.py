@@ -77,6 +77,7 @@ def _run(req: dict) -> dict:
 
 
 def _pickled(ans: dict) -> bytes:
+    """The answer as bytes (an error answer if it cannot be pickled)."""
     try:
         return pickle.dumps(ans)
     except Exception as exc:
@@ -144,6 +145,7 @@ class Worker:
 
 
 def _communicate(name: str, proc, payload: bytes, q: "queue.Queue") -> None:
+    """Feed the process its request, wait for it to end, post its reply."""
     try:
         out, err = proc.communicate(payload)
     except Exception as exc:
