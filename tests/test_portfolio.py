@@ -1,4 +1,5 @@
-"""Solver portfolio (navfn_smt.smt.portfolio): Z3, Bitwuzla and cvc5 on one query."""
+"""Solver portfolio (navfn_smt.smt.portfolio, with its SMT-LIB export, solver adapters and worker
+processes): Z3, Bitwuzla and cvc5 on one query."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ z3 = pytest.importorskip("z3")
 bitwuzla = pytest.importorskip("bitwuzla")
 cvc5 = pytest.importorskip("cvc5")
 
+from navfn_smt.smt import codec, smtlib, solvers, worker  # noqa: E402
 from navfn_smt.smt import portfolio as P  # noqa: E402
 from navfn_smt.smt.portfolio import PortfolioResult, SolverAnswer, decide  # noqa: E402
 
@@ -137,7 +139,7 @@ def _parse_cvc5(text: str) -> None:
     ("uf", [z3.Function("f", F32, F32)(X) == Y], "QF_UFFP", True),
 ])
 def test_to_smt2_is_parsed_by_every_solver(name, query, logic, bitwuzla_ok):
-    text = P.to_smt2(query)
+    text = smtlib.to_smt2(query)
     assert f"(set-logic {logic})" in text
     assert text.rstrip().endswith("(check-sat)")
     z3.Solver().from_string(text)
@@ -145,11 +147,11 @@ def test_to_smt2_is_parsed_by_every_solver(name, query, logic, bitwuzla_ok):
     if bitwuzla_ok:
         _parse_bitwuzla(text)
     else:
-        assert "bitwuzla" in P.prepare(query).skip
+        assert "bitwuzla" in smtlib.prepare(query).skip
     # a z3.Solver gives the same query as its assertions (the let-sharing may differ)
     s = z3.Solver()
     s.add(*query)
-    text2 = P.to_smt2(s)
+    text2 = smtlib.to_smt2(s)
     assert text2.splitlines()[:3] == text.splitlines()[:3]
     check = z3.Solver()
     check.add(z3.And(*z3.parse_smt2_string(text)) != z3.And(*z3.parse_smt2_string(text2)))
@@ -161,7 +163,7 @@ def test_nonstandard_z3_operators_are_rewritten_equivalently():
     for e in (z3.RotateLeft(b, c) == 0x81, z3.RotateRight(b, c) == 0x81,
               z3.RotateLeft(b, 3) == 0x81, z3.BVMulNoOverflow(b, c, True),
               z3.BVMulNoOverflow(b, c, False), z3.BVMulNoUnderflow(b, c)):
-        text = P.to_smt2([e])
+        text = smtlib.to_smt2([e])
         for op in ("ext_rotate", "mul_noovfl", "mul_noudfl"):
             assert op not in text
         s = z3.Solver()
@@ -191,11 +193,11 @@ def test_to_ieee_bv_keeps_z3_semantics_on_every_solver():
 
 def test_solvers_are_skipped_on_what_they_cannot_do():
     half = z3.FP("h", z3.FloatHalf())
-    assert set(P.prepare([z3.fpIsSubnormal(half)]).skip) == {"cvc5"}
+    assert set(smtlib.prepare([z3.fpIsSubnormal(half)]).skip) == {"cvc5"}
     odd = z3.FP("o", z3.FPSort(3, 5))
-    assert set(P.prepare([z3.fpIsNaN(odd)]).skip) == {"cvc5", "bitwuzla"}
-    assert set(P.prepare(Q_REAL).skip) == {"bitwuzla"}
-    assert P.prepare(Q_CANCEL).skip == {}
+    assert set(smtlib.prepare([z3.fpIsNaN(odd)]).skip) == {"cvc5", "bitwuzla"}
+    assert set(smtlib.prepare(Q_REAL).skip) == {"bitwuzla"}
+    assert smtlib.prepare(Q_CANCEL).skip == {}
 
 
 def test_queries_from_another_z3_context():
@@ -210,7 +212,7 @@ def test_queries_from_another_z3_context():
 
 def test_ambiguous_constant_names_are_rejected():
     with pytest.raises(ValueError, match="named 'x'"):
-        P.to_smt2([z3.fpIsNaN(X), z3.BitVec("x", 8) == 1])
+        smtlib.to_smt2([z3.fpIsNaN(X), z3.BitVec("x", 8) == 1])
 
 
 # --------------------------------------------------------------------------
@@ -244,7 +246,7 @@ def test_cancellation_counterexample_replays_in_numpy():
 def test_first_answer_wins_without_confirm():
     t = time.monotonic()
     res = P.solve(Q_CANCEL, timeout=20)
-    assert res.status == "sat" and res.solver in P.SOLVERS
+    assert res.status == "sat" and res.solver in solvers.SOLVERS
     assert [a.solver for a in res.answers if a.status == "sat"] == [res.solver]
     assert res.seconds <= time.monotonic() - t
     assert no_children_left()
@@ -258,7 +260,7 @@ def test_mul_by_one_is_proved():
     assert [a.status for a in res.answers] == ["unsat"] * 3
 
 
-@pytest.mark.parametrize("name", P.SOLVERS)
+@pytest.mark.parametrize("name", solvers.SOLVERS)
 def test_each_solver_alone_proves_the_unsat_query(name):
     res = P.solve(Q_MUL_ONE, timeout=20, solvers=(name,))
     assert (res.status, res.solver) == ("unsat", name)
@@ -308,15 +310,15 @@ def test_timeout_is_unknown_never_unsat():
     assert res.status == "unknown" and not res.proved
     assert {a.status for a in res.answers} <= {"timeout", "unknown"}
     assert len(res.answers) == 3
-    assert elapsed < 0.3 + P.KILL_GRACE + 2.0
+    assert elapsed < 0.3 + worker.KILL_GRACE + 2.0
     assert no_children_left()
 
 
 def test_hanging_and_crashing_solvers_do_not_block_the_caller():
-    query = P.prepare(Q_MUL_ONE)
+    query = smtlib.prepare(Q_MUL_ONE)
     t = time.monotonic()
     res = P._solve(query, ("_selftest_hang", "_selftest_crash", "z3"), 0.5, confirm=True)
-    assert time.monotonic() - t < 0.5 + P.KILL_GRACE + 2.0
+    assert time.monotonic() - t < 0.5 + worker.KILL_GRACE + 2.0
     by = {a.solver: a for a in res.answers}
     assert by["_selftest_hang"].status == "timeout"
     assert by["_selftest_crash"].status == "error" and "died" in by["_selftest_crash"].detail
@@ -331,11 +333,11 @@ def test_hanging_and_crashing_solvers_do_not_block_the_caller():
 
 
 def test_a_model_z3_rejects_never_wins():
-    query = P.prepare(Q_ABSORB)
-    assert P.check_model(query, {"x": P._fp_entry(0x3F800000, 8, 24)}) is False  # 1.0f
-    assert P.check_model(query, {"x": P._fp_entry(0x4B800000, 8, 24)}) is True  # 2^24
+    query = smtlib.prepare(Q_ABSORB)
+    assert P.check_model(query, {"x": codec.fp_entry(0x3F800000, 8, 24)}) is False  # 1.0f
+    assert P.check_model(query, {"x": codec.fp_entry(0x4B800000, 8, 24)}) is True  # 2^24
     ans = P._finish_sat(query, SolverAnswer("cvc5", "sat", 0.1,
-                                            model={"x": P._fp_entry(0x3F800000, 8, 24)}))
+                                            model={"x": codec.fp_entry(0x3F800000, 8, 24)}))
     assert ans.status == "error" and ans.model_checked is False
 
 
@@ -347,4 +349,4 @@ def test_bad_arguments():
     with pytest.raises(ValueError, match="unknown solver"):
         P.solve(Q_BV, solvers=("_selftest_hang",))
     with pytest.raises(TypeError):
-        P.to_smt2([z3.BitVec("b", 8)])
+        smtlib.to_smt2([z3.BitVec("b", 8)])

@@ -15,7 +15,7 @@ import pytest
 import z3
 
 from navfn_smt.smt.evaluate import KERNELS, FPEvalDomain, RealEvalDomain, compare_kernel, cost_input, f32_input, same, value
-from navfn_smt.smt.obligation import ExactReplayDomain
+from navfn_smt.smt.replay import ExactReplayDomain
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.numeric import CONCRETE as C
 

@@ -193,7 +193,7 @@ def cmd_prove(args) -> int:
     from .report import proofs as report
     from .report.tables import progress_bar
     from .smt.obligation import load_obligations
-    from .smt.portfolio import SOLVERS
+    from .smt.solvers import SOLVERS
     from .smt.runner import SEMANTICS, default_proof_files, run, write_smt2
 
     files = [Path(f) for f in args.files] if args.files else default_proof_files()
@@ -314,7 +314,7 @@ def build_parser() -> argparse.ArgumentParser:
     from .maps.mapserver import DEFAULT_DISTRO, DISTROS
     from .maps.suite_cli import register as register_generate
     from .search.metamorphic import TRANSFORMS
-    from .smt.portfolio import SOLVERS
+    from .smt.solvers import SOLVERS
     from .smt.runner import SEMANTICS
 
     p = Parser(

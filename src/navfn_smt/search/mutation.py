@@ -179,12 +179,13 @@ class Relevance:
     def trace(cls, proof_files) -> "Relevance":
         from ..smt.evaluate import KERNELS as EQ_KERNELS
         from ..smt.evaluate import compare_kernel
-        from ..smt.obligation import _query, load_obligations
+        from ..smt.checking import query
+        from ..smt.obligation import load_obligations
 
         obs = {}
         for ob in load_obligations(proof_files):
             for sem in ob.expect:
-                obs[(str(Path(ob.source).resolve()), ob.name, sem)] = _traced(lambda: _query(ob, sem))
+                obs[(str(Path(ob.source).resolve()), ob.name, sem)] = _traced(lambda: query(ob, sem))
         kernels = {k: _traced(lambda: compare_kernel(k, 0, 2)) for k in EQ_KERNELS}
         return cls(obs, kernels, planning_kernels())
 
@@ -320,7 +321,8 @@ def _detect_prove(obligations, timeout: float, solvers) -> tuple[bool, list]:
     """Check the obligations in order; the first verdict that changes catches the mutant.
     A timeout does not catch it (it says nothing about the mutant), but a solver model the
     concrete spec refuses does (the domain no longer matches the spec)."""
-    from navfn_smt.smt.obligation import check, load_obligations
+    from navfn_smt.smt.checking import check
+    from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import solve_query
 
     loaded = {}

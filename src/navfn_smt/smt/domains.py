@@ -32,33 +32,15 @@ from __future__ import annotations
 
 import itertools
 import operator
-import struct
-
 import z3
 
 from ..spec.constants import INT_MIN
+from .codec import fp32_val, fp64_val
 
 F32 = z3.FPSort(8, 24)
 F64 = z3.FPSort(11, 53)
 BV32 = z3.BitVecSort(32)
 RNE = z3.RNE()
-
-
-def _bits32(x: float) -> int:
-    return struct.unpack("<I", struct.pack("<f", x))[0]
-
-
-def _bits64(x: float) -> int:
-    return struct.unpack("<Q", struct.pack("<d", x))[0]
-
-
-def fp32_val(x: float) -> z3.FPRef:
-    """The Float32 value with exactly the bits of float32 ``x`` (NaN, -0.0 included)."""
-    return z3.fpBVToFP(z3.BitVecVal(_bits32(x), 32), F32)
-
-
-def fp64_val(x: float) -> z3.FPRef:
-    return z3.fpBVToFP(z3.BitVecVal(_bits64(x), 64), F64)
 
 
 def _max_value(sort) -> float:

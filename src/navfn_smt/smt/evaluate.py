@@ -10,12 +10,12 @@ real libm returns.  :func:`value` folds a term to a Python value.
 from __future__ import annotations
 
 import math
-import struct
 
 import z3
 
 from ..spec.numeric import c_hypot, c_hypotf
-from .domains import F32, F64, FPDomain, RealDomain, fp32_val, fp64_val
+from .codec import f32_from_bits, f64_from_bits, f64_to_bits, fp32_val, fp64_val
+from .domains import F32, F64, FPDomain, RealDomain
 
 
 def value(t):
@@ -31,9 +31,9 @@ def value(t):
             return math.nan  # SMT-LIB has one NaN, without a bit pattern
         b = z3.simplify(z3.fpToIEEEBV(t)).as_long()
         if t.sort() == F32:
-            return struct.unpack("<f", struct.pack("<I", b))[0]
+            return f32_from_bits(b)
         if t.sort() == F64:
-            return struct.unpack("<d", struct.pack("<Q", b))[0]
+            return f64_from_bits(b)
     if z3.is_bv_value(t):
         return t.as_signed_long()
     if z3.is_true(t):
@@ -94,7 +94,7 @@ def same(a, b) -> bool:
     if isinstance(a, float) and isinstance(b, float):
         if math.isnan(a) and math.isnan(b):
             return True  # NaN payloads are not observable in NavFn
-        return struct.pack("<d", a) == struct.pack("<d", b)
+        return f64_to_bits(a) == f64_to_bits(b)
     return a == b
 
 
@@ -110,7 +110,7 @@ def f32s(rng, n, potentials=False):
             out.append(float(np.float32(rng.uniform(-2, 2))))
         else:
             b = int(rng.integers(0, 2**32))
-            out.append(struct.unpack("<f", struct.pack("<I", b))[0])
+            out.append(f32_from_bits(b))
     return out
 
 

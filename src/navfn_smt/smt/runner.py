@@ -13,7 +13,9 @@ from pathlib import Path
 from typing import Callable, Optional
 
 from ..errors import NavfnInputError
-from .obligation import Outcome, check, load_obligations, solve_z3
+from . import codec
+from .checking import Outcome, check, solve_z3
+from .obligation import load_obligations
 
 SEMANTICS = ("real", "fp32")
 
@@ -31,7 +33,7 @@ def solve_query(solvers: tuple):
             raise RuntimeError("solvers disagree: " + "; ".join(f"{a.solver}={a.status}" for a in res.answers))
         if res.status == "sat":
             win = next(a for a in res.answers if a.solver == res.solver)
-            values = _portfolio_values(win.model or {}, variables)
+            values = codec.replay_values(win.model or {}, variables)
             if values is None:  # the winner gave no usable model: ask z3 for one
                 return solve_z3(assertions, variables, timeout)
             return "sat", values, res.solver, ""
@@ -40,35 +42,6 @@ def solve_query(solvers: tuple):
         return "unknown", None, ",".join(solvers), "; ".join(f"{a.solver}: {a.status}" for a in res.answers)
 
     return solve
-
-
-def _portfolio_values(model: dict, variables: dict) -> Optional[dict]:
-    """The obligation's variables from a portfolio model ({name: {sort, bits, value}})."""
-    import struct
-    from fractions import Fraction
-
-    out = {}
-    for name, v in variables.items():
-        m = model.get(name)
-        if m is None:
-            return None
-        if isinstance(m, dict) and "bits" in m:
-            sort = str(m.get("sort", ""))
-            if "64" in sort:
-                out[name] = struct.unpack("<d", struct.pack("<Q", int(m["bits"])))[0]
-            else:
-                out[name] = struct.unpack("<f", struct.pack("<I", int(m["bits"])))[0]
-        elif isinstance(m, dict) and "value" in m:
-            out[name] = m["value"]
-        elif isinstance(m, (bool, int, Fraction)):
-            out[name] = m
-        else:
-            return None
-        if isinstance(out[name], int) and not isinstance(out[name], bool):
-            size = getattr(v.sort(), "size", lambda: None)()
-            if size == 32 and out[name] >= 2**31:
-                out[name] -= 2**32
-    return out
 
 
 def _job(path: str, name: str, semantics: str, timeout: float, solvers: tuple, bounds: bool = True) -> Outcome:
@@ -127,7 +100,7 @@ def write_smt2(paths, semantics, out_dir: Path) -> list[Path]:
     import z3
 
     from ..fileio import atomic_write_text
-    from .obligation import _query
+    from .checking import query
 
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -138,7 +111,7 @@ def write_smt2(paths, semantics, out_dir: Path) -> list[Path]:
         for sem in semantics:
             if sem not in ob.expect:
                 continue
-            _, assertions = _query(ob, sem)
+            _, assertions = query(ob, sem)
             s = z3.Solver()
             s.add(*assertions)
             p = out_dir / f"{ob.name}.{sem}.smt2"

@@ -1,0 +1,211 @@
+"""Checking proof obligations: each one's query in a semantics, solved, and its model replayed.
+
+An obligation *holds* in a semantics when ``assumptions(D) and pre and not claim`` is
+unsatisfiable in that domain (``proved``).  A model is a counterexample (``refuted``) only
+once the concrete spec confirms it (:func:`navfn_smt.smt.replay.replay`); a model the spec
+does not confirm, a solver that gives up or runs out of time gives ``unknown``, never
+``proved``.  For a property that fails in float32 only for large values,
+:func:`search_bound` finds the largest bound below which it still holds.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Optional
+
+import z3
+
+from ..errors import NavfnInputError
+from . import codec
+from .codec import f32_from_bits, f32_to_bits, fp32_val
+from .domains import DOMAINS
+from .obligation import Obligation
+from .replay import replay
+
+
+@dataclass
+class Outcome:
+    """The verdict on one obligation in one semantics, with what the report shows of it."""
+
+    name: str
+    predicate: str
+    semantics: str
+    status: str  # proved | refuted | unknown
+    expected: str
+    seconds: float
+    solver: str
+    scope: str
+    statement: str
+    assumptions: list = field(default_factory=list)
+    bound: Optional[dict] = None
+    witness: Optional[dict] = None  # values and replay verdict (refuted only)
+    detail: str = ""
+
+    @property
+    def as_expected(self) -> bool:
+        return self.status == self.expected
+
+
+def query(ob: Obligation, semantics: str, extra=None):
+    """The obligation's domain and the assertions whose unsatisfiability proves it:
+    the domain's assumptions, the precondition (and ``extra(D)``) and the negated claim."""
+    D = DOMAINS[semantics](hypotf_model=ob.hypotf_model) if semantics == "fp32" else DOMAINS[semantics]()
+    pre, claim = ob.build(D)
+    if extra is not None:
+        pre = z3.And(pre, extra(D))
+    return D, [*D.assumptions, pre, z3.Not(claim)]
+
+
+def solve_z3(assertions, variables: dict, timeout: float):
+    """Z3 alone: ``(answer, values, solver, detail)`` with answer sat/unsat/unknown."""
+    s = z3.Solver()
+    s.set(timeout=max(1, int(timeout * 1000)))
+    s.add(*assertions)
+    r = s.check()
+    if r == z3.unsat:
+        return "unsat", None, "z3", ""
+    if r == z3.sat:
+        values = codec.replay_values(codec.z3_model(s.model(), variables.values()), variables)
+        if values is None:
+            return "unknown", None, "z3", "the model gives a variable no number"
+        return "sat", values, "z3", ""
+    return "unknown", None, "z3", s.reason_unknown()
+
+
+def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3, bounds: bool = True) -> Outcome:
+    """Check one obligation in one semantics."""
+    if ob.timeout is not None:
+        timeout = min(timeout, ob.timeout)
+    t0 = time.perf_counter()
+    D, assertions = query(ob, semantics)
+    answer, values, solver, detail = solve(assertions, D.variables, timeout)
+    out = Outcome(ob.name, ob.predicate, semantics, "unknown", ob.expect.get(semantics, "proved"),
+                  0.0, solver, ob.scope, ob.doc.strip(), sorted(D.assumption_notes), detail=detail)
+    if answer == "unsat":
+        out.status = "proved"
+    elif answer == "sat":
+        _judge_model(out, ob, values)
+    if bounds and ob.bound is not None and semantics == "fp32" and out.status == "refuted":
+        out.bound = search_bound(ob, timeout, solve)
+    out.seconds = round(time.perf_counter() - t0, 3)
+    return out
+
+
+def _judge_model(out: Outcome, ob: Obligation, values: dict) -> None:
+    """A solver's model, replayed on the concrete spec: ``refuted`` with its witness when
+    the spec confirms it, else ``unknown``."""
+    confirmed = replay(ob, values)
+    out.witness = {"values": codec.witness_values(values), "replayed_on_spec": confirmed,
+                   "replayed_in": "rationals (real semantics)" if out.semantics == "real" else "float32 spec"}
+    if confirmed is False:
+        # the model satisfies the library-function model but not the real libm: it is not
+        # a counterexample of the compiled planner; the question stays open
+        out.status = "unknown"
+        out.detail = "solver model not confirmed by the concrete spec (libm differs from its model)"
+    else:
+        out.status = "refuted"
+
+
+def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
+    """The largest float32 X in [lo, hi] with ``var < X`` added to the precondition such
+    that the obligation is proved, by bisection over positive float32 bit patterns (the
+    property is monotone in X: a smaller X only strengthens the precondition)."""
+    b = ob.bound
+    lo, hi = f32_to_bits(b.lo), f32_to_bits(b.hi)  # invariant: proved at lo, refuted at hi
+
+    witness_at: dict = {}
+
+    def proved_below(bits_x: int) -> Optional[bool]:
+        x = f32_from_bits(bits_x)
+        extra = lambda D: z3.fpLT(D.variables[b.var], fp32_val(x))  # noqa: E731
+        D, assertions = query(ob, "fp32", extra)
+        ans, values, _, _ = solve(assertions, D.variables, timeout)
+        if ans == "unsat":
+            return True
+        if ans == "sat":
+            if not replay(ob, values, lambda C: values[b.var] < x):
+                return None
+            witness_at[bits_x] = values[b.var]
+            return False
+        return None
+
+    cache = _BoundCache(ob)
+    known = cache.get()
+    if known is not None:
+        kb = f32_to_bits(known)
+        if proved_below(kb) is True and proved_below(kb + 1) is False:
+            return {"var": b.var, "holds_below": known, "refuted_below": f32_from_bits(kb + 1), "solver_calls": 2,
+                    "note": "bound from an earlier search, verified tight (proved below it, refuted one ulp above)"}
+    first = proved_below(lo)
+    if first is not True:
+        return {"var": b.var, "holds_below": None, "note": f"not proved even for {b.var} < {b.lo}"}
+    if proved_below(hi) is not False:
+        return {"var": b.var, "holds_below": None, "note": f"no confirmed counterexample below {b.hi}"}
+    calls = 2
+    hi = min(hi, f32_to_bits(witness_at[hi]) + 1)  # refuted already below the counterexample's value + 1 ulp
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        r = proved_below(mid)
+        calls += 1
+        if r is None:
+            return {"var": b.var, "holds_below": f32_from_bits(lo), "note": "search stopped on an unknown answer",
+                    "solver_calls": calls}
+        if r:
+            lo = mid
+        else:  # a confirmed counterexample with var = w < mid: refuted below w + 1 ulp as well
+            hi = min(mid, f32_to_bits(witness_at[mid]) + 1)
+    out = {"var": b.var, "holds_below": f32_from_bits(lo), "refuted_below": f32_from_bits(hi),
+           "solver_calls": calls}
+    not_cached = cache.put(f32_from_bits(lo))
+    if not_cached:
+        out["cache"] = not_cached
+    return out
+
+
+class _BoundCache:
+    """Bounds found by search, kept beside the proof file (``.bounds.json``) and keyed by a
+    hash of the proof file, the kernels and the domains: a later run only re-verifies that
+    the bound is tight (two solver calls) instead of searching again."""
+
+    def __init__(self, ob: Obligation):
+        import hashlib
+
+        self.ob = ob
+        src = Path(ob.source) if ob.source else None
+        self.path = src.parent / ".bounds.json" if src else None
+        h = hashlib.sha256()
+        here = Path(__file__).resolve().parent
+        for f in (src, here.parent / "spec" / "kernels.py", here / "domains.py"):
+            if f is not None and f.exists():
+                h.update(f.read_bytes())
+        self.key = f"{ob.name}:{h.hexdigest()[:16]}"
+
+    def _load(self) -> dict:
+        import json
+
+        try:
+            return json.loads(self.path.read_text()) if self.path and self.path.exists() else {}
+        except (OSError, ValueError):
+            return {}
+
+    def get(self) -> Optional[float]:
+        return self._load().get(self.key)
+
+    def put(self, value: float) -> Optional[str]:
+        """Keep ``value``; when the file cannot be written (a read-only install), say why
+        instead: the bound found stands, the next run searches again."""
+        import json
+
+        from ..fileio import atomic_write_text
+
+        if self.path is None:
+            return "not cached (the obligation has no proof file)"
+        doc = {k: v for k, v in self._load().items() if not k.startswith(self.ob.name + ":")}
+        doc[self.key] = value
+        try:
+            atomic_write_text(self.path, json.dumps(doc, indent=1, sort_keys=True) + "\n")
+        except (NavfnInputError, OSError) as e:
+            return f"not cached ({e}); the next run searches again"
+        return None
