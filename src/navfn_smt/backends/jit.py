@@ -32,18 +32,7 @@ EXIT_UB = len(EXITS)
 
 
 @jit
-def _cost_tables():
-    """Per cost byte: ``(float)cost`` and the A*/Dijkstra edge weight (kernels, once each)."""
-    hf = np.empty(256, np.float32)
-    edge = np.empty(256, np.float32)
-    for c in range(256):
-        hf[c] = ND.int_to_f32(c)
-        edge[c] = K.edge_weight(ND, hf[c])
-    return hf, edge
-
-
-@jit
-def _propagate(costs, hf, edge, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, trace, counters):
+def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, trace, counters):
     """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
 
     ``pb`` is a (3, BUF) int array for the three buffers; ``trace`` receives the white-box
@@ -106,7 +95,7 @@ def _propagate(costs, hf, edge, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pend
             r = pot[n + 1]
             u = pot[n - nx]
             d = pot[n + nx]
-            new, changed = K.cell_update(ND, pot[n], l, r, u, d, cost, hf[cost])
+            new, changed = K.cell_update(ND, pot[n], l, r, u, d, cost, ND.int_to_f32(cost))
             if not changed:
                 continue
             pot[n] = new
@@ -127,7 +116,7 @@ def _propagate(costs, hf, edge, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pend
                 else:
                     m = n + nx
                     pm = d
-                if K.push_wanted(ND, pm, key, edge[costs[m]]):
+                if K.push_wanted(ND, pm, key, K.edge_weight(ND, ND.int_to_f32(costs[m]))):
                     if m >= 0 and m < ns and not pending[m] and costs[m] < COST_OBS:
                         if fill[dest] < BUF:
                             pb[dest, fill[dest]] = m
@@ -228,7 +217,6 @@ class JitPlanner:
         c = np.ascontiguousarray(costs_with_border, dtype=np.uint8)
         self.ny, self.nx = c.shape
         self.costs = c.ravel()
-        self.hf, self.edge = _cost_tables()
         ns = self.nx * self.ny
         self.pot = np.empty(ns, np.float32)
         self.pending = np.zeros(ns, np.bool_)
@@ -247,7 +235,7 @@ class JitPlanner:
         gx, gy = goal
         while True:
             reached = _propagate(
-                self.costs, self.hf, self.edge, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
+                self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
                 self.pot, self.pending, self.pb, self.trace if record_trace else self.no_trace, self.counters,
             )
             if not record_trace or self.counters[3] <= self.trace.shape[0]:
@@ -262,7 +250,7 @@ class JitPlanner:
 
 
 @jit
-def _run_cases(costs, hf, edge, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, gradx, grady,
+def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, gradx, grady,
                reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     """Plan every case of one map in one call (no trace); results go to the output arrays.
 
@@ -276,7 +264,7 @@ def _run_cases(costs, hf, edge, nx, ny, cases, astar, cycles, path_cycles, pot, 
     path_off[0] = 0
     for i in range(cases.shape[0]):
         sx, sy, gx, gy = cases[i, 0], cases[i, 1], cases[i, 2], cases[i, 3]
-        reached[i] = _propagate(costs, hf, edge, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, no_trace, counters)
+        reached[i] = _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, no_trace, counters)
         start_pot[i] = pot[sy * nx + sx]
         ncycles[i] = counters[0]
         nupdates[i] = counters[1]
@@ -305,7 +293,7 @@ def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int
         "path_offsets": np.zeros(n + 1, np.int64),
         "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
     }
-    _run_cases(planner.costs, planner.hf, planner.edge, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
+    _run_cases(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
                planner.pending, planner.pb, planner.gradx, planner.grady, out["start_reached"],
                out["start_potential"], out["cycles"], out["updates"], out["dropped"], out["exit"],
                out["path_offsets"], out["path"])

@@ -646,6 +646,7 @@ def plan_world(
     """
     from ..backends import get_backend
     from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
+    from ..spec.planner import path_cycle_limit
 
     m = load_map_yaml(yaml_path, allow_outside, distro=distro)
     points = []
@@ -677,9 +678,9 @@ def plan_world(
     costs = set_costmap(ros, is_ros=True, allow_unknown=True)
     try:
         result = get_backend(backend).prepare(costs).run(g, s, astar, trace=False)
-        n_steps = 4 * max(m.width, m.height)
-        if result.exit == ExtractionExit.EXHAUSTED and n_steps > 4 * m.width:
-            # the backends give calcPath 4 * nx steps; Nav2 gives 4 * max(nx, ny).  calcPath is
+        n_steps = 4 * max(m.width, m.height)  # NavfnPlanner's getPlanFromPotential budget
+        if result.exit == ExtractionExit.EXHAUSTED and n_steps > path_cycle_limit(m.width):
+            # the backends give calcPath NavFn's own 4 * nx steps; Nav2 gives 4 * max(nx, ny).  calcPath is
             # deterministic on the potential, so a longer run continues the same path.
             ext = calc_path([float(v) for v in np.asarray(result.potential).ravel()],
                             m.width, m.height, g, s, n_steps)
