@@ -19,6 +19,9 @@ from ..spec.extraction import ExtractionExit
 from .numba_domain import ND, jit
 
 BUF = PRIORITYBUFSIZE
+# maps up to this many cells keep the A* heuristic of every (dx, dy) offset once computed
+# (a float per offset: 4 * (2nx-1)(2ny-1) bytes, 16 MiB at the limit); larger maps call it
+HEURISTIC_MEMO_CELLS = 1 << 20
 
 # exit codes of _calc_path: the index of the ExtractionExit, and one more for the reads
 # outside the potential array that the spec refuses as undefined behaviour
@@ -32,7 +35,7 @@ EXIT_UB = len(EXITS)
 
 
 @jit
-def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, trace, counters):
+def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, trace, counters, memo):
     """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
 
     ``pb`` is a (3, BUF) int array for the three buffers; ``trace`` receives the white-box
@@ -101,7 +104,20 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
             pot[n] = new
             key = new
             if astar:
-                key = ND.add(new, K.astar_heuristic(ND, n % nx - sx, n // nx - sy))
+                # the heuristic of this offset, remembered (NaN: not yet computed) when the map
+                # keeps a memo; written out here: a helper taking the array would pay
+                # reference-count updates on every call
+                ddx = n % nx - sx
+                ddy = n // nx - sy
+                if memo.shape[0] == 0:
+                    h = K.astar_heuristic(ND, ddx, ddy)
+                else:
+                    mi = (ddy + ny - 1) * (2 * nx - 1) + ddx + nx - 1
+                    h = memo[mi]
+                    if h != h:
+                        h = K.astar_heuristic(ND, ddx, ddy)
+                        memo[mi] = h
+                key = ND.add(new, h)
             dest = nxt if K.to_low_buffer(ND, key, cur_t) else over
             for j in range(4):
                 if j == 0:
@@ -226,6 +242,8 @@ class JitPlanner:
         self.trace = np.empty(max(4 * ns, 1 << 12), np.int32)
         self.no_trace = np.empty(0, np.int32)
         self.counters = np.zeros(4, np.int64)
+        memo = (2 * self.nx - 1) * (2 * self.ny - 1) if ns <= HEURISTIC_MEMO_CELLS else 0
+        self.memo = np.full(memo, np.nan, np.float32)
         self.path = np.empty((4 * self.nx + 1, 2), np.float32)
 
     def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True):
@@ -237,6 +255,7 @@ class JitPlanner:
             reached = _propagate(
                 self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
                 self.pot, self.pending, self.pb, self.trace if record_trace else self.no_trace, self.counters,
+                self.memo,
             )
             if not record_trace or self.counters[3] <= self.trace.shape[0]:
                 break
@@ -250,7 +269,7 @@ class JitPlanner:
 
 
 @jit
-def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, gradx, grady,
+def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, memo, gradx, grady,
                reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     """Plan every case of one map in one call (no trace); results go to the output arrays.
 
@@ -264,7 +283,7 @@ def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, p
     path_off[0] = 0
     for i in range(cases.shape[0]):
         sx, sy, gx, gy = cases[i, 0], cases[i, 1], cases[i, 2], cases[i, 3]
-        reached[i] = _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, no_trace, counters)
+        reached[i] = _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, no_trace, counters, memo)
         start_pot[i] = pot[sy * nx + sx]
         ncycles[i] = counters[0]
         nupdates[i] = counters[1]
@@ -294,7 +313,7 @@ def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int
         "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
     }
     _run_cases(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
-               planner.pending, planner.pb, planner.gradx, planner.grady, out["start_reached"],
+               planner.pending, planner.pb, planner.memo, planner.gradx, planner.grady, out["start_reached"],
                out["start_potential"], out["cycles"], out["updates"], out["dropped"], out["exit"],
                out["path_offsets"], out["path"])
     out["path"] = out["path"][: out["path_offsets"][-1]]
