@@ -58,6 +58,23 @@ def _cache_root() -> Path:
 
 
 CACHE_DIR = _cache_root()
+KEEP_CACHES = 6  # compiled caches of other source versions kept beside the current one
+
+
+def _prune_old_caches() -> None:
+    """Remove the compiled caches of all but the most recently used source versions."""
+    import shutil
+
+    try:
+        others = sorted((p for p in CACHE_DIR.parent.glob("jit-*") if p != CACHE_DIR),
+                        key=lambda p: p.stat().st_mtime, reverse=True)
+        for p in others[KEEP_CACHES:]:
+            shutil.rmtree(p, ignore_errors=True)
+    except OSError:
+        pass  # a cache that cannot be tidied is still a cache
+
+
+_prune_old_caches()
 
 
 @contextlib.contextmanager
