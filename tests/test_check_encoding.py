@@ -1,0 +1,99 @@
+"""The symbolic whole-propagation encoding equals the concrete spec, bit for bit.
+
+``check.encoding.propagate`` builds NavFn's complete propagation (setup, the three buffers,
+pending flags, threshold, cycle limit, the stop at the start) as terms of the fp32 domain.
+Fixing the map and folding the terms must give every potential, ``start_reached`` and the
+cycle count exactly as the reference spec computes them; with symbolic cost bytes, a solver
+must find no assignment of the map's costs under which a potential differs.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import z3
+
+from navfn_smt.check.encoding import _interior, propagate
+from navfn_smt.smt.domains import FPDomain
+from navfn_smt.smt.evaluate import value
+from navfn_smt.spec.costs import add_border
+from navfn_smt.spec.planner import plan
+
+
+def _bits(v) -> bytes:
+    return np.float32(v).tobytes()
+
+
+def _case(seed: int):
+    """Seeds below 16: mixed costs; from 16 on: dear cells (200, 253) whose potentials pass the
+    priority threshold, so the overflow buffer and the threshold increment take part."""
+    rng = np.random.default_rng(seed)
+    nx, ny = int(rng.integers(3, 6)), int(rng.integers(3, 5))
+    palette = [50, 51, 80, 120, 200, 253, 254, 255] if seed < 16 else [200, 253, 253, 253, 254]
+    arr = add_border(rng.choice(palette, size=(ny, nx)).astype(np.uint8))
+    inner = _interior(nx, ny)
+    start = (int(rng.choice(inner)) % nx, int(rng.choice(inner)) // nx)
+    goal = (int(rng.choice(inner)) % nx, int(rng.choice(inner)) // nx)
+    return arr, start, goal, bool(rng.integers(2))
+
+
+@pytest.mark.parametrize("seed", range(28))
+def test_encoding_folds_to_the_spec(seed):
+    arr, start, goal, astar = _case(seed)
+    ny, nx = arr.shape
+    sp = propagate(FPDomain(), {k: int(arr.ravel()[k]) for k in _interior(nx, ny)}, nx, ny, start, goal, astar)
+    ref = plan(arr, start, goal, astar=astar, record_trace=True)
+    got = [value(z3.simplify(p)) if z3.is_expr(p) else p for p in sp.potential]
+    assert [_bits(v) for v in got] == [_bits(v) for v in ref.potential.ravel()]
+    assert value(z3.simplify(sp.start_reached)) == ref.start_reached
+    cycles = value(z3.simplify(sp.cycles)) if z3.is_expr(sp.cycles) else sp.cycles
+    assert cycles == ref.cycles
+    assert _trace(sp) == ref.trace.tolist()
+
+
+def _fold(t):
+    return value(z3.simplify(t)) if z3.is_expr(t) else t
+
+
+def _trace(sp) -> list:
+    """The white-box trace the terms describe: per processed cycle, the count and the cells."""
+    out = []
+    for running, fill, slots in sp.trace:
+        if _fold(running):
+            n = _fold(fill)
+            out += [n] + [_fold(s) for s in slots[:n]]
+    return out
+
+
+@pytest.mark.parametrize("seed", [5, 6])
+def test_encoding_on_a_5x5_map(seed):
+    """A 3x3 interior: longer traces, several pushes per update, both buffers in use."""
+    rng = np.random.default_rng(seed)
+    arr = add_border(rng.choice([50, 51, 120, 200, 253], size=(5, 5)).astype(np.uint8))
+    arr[1, 1] = arr[2, 2] = 60
+    sp = propagate(FPDomain(), {k: int(arr.ravel()[k]) for k in _interior(5, 5)}, 5, 5, (1, 1), (2, 2), bool(seed % 2))
+    ref = plan(arr, (1, 1), (2, 2), astar=bool(seed % 2), record_trace=True)
+    assert _trace(sp) == ref.trace.tolist()
+    got = [value(z3.simplify(p)) if z3.is_expr(p) else p for p in sp.potential]
+    assert [_bits(v) for v in got] == [_bits(v) for v in ref.potential.ravel()]
+
+
+def test_symbolic_costs_admit_no_other_potential():
+    """Costs as symbolic bytes, fixed by constraints: no model gives a potential other than the spec's."""
+    arr = add_border(np.full((4, 4), 60, np.uint8))
+    arr[1, 2], arr[2, 1] = 90, 254
+    ny, nx = arr.shape
+    inner = _interior(nx, ny)
+    D = FPDomain()
+    costs = {k: D.cost(f"c{k}") for k in inner}
+    sp = propagate(D, costs, nx, ny, (1, 1), (2, 2), True)
+    ref = plan(arr, (1, 1), (2, 2), astar=True, record_trace=False).potential.ravel()
+    s = z3.Solver()
+    s.add(*[costs[k] == int(arr.ravel()[k]) for k in inner])
+    s.add(z3.Or(*[z3.Not(z3.fpEQ(sp.potential[k], D.f32const(float(ref[k])))) for k in inner]))
+    assert s.check() == z3.unsat
+
+
+def test_the_comparison_can_fail():
+    """A potential one ulp off is told apart."""
+    assert _bits(np.nextafter(np.float32(50.0), np.float32(100))) != _bits(np.float32(50.0))
