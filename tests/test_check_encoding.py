@@ -78,6 +78,25 @@ def test_encoding_on_a_5x5_map(seed):
     assert [_bits(v) for v in got] == [_bits(v) for v in ref.potential.ravel()]
 
 
+# 5x5 maps on which sending every push to the next buffer changes the spec's trace, so the
+# choice between the next and the overflow buffer is exercised (found by search over seeds)
+SPLIT_MAPS = [
+    ([[200, 120, 120], [200, 120, 200], [200, 200, 120]], (1, 1), (3, 3), True),
+    ([[50, 120, 200], [50, 120, 253], [253, 50, 200]], (1, 3), (3, 1), False),
+]
+
+
+@pytest.mark.parametrize("inner, start, goal, astar", SPLIT_MAPS)
+def test_encoding_where_pushes_split_between_buffers(inner, start, goal, astar):
+    arr = np.full((5, 5), 254, np.uint8)
+    arr[1:4, 1:4] = inner
+    sp = propagate(FPDomain(), {k: int(arr.ravel()[k]) for k in _interior(5, 5)}, 5, 5, start, goal, astar)
+    ref = plan(arr, start, goal, astar=astar, record_trace=True)
+    assert _trace(sp) == ref.trace.tolist()
+    got = [value(z3.simplify(p)) if z3.is_expr(p) else p for p in sp.potential]
+    assert [_bits(v) for v in got] == [_bits(v) for v in ref.potential.ravel()]
+
+
 def test_symbolic_costs_admit_no_other_potential():
     """Costs as symbolic bytes, fixed by constraints: no model gives a potential other than the spec's."""
     arr = add_border(np.full((4, 4), 60, np.uint8))
