@@ -16,6 +16,7 @@ import numpy as np
 from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from ..spec.extraction import ExtractionExit
+from ..spec.planner import path_cycle_limit
 from .numba_domain import ND, jit
 
 BUF = PRIORITYBUFSIZE
@@ -244,7 +245,7 @@ class JitPlanner:
         self.counters = np.zeros(4, np.int64)
         memo = (2 * self.nx - 1) * (2 * self.ny - 1) if ns <= HEURISTIC_MEMO_CELLS else 0
         self.memo = np.full(memo, np.nan, np.float32)
-        self.path = np.empty((4 * self.nx + 1, 2), np.float32)
+        self.path = np.empty((path_cycle_limit(self.nx) + 1, 2), np.float32)
 
     def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True):
         """Plan one case; with ``record_trace`` False no trace is kept (memory stays linear

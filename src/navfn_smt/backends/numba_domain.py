@@ -3,8 +3,8 @@
 The fast backend does not restate the planner's arithmetic.  It calls the very functions
 the reference spec and the SMT obligations call, with ``D`` bound to :data:`ND`, an
 instance of :class:`NumbaDomain`: a value numba types as a zero-size constant whose
-methods (``ND.add``, ``ND.widen``, ``ND.ite``, ...) are compiled, inline, from the
-implementations below.  Every C++ ``float`` is a ``np.float32``, every ``double`` a
+methods (``ND.add``, ``ND.widen``, ``ND.ite``, ...) are compiled from the implementations
+below (small functions LLVM inlines into their callers).  Every C++ ``float`` is a ``np.float32``, every ``double`` a
 ``np.float64``, every ``int`` a machine integer.
 
 Float operations coerce their operands to float32 first, so an operand that arrives as a
@@ -58,11 +58,11 @@ def _cache_root() -> Path:
 
 
 CACHE_DIR = _cache_root()
-KEEP_CACHES = 6  # compiled caches of other source versions kept beside the current one
+KEEP_CACHES = 6  # compiled caches of other source versions kept beside the current one (newest first)
 
 
 def _prune_old_caches() -> None:
-    """Remove the compiled caches of all but the most recently used source versions."""
+    """Remove the compiled caches of all but the most recently created source versions."""
     import shutil
 
     try:

@@ -72,12 +72,6 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
     hf = {k: D.cost_as_f32(costs[k]) for k in inner}
     high = D.f32const(POT_HIGH)
 
-    def cost_of(m):
-        return cost_int[m] if m in cost_int else COST_OBS
-
-    def edge(m):
-        return K.edge_weight(D, hf[m]) if m in hf else K.edge_weight(D, D.int_to_f32(COST_OBS))
-
     def heuristic(ddx, ddy):
         return D.f32const(K.astar_heuristic(CONCRETE, ddx, ddy))
 
@@ -121,7 +115,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
                 for m, pm in ((n - 1, l), (n + 1, r), (n - nx, u), (n + nx, d)):
                     if m not in cost_int:
                         continue  # the border: lethal, never pushed
-                    g = D.and_(D.and_(upd, K.push_wanted(D, pm, key, edge(m))),
+                    g = D.and_(D.and_(upd, K.push_wanted(D, pm, key, K.edge_weight(D, hf[m]))),
                                D.and_(D.not_(pending[m]), D.lt(cost_int[m], COST_OBS)))
                     new_nxt = _push(D, new_nxt, D.and_(g, low), m)
                     new_over = _push(D, new_over, D.and_(g, D.not_(low)), m)

@@ -8,9 +8,8 @@ import sys
 from rich.table import Table
 
 from ..fileio import atomic_write_text
+from ..search.mutation import BACKENDS
 from .tables import console
-
-BACKENDS = ("reference", "jit")
 
 
 def progress_line(done: list, total: int):
@@ -31,7 +30,7 @@ def progress_line(done: list, total: int):
 
 def table(results) -> None:
     t = Table(title="mutation check: seeded bugs and what caught them")
-    for c in ("mutant", "seeded bug", "caught by", "reference", "jit", "not run (cannot catch)", "seconds"):
+    for c in ("mutant", "seeded bug", "caught by", *BACKENDS, "not run (cannot catch)", "seconds"):
         t.add_column(c, overflow="fold")
     for r in results:
         t.add_row(r.name, r.what, ", ".join(r.caught_by) or "[red]survived[/]",
@@ -46,8 +45,9 @@ def table(results) -> None:
 def score_line(results, seconds: float) -> None:
     """Print how many seeded bugs were caught, in all and per backend."""
     per = scores(results)
+    each = ", ".join(f"{b} {per[b]}" for b in BACKENDS)
     print(f"mutation score: {sum(r.caught for r in results)} of {len(results)} seeded bugs caught "
-          f"(reference {per['reference']}, jit {per['jit']}) in {seconds:.0f} s")
+          f"({each}) in {seconds:.0f} s")
 
 
 def scores(results) -> dict:

@@ -35,6 +35,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Optional
 
+from ..backends import BACKENDS as ALL_BACKENDS
+
 PACKAGE = Path(__file__).resolve().parents[1]
 KERNELS = "spec/kernels.py"
 DOMAINS = "smt/domains.py"
@@ -86,9 +88,10 @@ MUTANTS = (
 )
 
 
-DETECTORS = ("equality", "difftest-reference", "difftest-jit", "prove")
-BACKEND_DETECTORS = {"reference": ("prove", "equality", "difftest-reference"),
-                     "jit": ("prove", "equality", "difftest-jit")}
+# every backend, the reference first; each has a difftest detector of its own
+BACKENDS = ("reference", *(b for b in ALL_BACKENDS if b != "reference"))
+DETECTORS = ("equality", *(f"difftest-{b}" for b in BACKENDS), "prove")
+BACKEND_DETECTORS = {b: ("prove", "equality", f"difftest-{b}") for b in BACKENDS}
 PLANNING_SOURCES = ("spec/propagation.py", "spec/extraction.py", "backends/jit.py")
 
 
@@ -203,7 +206,7 @@ class Relevance:
                 work[det] = todo
             else:
                 skipped[det] = f"no {'obligation' if det == 'prove' else 'kernel comparison'} runs {fn}"
-        for backend in ("reference", "jit"):
+        for backend in BACKENDS:
             if planning:
                 work[f"difftest-{backend}"] = backend
             else:
