@@ -18,6 +18,7 @@ from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from navfn_smt.backends import BACKENDS, get_backend
+from navfn_smt.errors import NavfnInputError
 from navfn_smt.spec.extraction import ExtractionExit, UndefinedBehaviour
 
 OTHERS = [b for b in BACKENDS if b != "reference"]
@@ -55,9 +56,9 @@ def planning_cases(draw):
     return costs, start, goal, draw(st.booleans())
 
 
-def _plan(backend: str, costs, start, goal, astar):
+def _plan(backend: str, costs, start, goal, astar, capacity=None):
     try:
-        return get_backend(backend).prepare(costs).run(start, goal, astar, trace=True)
+        return get_backend(backend).prepare(costs, capacity).run(start, goal, astar, trace=True)
     except UndefinedBehaviour:
         return "undefined"
 
@@ -91,6 +92,36 @@ def test_backend_agrees_with_reference(backend, case):
 
 
 @pytest.mark.parametrize("backend", OTHERS)
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case=planning_cases(), capacity=st.integers(0, 8))
+@example(case=(np.full((9, 9), 50, np.uint8), (2, 2), (6, 6), False), capacity=3)
+@example(case=(np.full((9, 9), 50, np.uint8), (2, 2), (6, 6), True), capacity=1)
+def test_backend_agrees_with_reference_at_small_capacity(backend, case, capacity):
+    """Buffers of 0..8 cells: pushes drop on every map, and the backend drops the same ones."""
+    costs, start, goal, astar = case
+    ref = _plan("reference", costs, start, goal, astar, capacity)
+    assert_same(_plan(backend, costs, start, goal, astar, capacity), ref, backend)
+
+
+def test_small_capacity_drops_and_default_does_not():
+    """The capacity reaches both planners: 3 cells drop pushes on an open 9x9 map, the default
+    (PRIORITYBUFSIZE) and an unbounded capacity do not, and give the same result."""
+    from navfn_smt.spec.propagation import unbounded_capacity
+
+    costs = np.full((9, 9), 50, np.uint8)
+    for backend in ("reference", *OTHERS):
+        small = _plan(backend, costs, (2, 2), (6, 6), False, 3)
+        default = _plan(backend, costs, (2, 2), (6, 6), False)
+        unbounded = _plan(backend, costs, (2, 2), (6, 6), False, unbounded_capacity(9, 9))
+        assert small.dropped > 0 and default.dropped == 0, backend
+        assert_same(unbounded, default, backend)
+    with pytest.raises(NavfnInputError):
+        get_backend("reference").prepare(costs, -1)
+    with pytest.raises(NavfnInputError):
+        get_backend("jit").prepare(costs, -1)
+
+
+@pytest.mark.parametrize("backend", OTHERS)
 @settings(max_examples=60, deadline=None)
 @given(costs=cost_maps(), data=st.data())
 def test_batch_agrees_with_single_runs(backend, costs, data):
@@ -105,6 +136,17 @@ def test_batch_agrees_with_single_runs(backend, costs, data):
     except UndefinedBehaviour:
         return  # an interior start next to a lethal corner can still be undefined; covered above
     batch = get_backend(backend).prepare(costs).run_batch(flat, astar)
+    _assert_batch(batch, singles)
+    # the batch keeps the runner's capacity too
+    capacity = data.draw(st.integers(1, 6))
+    try:
+        singles = [get_backend("reference").prepare(costs, capacity).run(s, g, astar, trace=False) for s, g in cases]
+    except UndefinedBehaviour:
+        return
+    _assert_batch(get_backend(backend).prepare(costs, capacity).run_batch(flat, astar), singles)
+
+
+def _assert_batch(batch, singles):
     for i, ref in enumerate(singles):
         assert batch["start_reached"][i] == ref.start_reached
         assert _bits(batch["start_potential"][i]) == _bits(ref.start_potential)

@@ -1,7 +1,9 @@
 """Planner backends: one declared interface, implemented by the reference spec and the JIT.
 
-``get_backend(name).prepare(costs)`` checks a map (NavFn-internal costs, a (height, width)
-uint8 array) and returns a :class:`Runner` for it; ``runner.run(start, goal, astar,
+``get_backend(name).prepare(costs, capacity=None)`` checks a map (NavFn-internal costs, a
+(height, width) uint8 array) and returns a :class:`Runner` for it, whose priority buffers
+hold ``capacity`` cells each (PRIORITYBUFSIZE, as in C++, when None; pass
+:func:`~navfn_smt.spec.propagation.unbounded_capacity` of the map for buffers that never drop); ``runner.run(start, goal, astar,
 trace=True)`` returns a :class:`~navfn_smt.spec.planner.PlanResult` that owns its arrays
 (nothing in it changes when the runner plans again); ``runner.run_batch(cases, astar)``
 plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
@@ -9,7 +11,7 @@ plans many cases without traces and returns the columns of :func:`.jit.run_cases
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Optional, Protocol
 
 import numpy as np
 
@@ -18,11 +20,14 @@ from ..inputs import check_inputs
 from ..spec.costs import add_border
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour
 from ..spec.planner import PlanResult, path_cycle_limit, plan
-from ..spec.propagation import cycle_limit
+from ..spec.constants import PRIORITYBUFSIZE
+from ..spec.propagation import check_capacity, cycle_limit
 
 
 class Runner(Protocol):
-    """A backend's planner for one map."""
+    """A backend's planner for one map, with the buffer capacity it was prepared with."""
+
+    capacity: int
 
     def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult: ...
 
@@ -32,15 +37,20 @@ class Runner(Protocol):
 class Backend(Protocol):
     name: str
 
-    def prepare(self, costs: np.ndarray) -> Runner: ...
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> Runner: ...
+
+
+def _capacity(capacity: Optional[int]) -> int:
+    return PRIORITYBUFSIZE if capacity is None else check_capacity(capacity)
 
 
 class ReferenceRunner:
-    def __init__(self, costs: np.ndarray):
+    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None):
         self.costs = check_inputs(costs, (0, 0), (0, 0))
+        self.capacity = _capacity(capacity)
 
     def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
-        return plan(self.costs, start, goal, astar=astar, record_trace=trace)
+        return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity)
 
     def run_batch(self, cases, astar: bool) -> dict:
         """The columns of :func:`.jit.run_cases`, planned one case at a time by the spec."""
@@ -64,17 +74,18 @@ class ReferenceBackend:
 
     name = "reference"
 
-    def prepare(self, costs: np.ndarray) -> ReferenceRunner:
-        return ReferenceRunner(costs)
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> ReferenceRunner:
+        return ReferenceRunner(costs, capacity)
 
 
 class JitRunner:
-    def __init__(self, costs: np.ndarray):
+    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None):
         from .jit import JitPlanner
 
         self.costs = check_inputs(costs, (0, 0), (0, 0))
+        self.capacity = _capacity(capacity)
         self.ny, self.nx = self.costs.shape
-        self.planner = JitPlanner(add_border(self.costs))
+        self.planner = JitPlanner(add_border(self.costs), self.capacity)
         self.cycles = cycle_limit(self.nx, self.ny)
         self.path_cycles = path_cycle_limit(self.nx)
 
@@ -116,8 +127,8 @@ class JitBackend:
 
     name = "jit"
 
-    def prepare(self, costs: np.ndarray) -> JitRunner:
-        return JitRunner(costs)
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> JitRunner:
+        return JitRunner(costs, capacity)
 
 
 _BACKENDS: dict[str, type] = {b.name: b for b in (JitBackend, ReferenceBackend)}

@@ -19,7 +19,6 @@ from ..spec.extraction import ExtractionExit
 from ..spec.planner import path_cycle_limit
 from .numba_domain import ND, jit
 
-BUF = PRIORITYBUFSIZE
 # maps up to this many cells keep the A* heuristic of every (dx, dy) offset once computed
 # (a float per offset: 4 * (2nx-1)(2ny-1) bytes, 16 MiB at the limit); larger maps call it
 HEURISTIC_MEMO_CELLS = 1 << 20
@@ -39,7 +38,8 @@ EXIT_UB = len(EXITS)
 def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, trace, counters, memo):
     """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
 
-    ``pb`` is a (3, BUF) int array for the three buffers; ``trace`` receives the white-box
+    ``pb`` is a (3, capacity) int array for the three buffers (its width is the capacity of
+    each: PRIORITYBUFSIZE as in C++, or what the planner was given); ``trace`` receives the white-box
     trace (stops recording when full; ``counters[3]`` then exceeds ``len(trace)``).
     ``counters`` = [cycles, updates, dropped, trace_len]; returns start_reached.
     """
@@ -58,13 +58,14 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
     tlen = 0
     tcap = trace.shape[0]
     cur_t = ND.f32const(COST_OBS)
+    cap = pb.shape[1]
     k = gx + gy * nx
     pot[k] = ND.f32const(0.0)
     # push_cur; the push is written out at both sites: a helper taking arrays would pay
     # reference-count updates on every call (7x slower in the update loop)
     for n in (k + 1, k - 1, k - nx, k + nx):
         if n >= 0 and n < ns and not pending[n] and costs[n] < COST_OBS:
-            if fill[cur] < BUF:
+            if fill[cur] < cap:
                 pb[cur, fill[cur]] = n
                 fill[cur] += 1
                 pending[n] = True
@@ -135,7 +136,7 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
                     pm = d
                 if K.push_wanted(ND, pm, key, K.edge_weight(ND, ND.int_to_f32(costs[m]))):
                     if m >= 0 and m < ns and not pending[m] and costs[m] < COST_OBS:
-                        if fill[dest] < BUF:
+                        if fill[dest] < cap:
                             pb[dest, fill[dest]] = m
                             fill[dest] += 1
                             pending[m] = True
@@ -228,16 +229,20 @@ def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
 
 
 class JitPlanner:
-    """Work arrays for one map size, reused across the cases of a map."""
+    """Work arrays for one map size, reused across the cases of a map; ``capacity`` bounds
+    each priority buffer (PRIORITYBUFSIZE, as in C++, unless given)."""
 
-    def __init__(self, costs_with_border: np.ndarray):
+    def __init__(self, costs_with_border: np.ndarray, capacity: int = PRIORITYBUFSIZE):
         c = np.ascontiguousarray(costs_with_border, dtype=np.uint8)
         self.ny, self.nx = c.shape
         self.costs = c.ravel()
         ns = self.nx * self.ny
         self.pot = np.empty(ns, np.float32)
         self.pending = np.zeros(ns, np.bool_)
-        self.pb = np.zeros((3, BUF), np.int64)
+        self.capacity = int(capacity)
+        # a buffer never holds more than ns cells (pending flags), so a width of ns drops
+        # exactly what any larger capacity drops: nothing
+        self.pb = np.zeros((3, min(self.capacity, ns)), np.int64)
         self.gradx = np.zeros(ns, np.float32)
         self.grady = np.zeros(ns, np.float32)
         self.trace = np.empty(max(4 * ns, 1 << 12), np.int32)

@@ -53,11 +53,13 @@ class Run:
 
 
 def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = None) -> Run:
-    """Plan like :func:`navfn_smt.spec.planner.plan`, also noting every cell ever queued."""
+    """Plan like :func:`navfn_smt.spec.planner.plan`, also noting every cell ever queued.
+
+    ``capacity`` bounds each priority buffer (PRIORITYBUFSIZE, as in C++, when None)."""
     arr = add_border(np.asarray(costs, dtype=np.uint8))
     ny, nx = arr.shape
     start, goal = (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1]))
-    st = setup(arr.ravel().tolist(), nx, ny, goal)
+    st = setup(arr.ravel().tolist(), nx, ny, goal, capacity)
     queued = set(st.cur)
     hook = lambda cycle, cells: queued.update(cells)  # noqa: E731
     reached = propagate(st, start, goal, astar, cycle_limit(nx, ny), trace_hook=hook, record_trace=False)

@@ -64,17 +64,19 @@ def plan(
     cycles: Optional[int] = None,
     path_cycles: Optional[int] = None,
     record_trace: bool = True,
+    capacity: Optional[int] = None,
 ) -> PlanResult:
     """Plan on NavFn-internal costs (a (height, width) uint8 array) with the reference spec.
 
     ``start`` is NavFn's start (where extraction begins), ``goal`` where propagation begins.
+    ``capacity`` bounds each priority buffer (default PRIORITYBUFSIZE, as in C++).
     """
     arr = check_inputs(costs, start, goal)
     ny, nx = arr.shape
     start = (int(start[0]), int(start[1]))
     goal = (int(goal[0]), int(goal[1]))
     cost_list = add_border(arr).ravel().tolist()
-    st = setup(cost_list, nx, ny, goal)
+    st = setup(cost_list, nx, ny, goal, capacity)
     limit = cycle_limit(nx, ny) if cycles is None else cycles
     reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
                         record_trace=record_trace)

@@ -4,8 +4,9 @@ The reference implementation: plain Python loops around the kernels of
 :mod:`.kernels`, evaluated in the concrete domain.  State is kept in flat lists indexed
 by ``n = y * nx + x`` like the C++ arrays.
 
-Priority buffers are three bounded FIFO lists (capacity PRIORITYBUFSIZE); a push to a
-full buffer is silently dropped, as in the C++ macros.  ``curT`` is a float.
+Priority buffers are three bounded FIFO lists (capacity PRIORITYBUFSIZE, or the
+``capacity`` a caller gives ``setup``); a push to a full buffer is silently dropped, as in
+the C++ macros.  ``curT`` is a float.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
+from ..errors import NavfnInputError
 from . import kernels as K
 from .constants import COST_OBS, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from .numeric import CONCRETE as D
@@ -28,6 +30,12 @@ _POT_HIGH = D.f32const(POT_HIGH)
 def cycle_limit(nx: int, ny: int) -> int:
     """``std::max(nx * ny / 20, nx + ny)`` (integer division), the cycle budget Nav2 uses."""
     return max((nx * ny) // 20, nx + ny)
+
+
+def unbounded_capacity(nx: int, ny: int) -> int:
+    """A buffer capacity that never drops a push on an ``nx`` by ``ny`` map: the pending flags
+    keep every cell in at most one buffer at a time, so no buffer holds more than ``nx * ny``."""
+    return nx * ny
 
 
 @dataclass
@@ -47,26 +55,39 @@ class PropagationState:
     updates: int = 0
     dropped: int = 0  # pushes rejected because the buffer was full
     trace: list = field(default_factory=list)  # [n0, c, c, ..., n1, c, ...]
+    capacity: int = PRIORITYBUFSIZE  # of each buffer; C++ fixes it at PRIORITYBUFSIZE
 
     @property
     def ns(self) -> int:
         return self.nx * self.ny
 
 
+def check_capacity(capacity) -> int:
+    """A buffer capacity as an int; refused when negative."""
+    c = int(capacity)
+    if c != capacity or c < 0:
+        raise NavfnInputError(f"buffer capacity must be a non-negative integer, not {capacity!r}")
+    return c
+
+
 def _push(st: PropagationState, buf: list, n: int) -> None:
     """The ``push_cur/push_next/push_over`` macros."""
     if 0 <= n < st.nx * st.ny and not st.pending[n] and st.costs[n] < COST_OBS:
-        if len(buf) < PRIORITYBUFSIZE:
+        if len(buf) < st.capacity:  # PRIORITYBUFSIZE unless the caller chose another
             buf.append(n)
             st.pending[n] = True
         else:
             st.dropped += 1
 
 
-def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int]) -> PropagationState:
+def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
+          capacity: Optional[int] = None) -> PropagationState:
     """``setupNavFn(true)``: potentials to POT_HIGH, buffers empty, ``curT = COST_OBS``,
     then ``initCost(goal, 0)``: the goal gets potential 0 and its four neighbours are
-    pushed onto the current buffer (right, left, up, down)."""
+    pushed onto the current buffer (right, left, up, down).
+
+    ``capacity`` bounds each buffer (default PRIORITYBUFSIZE, as in C++; see
+    :func:`unbounded_capacity` for one that never drops)."""
     ns = nx * ny
     st = PropagationState(
         nx=nx,
@@ -75,6 +96,7 @@ def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int]) -> P
         potential=[_POT_HIGH] * ns,
         pending=[False] * ns,
         cur_t=D.f32const(COST_OBS),
+        capacity=PRIORITYBUFSIZE if capacity is None else check_capacity(capacity),
     )
     k = goal[0] + goal[1] * nx
     st.potential[k] = D.f32const(0.0)
