@@ -1,0 +1,101 @@
+"""What ``search`` reports: the findings table, saved counterexamples, JSON, the summary."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+from rich.table import Table
+
+from ..fileio import atomic_write_text
+from .tables import console
+
+
+def progress_line(line: str) -> None:
+    """A progress line on stderr (every improvement and a heartbeat, terminal or not)."""
+    print(line, file=sys.stderr, flush=True)
+
+
+def _get(f, name, default=None):
+    return f.get(name, default) if isinstance(f, dict) else getattr(f, name, default)
+
+
+def finding_row(f, saved: Optional[str] = None) -> dict:
+    """One finding as a JSON row (works for the overflow search's finding-like results too)."""
+    costs = _get(f, "costs")
+    size = list(_get(f, "size", None) or (np.asarray(costs).shape[::-1] if costs is not None else []))
+    row = {
+        "kind": _get(f, "kind"), "mode": _get(f, "mode"), "size": [int(v) for v in size],
+        "interior_cells": int(max(size[0] - 2, 0) * max(size[1] - 2, 0)) if len(size) == 2 else None,
+        "start": list(_get(f, "start") or []), "goal": list(_get(f, "goal") or []),
+        "detail": _jsonable(_get(f, "detail", {})),
+        "seconds": _get(f, "seconds"), "evaluations": _get(f, "evaluations"), "plans": _get(f, "plans"),
+        "found_size": list(_get(f, "found_size") or []) or None, "seed": _get(f, "seed"),
+        "history": _jsonable(_get(f, "history", [])),
+        "saved": saved,
+    }
+    return row
+
+
+def _jsonable(v):
+    from ..search.counterexamples import _jsonable as j
+
+    return j(v)
+
+
+def save_findings(findings, out_dir) -> list[Optional[str]]:
+    """Save every finding that carries a map under ``out_dir`` (nothing without one)."""
+    from ..search.counterexamples import save_counterexample
+
+    if not out_dir:
+        return [None] * len(findings)
+    saved = []
+    for f in findings:
+        costs = _get(f, "costs")
+        if costs is None:
+            saved.append(None)
+            continue
+        extra = {k: _get(f, k) for k in ("seconds", "evaluations", "plans", "seed")}
+        extra["found_size"] = list(_get(f, "found_size") or [])
+        d = save_counterexample(out_dir, costs, _get(f, "start"), _get(f, "goal"), _get(f, "mode") == "astar",
+                                _get(f, "kind"), _get(f, "detail", {}), extra=extra)
+        saved.append(str(d))
+    return saved
+
+
+def short(detail: dict) -> str:
+    """A finding's detail in a few words."""
+    if "gap" in detail:
+        return f"gap {detail['gap']}: path {detail['path_cost']} / optimum {detail['optimum']} = {detail['ratio']:.2f}"
+    return str(detail.get("reason", ""))
+
+
+def table(kind: str, rows: list[dict], modes) -> None:
+    t = Table(title=f"search {kind}")
+    for c in ("mode", "size", "interior", "start", "goal", "found after", "maps", "what"):
+        t.add_column(c)
+    for r in rows:
+        t.add_row(r["mode"], "x".join(map(str, r["size"])), str(r["interior_cells"]), str(tuple(r["start"])),
+                  str(tuple(r["goal"])), f"{r['seconds']:.2f} s" if r["seconds"] is not None else "",
+                  str(r["evaluations"] or ""), short(r["detail"]))
+    console.print(t)
+    missing = [m for m in modes if m not in {r["mode"] for r in rows}]
+    for m in missing:
+        console.print(f"{m}: no counterexample found within the budget")
+
+
+def write_json(path, kind: str, args: dict, rows: list[dict], tried: list) -> None:
+    doc = {"kind": kind, "arguments": _jsonable(args), "findings": rows, "sizes_tried": tried}
+    atomic_write_text(path, json.dumps(doc, indent=2) + "\n")
+
+
+def saved_note(out_dir, rows) -> None:
+    if out_dir:
+        for r in rows:
+            if r["saved"]:
+                console.print(f"saved {r['saved']}")
+    elif rows:
+        console.print("counterexamples not saved (--out DIR keeps them as suite map directories)")

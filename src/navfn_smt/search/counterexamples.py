@@ -1,0 +1,161 @@
+"""Counterexamples as suite map directories: saved whole, replayed on the spec and the JIT.
+
+A counterexample directory ``<kind>-<mode>-<W>x<H>`` holds
+
+* ``map.bin`` and ``test.txt`` with the one case (a suite map directory, so ``difftest``,
+  ``render`` and ``plan`` take it as it is),
+* ``golden_astar.npz`` and ``golden_dijkstra.npz`` recorded from the reference spec,
+* ``picture.png``: the case drawn in the counterexample's mode,
+* ``counterexample.json``: kind, mode, size, start, goal and the judge's detail (plus what
+  the finder adds: gap, time, seed, ...).
+
+Everything is written into a hidden sibling directory first and renamed into place, so an
+interruption leaves no half-written counterexample.  ``search`` and ``check`` both save
+through :func:`save_counterexample`; :func:`replay` is what the regression test runs.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+
+from ..check import properties as P
+from ..errors import NavfnInputError
+from ..maps.suite import GOLDEN_FIELDS, MODES, load_golden, load_map, write_map_dir
+from . import kinds as KD
+
+JSON_NAME = "counterexample.json"
+PICTURE_NAME = "picture.png"
+
+
+def directory_name(kind: str, mode: str, costs: np.ndarray) -> str:
+    h, w = np.asarray(costs).shape
+    return f"{kind}-{mode}-{w}x{h}"
+
+
+def _jsonable(v):
+    if isinstance(v, dict):
+        return {str(k): _jsonable(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_jsonable(x) for x in v]
+    if isinstance(v, np.generic):
+        return v.item()
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    return v
+
+
+def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, kind: str, detail: dict,
+                        extra: Optional[dict] = None, name: Optional[str] = None) -> Path:
+    """Write the counterexample directory ``out_dir/<kind>-<mode>-<W>x<H>`` (or ``name``) whole,
+    replacing an older one of the same name; returns its path."""
+    from ..backends import get_backend
+    from ..difftest.record import golden_fields, write_golden
+    from ..maps.pictures import render_case
+
+    costs = np.ascontiguousarray(costs, np.uint8)
+    mode = "astar" if astar else "dijkstra"
+    start, goal = (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1]))
+    out = Path(out_dir)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise NavfnInputError(f"{out}: cannot create directory ({e.strerror})") from None
+    final = out / (name or directory_name(kind, mode, costs))
+    tmp = out / f".{final.name}.tmp{os.getpid()}"
+    old = out / f".{final.name}.old{os.getpid()}"
+    shutil.rmtree(tmp, ignore_errors=True)
+    try:
+        write_map_dir(tmp, costs, [(*start, *goal)], comment=f"{kind} counterexample ({mode})")
+        smap = load_map(tmp)
+        ref = get_backend("reference").prepare(costs)
+        for m in MODES:
+            write_golden(smap.golden_path(m), golden_fields(smap, ref, m == "astar"))
+        res = ref.run(start, goal, astar, trace=False)
+        h, w = costs.shape
+        render_case(costs, res, start, goal, str(tmp / PICTURE_NAME),
+                    title=f"{kind} ({'A*' if astar else 'Dijkstra'}) {w}x{h}: {detail.get('reason', '')}"[:110],
+                    arrows=True)
+        doc = {"kind": kind, "mode": mode, "size": [w, h], "start": list(start), "goal": list(goal),
+               "detail": _jsonable(detail), **_jsonable(extra or {})}
+        (tmp / JSON_NAME).write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
+        if final.exists():
+            os.replace(final, old)
+        os.replace(tmp, final)
+        shutil.rmtree(old, ignore_errors=True)
+    except OSError as e:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise NavfnInputError(f"{final}: cannot write ({e.strerror or e})") from None
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return final
+
+
+def read_counterexample(directory) -> dict:
+    """``counterexample.json`` of a saved counterexample."""
+    p = Path(directory) / JSON_NAME
+    try:
+        return json.loads(p.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise NavfnInputError(f"{p}: no such file") from None
+    except (OSError, ValueError) as e:
+        raise NavfnInputError(f"{p}: unreadable ({e})") from None
+
+
+def judge_kind(kind: str, r: P.Run, doc: Optional[dict] = None) -> Optional[dict]:
+    """The judge of ``kind``: a search kind of :mod:`.kinds` or a property of
+    :data:`properties.PROPERTIES` (``optimal`` takes the ``gap`` allowed from ``doc``)."""
+    if kind in KD.KINDS:
+        return KD.KINDS[kind].judge(r)
+    if kind == "optimal":
+        why = P.judge(kind, r, gap=int((doc or {}).get("allowed_gap", 0)))
+    elif kind in P.PROPERTIES:
+        why = P.judge(kind, r)
+    else:
+        raise NavfnInputError(f"unknown counterexample kind {kind!r}")
+    return None if why is None else {"reason": why}
+
+
+def golden_differences(directory, backend: str) -> list[str]:
+    """Fields of the stored golden files that ``backend`` does not reproduce bit for bit."""
+    from ..backends import get_backend
+    from ..difftest.record import golden_fields
+
+    smap = load_map(directory)
+    runner = get_backend(backend).prepare(smap.costs)
+    diffs = []
+    for m in MODES:
+        stored = load_golden(smap.golden_path(m), smap)
+        fresh = golden_fields(smap, runner, m == "astar")
+        for f in GOLDEN_FIELDS:
+            a, b = np.asarray(stored[f]), np.asarray(fresh[f])
+            if a.dtype != b.dtype or a.shape != b.shape or a.tobytes() != b.tobytes():
+                diffs.append(f"{m} {f}")
+    return diffs
+
+
+def replay(directory) -> dict:
+    """Replay a saved counterexample: its golden files on the reference spec and the JIT (bit
+    for bit), and its kind's judge on the spec.  Returns the problems found (empty lists and
+    a detail when it still stands)."""
+    doc = read_counterexample(directory)
+    smap = load_map(directory)
+    sx, sy, gx, gy = (int(v) for v in smap.cases[0])
+    r = P.run(smap.costs, (sx, sy), (gx, gy), doc["mode"] == "astar")
+    return {
+        "kind": doc["kind"],
+        "golden": {b: golden_differences(directory, b) for b in ("reference", "jit")},
+        "detail": judge_kind(doc["kind"], r, doc),
+    }
+
+
+def discover_counterexamples(root) -> list[Path]:
+    """Every directory holding a ``counterexample.json`` under ``root`` (sorted)."""
+    r = Path(root)
+    return sorted(p.parent for p in r.rglob(JSON_NAME)) if r.is_dir() else []
