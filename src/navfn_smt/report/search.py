@@ -99,3 +99,38 @@ def saved_note(out_dir, rows) -> None:
                 console.print(f"saved {r['saved']}")
     elif rows:
         console.print("counterexamples not saved (--out DIR keeps them as suite map directories)")
+
+
+_SUMMARY_ROWS = (
+    ("cases", "cases"), ("paths returned", "paths"),
+    ("obtuse turn: paths %", "turn_per_path_percent"), ("obtuse turn: per step %", "turn_per_step_percent"),
+    ("turn >= 90 degrees: per step %", "turn_ge90_per_step_percent"),
+    ("oscillation: paths %", "oscillation_per_path_percent"),
+    ("oscillation: per step %", "oscillation_per_step_percent"),
+    ("incomplete", "incomplete"), ("unreached (connected)", "unreached"),
+    ("int-conversion, start unreached", "int_conversion_start_unreached"),
+    ("int-conversion, mid-path", "int_conversion_mid_path"), ("undefined (reads outside)", "undefined"),
+    ("cost gap > 0: paths %", "gap_positive_percent"), ("cost gap: mean", "gap_mean"),
+    ("cost gap: max", "gap_max"), ("ratio path/optimum: max", "ratio_max"),
+)
+
+
+def summary_table(s: dict) -> None:
+    """Per mode, the whole suite; beside it the paper's figures."""
+    t = Table(title=f"search --summary {s['suite']} ({s['maps']} maps, {s['seconds']} s)")
+    t.add_column("measure")
+    for m in s["modes"]:
+        t.add_column(m, justify="right")
+    t.add_column("paper", justify="right")
+    paper = {"turn_per_step_percent": s["paper"]["turn_per_step_percent"],
+             "oscillation_per_step_percent": s["paper"]["oscillation_per_step_percent"]}
+    for label, key in _SUMMARY_ROWS:
+        t.add_row(label, *[str(s["total"][m][key]) for m in s["modes"]], str(paper.get(key, "")))
+    console.print(t)
+    console.print("turn: (p[k]-p[k-1]).(p[k+1]-p[k]) < 0 over the M-2 inner points of a returned path "
+                  "(right angle or more: <= 0 with both steps non-zero); oscillation: p[k] == p[k-2] over its "
+                  "M-2 points from the third; paper: 1.91% obtuse turns, 0.13% oscillations", markup=False)
+
+
+def write_summary_json(path, s: dict) -> None:
+    atomic_write_text(path, json.dumps(_jsonable(s), indent=2) + "\n")

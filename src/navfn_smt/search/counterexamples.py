@@ -79,7 +79,7 @@ def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, ki
         res = ref.run(start, goal, astar, trace=False)
         h, w = costs.shape
         render_case(costs, res, start, goal, str(tmp / PICTURE_NAME),
-                    title=f"{kind} ({'A*' if astar else 'Dijkstra'}) {w}x{h}: {detail.get('reason', '')}"[:110],
+                    title=_title(kind, astar, w, h, detail),
                     arrows=True)
         doc = {"kind": kind, "mode": mode, "size": [w, h], "start": list(start), "goal": list(goal),
                "detail": _jsonable(detail), **_jsonable(extra or {})}
@@ -95,6 +95,15 @@ def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, ki
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     return final
+
+
+def _title(kind: str, astar: bool, w: int, h: int, detail: dict) -> str:
+    t = f"{kind} ({'A*' if astar else 'Dijkstra'}) {w}x{h}"
+    if "gap" in detail:
+        return f"{t}: gap {detail['gap']}, ratio {detail['ratio']:.2f}"
+    if "exit" in detail:
+        return f"{t}: exit {detail['exit']}"
+    return t
 
 
 def read_counterexample(directory) -> dict:

@@ -142,6 +142,23 @@ def turns(path, offsets):
 
 
 @njit(cache=True)
+def right_or_sharper(path, offsets):
+    """Per path: turns of 90 degrees or more (dot product <= 0, both steps non-zero)."""
+    n = offsets.shape[0] - 1
+    out = np.zeros(n, np.int64)
+    for i in range(n):
+        a, b = offsets[i], offsets[i + 1]
+        for k in range(a + 1, b - 1):
+            ux = np.float64(path[k, 0]) - np.float64(path[k - 1, 0])
+            uy = np.float64(path[k, 1]) - np.float64(path[k - 1, 1])
+            vx = np.float64(path[k + 1, 0]) - np.float64(path[k, 0])
+            vy = np.float64(path[k + 1, 1]) - np.float64(path[k, 1])
+            if (ux != 0.0 or uy != 0.0) and (vx != 0.0 or vy != 0.0) and ux * vx + uy * vy <= 0.0:
+                out[i] += 1
+    return out
+
+
+@njit(cache=True)
 def oscillations(path, offsets):
     """Per path: the number of points equal (both float32 coordinates) to the point two before,
     and the number of points that have one two before (points - 2)."""

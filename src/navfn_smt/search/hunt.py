@@ -305,9 +305,10 @@ def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=
 
 
 def sizes_upto(max_size) -> list[tuple[int, int]]:
-    """Every size from 3x3 up to ``max_size``, smallest interior first (then width, height)."""
+    """Every size up to ``max_size`` with at least two interior cells (a start and a goal),
+    smallest interior first (then width, height)."""
     mw, mh = max_size
-    out = [(w, h) for w in range(3, mw + 1) for h in range(3, mh + 1)]
+    out = [(w, h) for w in range(3, mw + 1) for h in range(3, mh + 1) if (w - 2) * (h - 2) >= 2]
     return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), s[0], s[1]))
 
 

@@ -232,11 +232,12 @@ def _screen_oscillation(b: Batch) -> np.ndarray:
 
 
 def _screen_int_conversion(b: Batch) -> np.ndarray:
-    # the fallback meets an unreached centre exactly when calcPath exits on a high potential
-    # (a finite centre only moves to a lower, hence reached, neighbour); the screen prefers
-    # the case where the start itself was reached
-    high = b.out["exit"] == EXITS.index(ExtractionExit.HIGH_POTENTIAL)
-    return np.where(high, np.where(b.finite(), 2.0, 1.0), 0.0)
+    # The fallback meets an unreached centre exactly when calcPath exits on a high potential:
+    # a finite centre only moves to a lower, hence reached, neighbour, and a gradient step is
+    # taken only when all eight neighbours are reached and moves to one of them, so after the
+    # first point stc is always on a reached cell.  A finite potential >= 2**31 would need
+    # millions of cells of path: that is the overflow search's ground, not this screen's.
+    return (b.out["exit"] == EXITS.index(ExtractionExit.HIGH_POTENTIAL)).astype(np.float64)
 
 
 @dataclass(frozen=True)
@@ -267,9 +268,9 @@ KINDS = {k.name: k for k in (
     Kind("oscillation", "a point of the returned path equals, in both float32 coordinates, the point two "
          "before it (p[k] == p[k-2], k >= 2)", _judge_oscillation, _screen_oscillation),
     Kind("int-conversion", "calcPath's grid-following fallback (int minp = potarr[stc]) converts a potential "
-         "outside the int32 range to int (undefined behaviour in C++); the hunt looks for one with the "
-         "start reached (the conversion then happens mid-path)",
-         _judge_int_conversion, _screen_int_conversion, target=2.0),
+         "outside the int32 range to int (undefined behaviour in C++); on maps whose potentials stay below "
+         "2**31 this happens exactly when the start is unreached (the first fallback converts 1e10)",
+         _judge_int_conversion, _screen_int_conversion),
 )}
 
 SEARCH_KINDS = tuple(KINDS) + ("overflow",)
