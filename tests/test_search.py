@@ -170,3 +170,27 @@ def test_overflow_dispatch_reports_a_missing_module(monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "navfn_smt.search.overflow", None)
     assert main(["search", "overflow", "--timeout", "1"]) == 2
     assert "overflow search is not available" in capsys.readouterr().err
+
+
+def test_summary_of_the_circus_maps():
+    """The paper's hand-made circus maps: two of five paths cost 850 more than the optimum."""
+    from navfn_smt.cli import EXAMPLE_SUITE
+    from navfn_smt.search.summary import summarize
+
+    s = summarize(EXAMPLE_SUITE / "circus", ("astar", "dijkstra"))
+    for m in ("astar", "dijkstra"):
+        t = s["total"][m]
+        assert t["cases"] == t["paths"] == 5 and t["gap_positive"] == 2 and t["gap_max"] == 850
+        assert t["incomplete"] == t["unreached"] == t["int_conversion_start_unreached"] == 0
+
+
+def test_summary_of_the_shared_random_maps(shared_suite):
+    """Counts on the shared suite's random category (9,182 cases), as in docs/search.md."""
+    from navfn_smt.search.summary import summarize
+
+    s = summarize(shared_suite / "random", ("astar", "dijkstra"))
+    a, d = s["total"]["astar"], s["total"]["dijkstra"]
+    assert a["cases"] == d["cases"] == 9182
+    assert (a["paths"], a["incomplete"], a["oscillation_paths"], a["turn_paths"], a["gap_max"]) == (9161, 21, 21, 998, 5070)
+    assert (d["paths"], d["incomplete"], d["oscillation_paths"], d["turn_paths"], d["gap_max"]) == (9165, 17, 25, 1003, 3845)
+    assert a["int_conversion_mid_path"] == d["int_conversion_mid_path"] == 0
