@@ -174,6 +174,17 @@ def replay(costs: np.ndarray, start, goal, astar: bool, capacity: int = CAPACITY
     return d
 
 
+def judge(r, capacity: int = CAPACITY) -> Optional[dict]:
+    """The ``overflow`` kind's judge of one spec run (a :class:`navfn_smt.check.properties.Run`
+    made with the C++ capacity): the same case replanned by the spec with unbounded buffers,
+    and the detail when the run dropped pushes and its path differs (else None)."""
+    from ..check.properties import run
+
+    ny, nx = r.costs.shape
+    unbounded = run(r.costs, r.start, r.goal, r.astar, capacity=unbounded_capacity(nx, ny))
+    return verdict(r, unbounded, capacity)
+
+
 # ---------------------------------------------------------------------------------------
 # Map families
 # ---------------------------------------------------------------------------------------
