@@ -118,10 +118,18 @@ def read_counterexample(directory) -> dict:
 
 
 def judge_kind(kind: str, r: P.Run, doc: Optional[dict] = None) -> Optional[dict]:
-    """The judge of ``kind``: a search kind of :mod:`.kinds` or a property of
-    :data:`properties.PROPERTIES` (``optimal`` takes the ``gap`` allowed from ``doc``)."""
+    """The judge of ``kind``: a search kind of :mod:`.kinds`, ``overflow`` (judged by
+    :mod:`.overflow`, imported only then) or a property of :data:`properties.PROPERTIES`
+    (``optimal`` takes the ``gap`` allowed from ``doc``'s ``allowed_gap``)."""
     if kind in KD.KINDS:
         return KD.KINDS[kind].judge(r)
+    if kind == "overflow":
+        try:
+            from .overflow import judge as overflow_judge
+        except ImportError as e:
+            raise NavfnInputError(f"overflow counterexamples need navfn_smt.search.overflow ({e})") from None
+        cap = (doc or {}).get("detail", {}).get("capacity")
+        return overflow_judge(r) if cap is None else overflow_judge(r, capacity=int(cap))
     if kind == "optimal":
         why = P.judge(kind, r, gap=int((doc or {}).get("allowed_gap", 0)))
     elif kind in P.PROPERTIES:
