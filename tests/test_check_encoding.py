@@ -110,3 +110,71 @@ def test_symbolic_costs_admit_no_other_potential():
     s.add(*[costs[k] == int(arr.ravel()[k]) for k in inner])
     s.add(z3.Or(*[z3.Not(z3.fpEQ(sp.potential[k], D.f32const(float(ref[k])))) for k in inner]))
     assert s.check() == z3.unsat
+
+
+def _extraction_case(seed: int):
+    rng = np.random.default_rng(1000 + seed)
+    nx, ny = int(rng.integers(3, 5)), int(rng.integers(3, 5))
+    if seed % 3 == 0:
+        nx, ny = 5, 4  # room for gradient steps (an interior cell whose ring is all reached)
+    arr = add_border(rng.choice([50, 60, 120, 200, 253, 254], size=(ny, nx)).astype(np.uint8))
+    inner = _interior(nx, ny)
+    s, g = int(rng.choice(inner)), int(rng.choice(inner))
+    return arr, (s % nx, s // nx), (g % nx, g // nx), bool(seed % 2)
+
+
+@pytest.mark.parametrize("seed", range(16))
+def test_whole_run_folds_to_the_spec(seed):
+    """Propagation and calcPath as terms: fixed map, folded: the exit and every path point bit for bit."""
+    from navfn_smt.check import properties as P
+    from navfn_smt.check.encoding import exit_name, extract
+    from navfn_smt.spec.planner import path_cycle_limit
+
+    arr, start, goal, astar = _extraction_case(seed)
+    ny, nx = arr.shape
+    D = FPDomain()
+    sp = propagate(D, {k: int(arr.ravel()[k]) for k in _interior(nx, ny)}, nx, ny, start, goal, astar)
+    ex = extract(D, sp.potential, nx, ny, start, goal, path_cycle_limit(nx))
+    ref = P.run(arr, start, goal, astar)
+    code = _fold(ex.exit)
+    assert exit_name(code) == ref.exit
+    pts = [(_fold(x), _fold(y)) for x, y, w in ex.points if _fold(w)] + [tuple(_fold(v) for v in ex.goal_point)]
+    got = [(_bits(x), _bits(y)) for x, y in pts] if ref.exit == "near_goal" else []
+    assert got == [(_bits(x), _bits(y)) for x, y in ref.path.tolist()]
+
+
+GRADIENT_MAPS = [  # 6x5 maps on which calcPath takes a gradient step (a point off the cell centres)
+    ([[50, 50, 120, 80], [80, 120, 80, 80], [120, 60, 120, 80]], True),
+]
+
+
+@pytest.mark.parametrize("inner, astar", GRADIENT_MAPS)
+def test_whole_run_with_gradient_steps(inner, astar):
+    """calcPath's gradient step as terms (interpolation, normalisation, offset overflow) between
+    grid-following steps: the exit and every path point bit for bit, also in the concolic domain."""
+    from navfn_smt.check import properties as P
+    from navfn_smt.check.concolic import ConcolicDomain
+    from navfn_smt.check.encoding import exit_name, extract
+    from navfn_smt.spec.planner import path_cycle_limit
+
+    arr = np.full((5, 6), 254, np.uint8)
+    arr[1:4, 1:5] = inner
+    start, goal = (2, 3), (3, 1)
+    ref = P.run(arr, start, goal, astar)
+    costs = {k: int(arr.ravel()[k]) for k in _interior(6, 5)}
+    D = FPDomain()
+    sp = propagate(D, costs, 6, 5, start, goal, astar)
+    ex = extract(D, sp.potential, 6, 5, start, goal, path_cycle_limit(6))
+    assert exit_name(_fold(ex.exit)) == ref.exit == "near_goal"
+    pts = [(_fold(x), _fold(y)) for x, y, w in ex.points if _fold(w)] + [tuple(_fold(v) for v in ex.goal_point)]
+    assert [(_bits(x), _bits(y)) for x, y in pts] == [(_bits(x), _bits(y)) for x, y in ref.path.tolist()]
+    assert any(x % 1 for x, _ in ref.path.tolist())  # a point off the cell centres: a gradient step
+    # the concolic domain follows the same run
+    C = ConcolicDomain(FPDomain())
+    box = {k: C.cost(v, v, v, f"c{k}") for k, v in costs.items()}
+    sp2 = propagate(C, box, 6, 5, start, goal, astar)
+    ex2 = extract(C, sp2.potential, 6, 5, start, goal, path_cycle_limit(6))
+    assert exit_name(ex2.exit) == ref.exit
+    pts2 = [(x.conc if hasattr(x, "conc") else x, y.conc if hasattr(y, "conc") else y)
+            for x, y, w in ex2.points if (w.conc if hasattr(w, "conc") else w)] + [ex2.goal_point]
+    assert [(_bits(x), _bits(y)) for x, y in pts2] == [(_bits(x), _bits(y)) for x, y in ref.path.tolist()]

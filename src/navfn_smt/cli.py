@@ -279,6 +279,93 @@ def cmd_bench(args) -> int:
     return 0
 
 
+# ---------------------------------------------------------------------------------- check
+def cmd_check(args) -> int:
+    """Bounded whole-planner checks; exit 0 only when every property is proved for every size asked."""
+    import time
+
+    from .check import runner as CR
+    from .report import check as report
+    from .search.runner import modes_list
+
+    names = CR.CHECKABLE if args.property == "all" else (args.property,)
+    lo, hi = CR.parse_costs(args.costs)
+    if args.timeout <= 0:
+        raise NavfnInputError("--timeout must be positive")
+    if args.jobs < 1:
+        raise NavfnInputError("--jobs must be at least 1")
+    if args.size and args.max_size:
+        raise NavfnInputError("give either --size or --max-size")
+    _check_files(args.json)
+    if args.out:
+        check_writable_dir(args.out)
+    CR._domain(args.semantics)
+    modes = [m == "astar" for m in modes_list(args.mode)]
+    if args.max_size:
+        sizes = CR.sizes_up_to(*args.max_size)
+    else:
+        sizes = [tuple(args.size or (4, 4))]
+        CR.check_size(*sizes[0])
+    t0 = time.perf_counter()
+    results, skipped = [], []
+    open_names = list(names)
+    for nx, ny in sizes:
+        if args.budget and time.perf_counter() - t0 > args.budget:
+            skipped.append([nx, ny])
+            continue
+        if not open_names:
+            break
+        CR.check_size(nx, ny)
+        got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, args.jobs,
+                                args.start, args.goal, args.ends, progress=report.progress(f"{nx}x{ny}"))
+        for n in list(open_names):
+            results.append(got[n])
+            if got[n].status == "refuted" and args.max_size:
+                open_names.remove(n)  # the smallest counterexample of this property is found
+    report.table(results)
+    saved = {}
+    if args.out:
+        from .search.counterexamples import save_counterexample
+        import numpy as np
+
+        for r in results:
+            cx = r.counterexample
+            if cx and r.property not in saved:
+                saved[r.property] = str(save_counterexample(
+                    args.out, np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]),
+                    cx["mode"] == "astar", r.property, {"reason": cx["reason"], "exit": cx["exit"]},
+                    extra={"found_by": "check", "size_proved_below": _proved_sizes(results, r.property)}))
+    induction = {n: CR.induction(n) for n in names if n in CR.INDUCTION}
+    if args.json:
+        report.write_json(args.json, {
+            "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": args.semantics,
+            "ends": args.ends,
+            "results": [report.row(r) for r in results], "sizes_not_reached": skipped,
+            "largest_size_proved": {n: _largest(results, n) for n in names},
+            "smallest_counterexample": {n: next((r.counterexample for r in results if r.property == n
+                                                 and r.counterexample), None) for n in names},
+            "every_size_by_induction": induction,
+            "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names if n in CR.NOT_INDUCTIVE},
+            "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})
+    for n, ind in induction.items():
+        print(f"{n}: every map size by induction: {ind['status']} "
+              f"({', '.join(f'{k} {v}' for k, v in ind['obligations'].items())})")
+    if skipped:
+        print(f"sizes not reached within --budget {args.budget:g} s: " + ", ".join(f"{w}x{h}" for w, h in skipped))
+    for n, path in saved.items():
+        print(f"{n}: counterexample saved in {path}")
+    return 0 if all(r.status == "proved" for r in results) else 1
+
+
+def _proved_sizes(results, name) -> list:
+    return [list(r.size) for r in results if r.property == name and r.status == "proved"]
+
+
+def _largest(results, name):
+    proved = [r.size for r in results if r.property == name and r.status == "proved"]
+    return list(max(proved, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))) if proved else None
+
+
 # --------------------------------------------------------------------------------- search
 def cmd_search(args) -> int:
     """Hunt counterexamples of one kind (``--summary SUITE``: count every kind on a suite)."""
@@ -352,6 +439,7 @@ def build_parser() -> argparse.ArgumentParser:
     from .difftest.runner import MODE_CHOICES
     from .maps.mapserver import DEFAULT_DISTRO, DISTROS
     from .maps.suite_cli import register as register_generate
+    from .check.bounded import CHECKABLE as CHECK_PROPERTIES
     from .search.kinds import SEARCH_KINDS
     from .search.metamorphic import TRANSFORMS
     from .smt.solvers import SOLVERS
@@ -474,6 +562,35 @@ def build_parser() -> argparse.ArgumentParser:
     be.add_argument("--repeat", type=int, default=3, help="plans per map and mode with --size (best is kept)")
     be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
     be.set_defaults(func=cmd_bench)
+
+    ck = sub.add_parser("check", help="prove or refute a whole-planner property on every map of a size "
+                        "(bounded: symbolic costs, enumerated layouts, start and goal)")
+    ck.add_argument("property", choices=(*CHECK_PROPERTIES, "all"), metavar="PROPERTY",
+                    help=f"one of {', '.join(CHECK_PROPERTIES)}, or all")
+    csz = ck.add_mutually_exclusive_group()
+    csz.add_argument("--size", nargs=2, type=int, metavar=("W", "H"),
+                     help="map size, lethal border included (default: 4 4)")
+    csz.add_argument("--max-size", nargs=2, type=int, metavar=("W", "H"),
+                     help="every size up to W x H, smallest interior first, until --budget runs out; "
+                     "a refuted property stops at its smallest counterexample")
+    ck.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
+    ck.add_argument("--costs", default="50..253", metavar="LO..HI",
+                    help="range of every passable cell's cost (50..253: what setCostmap produces; 0..253 for "
+                    "NavFn's raw API); lethal cells are enumerated")
+    ck.add_argument("--semantics", choices=("fp32", "real"), default="fp32",
+                    help="fp32: bit-precise float32 and float64, as the C++ computes (real: not available for check)")
+    ck.add_argument("--timeout", type=float, default=60.0, help="seconds per solver query (a timeout is unknown)")
+    ck.add_argument("--budget", type=float, help="with --max-size: stop starting new sizes after this many seconds")
+    ck.add_argument("--jobs", type=int, default=1, help="worker processes exploring cases")
+    ck.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="fix the start cell (default: every one)")
+    ck.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"), help="fix the goal cell (default: every one)")
+    ck.add_argument("--ends", choices=("any", "passable"), default="any",
+                    help="start and goal range over every interior cell, or only over passable ones (Nav2 clears "
+                    "the robot's cell, NavFn's goal)")
+    ck.add_argument("--out", metavar="DIR", help="save each property's smallest counterexample under DIR as a "
+                    "suite map directory with goldens and picture (default: nothing written)")
+    ck.add_argument("--json", metavar="FILE", help="write the verdicts, what was enumerated and solved, as JSON")
+    ck.set_defaults(func=cmd_check)
 
     se = sub.add_parser("search", help="hunt counterexamples (random maps, hill climbing, shrinking; replayed "
                         "on the spec), or count each kind on a suite with --summary")

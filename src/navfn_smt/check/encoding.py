@@ -1,4 +1,4 @@
-"""The complete propagation of NavFn on a small map, as terms of a symbolic domain.
+"""The complete run of NavFn on a small map (propagation and path extraction), as domain terms.
 
 ``setupNavFn`` + ``propNavFn{Astar,Dijkstra}`` unrolled over a map whose interior cells have
 costs given as domain values (symbolic bytes, or constants), with the start and goal fixed.
@@ -24,7 +24,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..spec import kernels as K
-from ..spec.constants import COST_OBS, POT_HIGH, PRI_INC
+from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC
+from ..spec.extraction import ExtractionExit
 from ..spec.numeric import CONCRETE
 from ..spec.propagation import cycle_limit
 
@@ -46,6 +47,7 @@ class SymbolicPropagation:
     cycles: object
     pending: list = field(default_factory=list)
     trace: list = field(default_factory=list)  # per unrolled cycle: (processed?, fill, slots)
+    buffers: list = field(default_factory=list)  # every Buffer state the run passes through
 
 
 def _interior(nx: int, ny: int) -> list[int]:
@@ -56,6 +58,14 @@ def _push(D, buf: Buffer, guard, cell: int) -> Buffer:
     """``buf[fill] = cell; fill++`` under ``guard``."""
     slots = [D.ite(D.and_(guard, D.eq(buf.fill, j)), cell, s) for j, s in enumerate(buf.slots)]
     return Buffer(slots, D.ite(guard, D.add_int(buf.fill, 1), buf.fill))
+
+
+def _fix(D, c):
+    """A condition, or in a domain that follows one control path (``D.decide``, the concolic
+    domain) the branch this run takes, as a plain bool: the encoding then builds only the
+    terms of that branch.  Symbolic domains build both."""
+    decide = getattr(D, "decide", None)
+    return c if decide is None or isinstance(c, bool) else decide(c)
 
 
 def _choose(D, c, a: Buffer, b: Buffer) -> Buffer:
@@ -94,6 +104,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
     cycles = 0
     running = True
     trace = []
+    buffers = [cur]
     for _ in range(cycle_limit(nx, ny)):
         running = D.and_(running, D.not_(D.and_(D.eq(cur.fill, 0), D.eq(nxt.fill, 0))))
         cycles = D.ite(running, D.add_int(cycles, 1), cycles)
@@ -106,17 +117,21 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
         for i, s in enumerate(cur.slots):
             for n in inner:
                 here = D.and_(active[i], D.eq(s, n))
+                if here is False:
+                    continue  # a domain that follows one control path knows this slot is not cell n
                 l, r, u, d = pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx]
                 new, changed = K.cell_update(D, pot[n], l, r, u, d, cost_int[n], hf[n])
-                upd = D.and_(here, changed)
+                upd = _fix(D, D.and_(here, changed))
+                if upd is False:
+                    continue
                 pot[n] = D.ite(upd, new, pot[n])
                 key = D.add(new, heuristic(n % nx - start[0], n // nx - start[1])) if astar else new
-                low = K.to_low_buffer(D, key, cur_t)
+                low = _fix(D, K.to_low_buffer(D, key, cur_t))
                 for m, pm in ((n - 1, l), (n + 1, r), (n - nx, u), (n + nx, d)):
                     if m not in cost_int:
                         continue  # the border: lethal, never pushed
-                    g = D.and_(D.and_(upd, K.push_wanted(D, pm, key, K.edge_weight(D, hf[m]))),
-                               D.and_(D.not_(pending[m]), D.lt(cost_int[m], COST_OBS)))
+                    g = _fix(D, D.and_(D.and_(upd, K.push_wanted(D, pm, key, K.edge_weight(D, hf[m]))),
+                                       D.and_(D.not_(pending[m]), D.lt(cost_int[m], COST_OBS))))
                     new_nxt = _push(D, new_nxt, D.and_(g, low), m)
                     new_over = _push(D, new_over, D.and_(g, D.not_(low)), m)
                     pending[m] = D.or_(pending[m], g)
@@ -127,9 +142,145 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
         cur = _choose(D, running, swapped_cur, cur)
         over = _choose(D, running, swapped_over, over)
         nxt = _choose(D, running, empty, nxt)
+        buffers += [new_nxt, new_over, cur, over]
         cur_t = D.ite(D.and_(running, drained), D.add(cur_t, inc), cur_t)
-        running = D.and_(running, D.not_(D.lt(pot[start_cell], high)))
+        running = _fix(D, D.and_(running, D.not_(D.lt(pot[start_cell], high))))
     reached = D.lt(pot[start_cell], high)
     if not astar:  # Dijkstra returns cycle < cycles: true when it stopped early
         reached = D.not_(running)
-    return SymbolicPropagation(nx, ny, pot, reached, cycles, pending, trace)
+    return SymbolicPropagation(nx, ny, pot, reached, cycles, pending, trace, buffers)
+
+
+# ---------------------------------------------------------------------------------------
+# Path extraction: calcPath(n) over a symbolic potential
+# ---------------------------------------------------------------------------------------
+EXIT_CODES = {e: i for i, e in enumerate(ExtractionExit)}
+EXIT_UNDEFINED = len(EXIT_CODES)  # the C++ reads outside potarr
+RUNNING = -1
+
+
+def exit_name(code: int) -> str:
+    return "undefined" if code == EXIT_UNDEFINED else list(ExtractionExit)[code].value
+
+
+@dataclass
+class SymbolicExtraction:
+    """Terms after ``calcPath(n)``: the exit code, and per iteration the point it appended.
+
+    ``points[i] = (x, y, written)``: iteration ``i`` appended ``(x, y)`` when ``written``.
+    The returned path (exit ``NEAR_GOAL``) is the written points followed by the goal."""
+
+    exit: object
+    points: list
+    running_after: list  # per iteration: still running after it
+    goal_point: tuple  # the (x, y) appended on success
+
+
+def _mux(D, sel, value, keys):
+    """``value(sel)`` for an int ``sel`` known to be one of ``keys``: a chain of ``ite`` over the
+    keys, or the one value when ``sel`` is a plain int."""
+    if isinstance(sel, int):
+        return value(sel)
+    keys = list(keys)
+    out = value(keys[-1])
+    for k in reversed(keys[:-1]):
+        out = D.ite(D.eq(sel, k), value(k), out)
+    return out
+
+
+def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtraction:
+    """``calcPath(n)`` from ``start`` on potentials ``pot`` (terms), as in
+    :func:`navfn_smt.spec.extraction.calc_path`.
+
+    The current cell ``stc`` is an int term; whatever depends on it (its potential, its
+    eight-cell ring, the four gradients around the offset, the path point) is the kernel's
+    value at every possible cell, selected by ``stc``.  gradCell's cache does not change
+    what it returns (the potential is fixed during extraction), so each cell's gradient is
+    one term, computed by ``K.grad_cell`` when first needed; rows 0 and ``ny - 1`` keep the
+    zero ``setupNavFn`` wrote, and cell ``ns - nx`` is the C++'s out-of-bounds read."""
+    ns = nx * ny
+    cells = range(ns)
+    zero = D.f32const(0.0)
+    grads: dict = {}
+
+    def grad(m):
+        if m not in grads:
+            if m < nx or m >= ns - nx:
+                grads[m] = (zero, zero)
+            else:
+                grads[m] = K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1], pot[m - nx], pot[m + nx])
+        return grads[m]
+
+    ring_offsets = (-nx - 1, -nx, -nx + 1, -1, 1, nx - 1, nx, nx + 1)
+    inside = [c for c in cells if c - nx - 1 >= 0 and c + nx + 1 < ns]
+    step = D.f32const(PATH_STEP)
+    code = RUNNING
+    stc = start[1] * nx + start[0]
+    dx = dy = zero
+    points: list = []
+    running_after = []
+    for i in range(n):
+        if isinstance(code, int) and code != RUNNING:
+            break  # a plain exit code: this run has left the loop
+        running = D.eq(code, RUNNING)
+        near = K.nearest_cell(D, stc, dx, dy, nx, ns)
+        at_goal = _fix(D, K.near_goal(D, _mux(D, near, pot.__getitem__, cells)))
+        oob = _fix(D, D.or_(D.lt(stc, nx), D.lt(ns - nx, stc)))
+        ub_ring = _fix(D, D.or_(D.lt(D.add_int(stc, -nx - 1), 0), D.le(ns, D.add_int(stc, nx + 1))))
+        x0, y0 = dx, dy
+        px = _mux(D, stc, lambda c: K.path_point(D, c, nx, x0, y0)[0], cells)
+        py = _mux(D, stc, lambda c: K.path_point(D, c, nx, x0, y0)[1], cells)
+        written = D.and_(running, D.not_(D.or_(at_goal, D.or_(oob, ub_ring))))
+        points.append((px, py, written))
+        if written is False:
+            new_code = D.ite(at_goal, EXIT_CODES[ExtractionExit.NEAR_GOAL],
+                             D.ite(oob, EXIT_CODES[ExtractionExit.OUT_OF_BOUNDS], EXIT_UNDEFINED))
+            code = D.ite(running, new_code, code)
+            running_after.append(D.eq(code, RUNNING))
+            continue
+        osc = False
+        if i >= 2:
+            qx, qy, _ = points[i - 2]
+            osc = D.and_(D.eq(px, qx), D.eq(py, qy))
+        centre = _mux(D, stc, pot.__getitem__, inside)
+        ring = [_mux(D, stc, lambda c, o=o: pot[c + o], inside) for o in ring_offsets]
+        fallback = D.or_(osc, K.unreached(D, centre))
+        for p in ring:
+            fallback = D.or_(fallback, K.unreached(D, p))
+        fallback = _fix(D, fallback)
+        stc_fb = stc_step = stuck = ub_grad = flat = False
+        ndx = ndy = zero
+        if fallback is not False:
+            best = K.lowest_of_eight(D, centre, ring)
+            moved = D.add_int(stc, _mux(D, best, ring_offsets.__getitem__, range(8)))
+            stc_fb = D.ite(D.lt(best, 0), stc, moved)
+            stuck = _fix(D, K.unreached(D, _mux(D, stc_fb, pot.__getitem__, cells)))
+        if fallback is not True:
+            down = D.add_int(stc, nx)
+            for c in (stc, D.add_int(stc, 1), down, D.add_int(down, 1)):
+                ub_grad = D.or_(ub_grad, D.eq(c, ns - nx))
+            ub_grad = _fix(D, ub_grad)
+            if ub_grad is not True:
+                g = [[_mux(D, stc, lambda c, o=o, a=a: grad(c + o)[a], inside) for o in (0, 1, nx, nx + 1)]
+                     for a in (0, 1)]
+                x = K.interpolate_gradient(D, dx, dy, *g[0])
+                y = K.interpolate_gradient(D, dx, dy, *g[1])
+                flat = _fix(D, D.and_(D.eq(x, zero), D.eq(y, zero)))
+                if flat is not True:
+                    ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
+                    stc_step = D.add_int(D.add_int(stc, cdx), cdy * nx)
+        # the outcome of the iteration, in the C++ order of its tests
+        new_code = D.ite(at_goal, EXIT_CODES[ExtractionExit.NEAR_GOAL],
+                   D.ite(oob, EXIT_CODES[ExtractionExit.OUT_OF_BOUNDS],
+                   D.ite(ub_ring, EXIT_UNDEFINED,
+                   D.ite(fallback, D.ite(stuck, EXIT_CODES[ExtractionExit.HIGH_POTENTIAL], RUNNING),
+                   D.ite(ub_grad, EXIT_UNDEFINED,
+                   D.ite(flat, EXIT_CODES[ExtractionExit.ZERO_GRADIENT], RUNNING))))))
+        code = D.ite(running, new_code, code)
+        keep = D.not_(running)
+        stc = D.ite(keep, stc, D.ite(fallback, stc_fb, stc_step))
+        dx = D.ite(keep, dx, D.ite(fallback, zero, ndx))
+        dy = D.ite(keep, dy, D.ite(fallback, zero, ndy))
+        running_after.append(D.eq(code, RUNNING))
+    code = D.ite(D.eq(code, RUNNING), EXIT_CODES[ExtractionExit.EXHAUSTED], code)
+    return SymbolicExtraction(code, points, running_after, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))

@@ -1,0 +1,233 @@
+"""Bounded checks of whole-planner properties over every map of one size.
+
+The discrete choices (which interior cells are lethal, start, goal, mode) are enumerated;
+the costs of the passable cells are symbolic, each anywhere in ``lo..hi``.  For one
+discrete choice (a :class:`Case`) every control path of the complete run (propagation and
+``calcPath``) is found by concolic exploration:
+
+1. run the whole-planner encoding (:mod:`.encoding`) in the concolic domain on concrete
+   costs: the run's path condition is the list of branches the cost box leaves open;
+2. for every property, decide it on that path: from the intervals when they settle it, else
+   by a solver query ``box & path condition & not property``;
+3. flip each open branch after the point where this path was found
+   (``box & branches[:j] & not branches[j]``); a model is a map that takes another control
+   path, which is explored in turn.
+
+Every control path that some map of the box takes diverges from an explored path at a
+first branch, and that flip was asked: when every query is decided, the explored paths
+cover every map of the case, and a property that held on each is proved for the case.  A
+query the solver does not decide makes the case ``unknown``.  A refutation is a concrete
+map, replayed on the spec (:mod:`.properties`) before it is reported.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+import numpy as np
+import z3
+
+from ..smt import smtlib, solvers
+from ..spec.constants import COST_OBS, POT_HIGH
+from ..spec.planner import path_cycle_limit
+from . import properties as P
+from .concolic import ConcolicDomain, V, concrete, term
+from .encoding import EXIT_CODES, _interior, extract, propagate
+
+NEAR_GOAL = EXIT_CODES[P.ExtractionExit.NEAR_GOAL]
+CHECKABLE = tuple(P.PROPERTIES)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One discrete choice: the map's size, its lethal interior cells, start, goal and mode."""
+
+    nx: int
+    ny: int
+    lethal: frozenset
+    start: tuple
+    goal: tuple
+    astar: bool
+
+    @property
+    def mode(self) -> str:
+        return "astar" if self.astar else "dijkstra"
+
+    def costs_array(self, costs: dict) -> np.ndarray:
+        """The (ny, nx) map with the given costs of the passable interior cells."""
+        a = np.full((self.ny, self.nx), COST_OBS, np.uint8)
+        for k in _interior(self.nx, self.ny):
+            if k not in self.lethal:
+                a.flat[k] = costs[k]
+        return a
+
+
+def cases(nx: int, ny: int, modes, start=None, goal=None, ends: str = "any"):
+    """Every layout of the interior (each cell lethal or passable), every start and goal
+    (``ends="passable"``: only passable start and goal cells)."""
+    inner = _interior(nx, ny)
+    cells = [(k % nx, k // nx) for k in inner]
+    for astar in modes:
+        for bits in itertools.product((False, True), repeat=len(inner)):
+            lethal = frozenset(k for k, b in zip(inner, bits) if b)
+            for s in ([start] if start else cells):
+                for g in ([goal] if goal else cells):
+                    if ends == "passable" and {s[1] * nx + s[0], g[1] * nx + g[0]} & lethal:
+                        continue
+                    yield Case(nx, ny, lethal, tuple(s), tuple(g), astar)
+
+
+# ---------------------------------------------------------------------------------------
+# The properties on the encoded run
+# ---------------------------------------------------------------------------------------
+def _reached(D, pot):
+    return D.lt(pot, D.f32const(POT_HIGH))
+
+
+def property_value(name: str, D, case: Case, costs: dict, sp, ex):
+    """The property as a condition of the encoded run (a :class:`V` or a plain bool)."""
+    nx = case.nx
+    sc = case.start[1] * nx + case.start[0]
+    start_finite = _reached(D, sp.potential[sc])
+    code = concrete(ex.exit)  # path-wise: the exit of this control path
+    returned = code == NEAR_GOAL
+    if name == "complete":
+        return D.or_(D.not_(start_finite), returned)
+    if name == "no-path-before-start-potential":
+        return D.or_(not returned, start_finite)
+    if name == "start-reached":
+        arr = case.costs_array({k: 100 for k in costs})
+        return D.or_(not P.connected(arr, case.start, case.goal), start_finite)
+    if name == "queues-obstacle-free":
+        ok = True
+        for buf in sp.buffers:
+            for s in buf.slots[: concrete(buf.fill)]:
+                ok = D.and_(ok, D.lt(D.cost_int(costs.get(concrete(s), COST_OBS)), COST_OBS))
+        return ok
+    if name == "valid-path":
+        if not returned:
+            return True
+        ok = True
+        pts = [(x, y) for x, y, w in ex.points if concrete(w)] + [ex.goal_point]
+        for x, y in pts:
+            near_any = False
+            for c in range(nx * case.ny):
+                cx, cy = c % nx, c // nx
+                good = D.and_(D.lt(D.cost_int(costs.get(c, COST_OBS)), COST_OBS), _reached(D, sp.potential[c]))
+                inside = D.and_(D.and_(D.ge(x, D.f32const(cx - 0.5)), D.le(x, D.f32const(cx + 0.5))),
+                                D.and_(D.ge(y, D.f32const(cy - 0.5)), D.le(y, D.f32const(cy + 0.5))))
+                near_any = D.or_(near_any, D.and_(inside, good))
+            ok = D.and_(ok, near_any)
+        return ok
+    raise ValueError(f"unknown property {name!r}")
+
+
+# ---------------------------------------------------------------------------------------
+# Solving
+# ---------------------------------------------------------------------------------------
+def solve_bitwuzla(assertions: list, variables: dict, timeout: float):
+    """``("sat", {cell: cost})``, ``("unsat", None)`` or ``("unknown", reason)`` (a timeout is unknown)."""
+    q = smtlib.prepare(assertions)
+    r = solvers.run_bitwuzla(q.smt2, timeout, {n: n for n in q.consts}, q.logic)
+    if r["status"] == "sat":
+        return "sat", {k: int(r["model"][str(v)]) for k, v in variables.items()}
+    if r["status"] == "unsat":
+        return "unsat", None
+    return "unknown", f"bitwuzla: {r.get('detail', r['status'])}"
+
+
+def solve_z3(assertions: list, variables: dict, timeout: float):
+    """As :func:`solve_bitwuzla`, with Z3."""
+    s = z3.SolverFor("QF_BVFP")
+    s.set(timeout=max(1, int(timeout * 1000)))
+    s.add(*assertions)
+    r = s.check()
+    if r == z3.sat:
+        m = s.model()
+        return "sat", {k: m.eval(v, model_completion=True).as_long() for k, v in variables.items()}
+    if r == z3.unsat:
+        return "unsat", None
+    return "unknown", s.reason_unknown()
+
+
+@dataclass
+class PropertyResult:
+    name: str
+    status: str = "holds"  # holds | refuted | unknown
+    counterexample: Optional[dict] = None  # cell -> cost
+    reason: str = ""
+    queries: int = 0
+
+
+@dataclass
+class CaseResult:
+    case: Case
+    results: dict  # name -> PropertyResult
+    paths: int = 0
+    flips: int = 0
+    flip_queries: int = 0
+    decided_by_intervals: int = 0
+    seconds: float = 0.0
+    unknown_flips: list = field(default_factory=list)
+
+
+def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable):
+    S = make_domain()
+    D = ConcolicDomain(S)
+    inner = _interior(case.nx, case.ny)
+    costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}
+    sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar)
+    ex = extract(D, sp.potential, case.nx, case.ny, case.start, case.goal, path_cycle_limit(case.nx))
+    return D, costs, sp, ex
+
+
+def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
+            solve=solve_bitwuzla, initial: Optional[dict] = None) -> CaseResult:
+    """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each."""
+    t0 = time.perf_counter()
+    inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
+    results = {n: PropertyResult(n) for n in names}
+    out = CaseResult(case, results)
+    todo = [(initial or {k: lo for k in inner}, 0)]
+    while todo:
+        conc, bound = todo.pop()
+        D, costs, sp, ex = _symbolic_run(case, conc, lo, hi, make_domain)
+        out.paths += 1
+        variables = {k: costs[k].term for k in inner}
+        box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
+        pc = D.branches
+        for n in names:
+            r = results[n]
+            if r.status == "refuted":
+                continue
+            p = property_value(n, D, case, costs, sp, ex)
+            if not concrete(p):
+                r.status, r.counterexample = "refuted", dict(conc)
+                continue
+            if D.truth(p) is True:
+                out.decided_by_intervals += 1
+                continue
+            r.queries += 1
+            status, model = solve(box + pc + [z3.Not(term(D, p))], variables, timeout)
+            if status == "sat":
+                r.status, r.counterexample = "refuted", model
+            elif status != "unsat" and r.status == "holds":
+                r.status, r.reason = "unknown", f"solver: {model}"
+        if all(r.status == "refuted" for r in results.values()):
+            break  # nothing left to prove in this case
+        for j in range(bound, len(pc)):
+            out.flips += 1
+            out.flip_queries += 1
+            status, model = solve(box + pc[:j] + [z3.Not(pc[j])], variables, timeout)
+            if status == "sat":
+                todo.append((model, j + 1))
+            elif status != "unsat":
+                out.unknown_flips.append(j)
+                for r in results.values():
+                    if r.status == "holds":
+                        r.status, r.reason = "unknown", f"a branch the solver did not decide ({model})"
+    out.seconds = time.perf_counter() - t0
+    return out

@@ -1,0 +1,167 @@
+"""``navfn-smt check``: a whole-planner property over every map of a size, or up to a size.
+
+For one size the discrete choices are enumerated (:func:`.bounded.cases`: every layout of
+lethal interior cells, every start and goal, each mode) and each is explored concolically
+over the cost box (:func:`.bounded.explore`).  A property is ``proved`` for the size only
+when every case is decided and holds; ``refuted`` when a case yields a map the reference
+spec confirms; ``unknown`` otherwise (a solver timeout, never counted as proved).
+
+Inductive properties also get their proof for every size: the obligations of the paper
+predicate that carries the induction are checked (:data:`INDUCTION`).
+"""
+
+from __future__ import annotations
+
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+from ..errors import NavfnInputError
+from . import properties as P
+from .bounded import CHECKABLE, Case, cases, explore
+
+# Properties that hold by induction over the run, and the predicate whose obligations carry it.
+INDUCTION = {
+    "queues-obstacle-free": ("ObstacleFreeQueue", "PendingMatchesBuffers"),
+    "no-path-before-start-potential": ("NoPathWithoutFinitePotential",),
+}
+NOT_INDUCTIVE = {
+    "valid-path": "its induction (FinitePotentialPath, ValidPath) has links that are open in float32 "
+                  "(see `navfn-smt prove`); and a lethal goal cell breaks it at every size",
+    "start-reached": "the cycle limit max(nx*ny/20, nx+ny) cuts long corridors off: refuted at larger sizes",
+    "complete": "calcPath's budget of 4*nx iterations runs out on long paths: refuted at larger sizes",
+}
+
+
+@dataclass
+class SizeResult:
+    size: tuple
+    property: str
+    status: str  # proved | refuted | unknown
+    cases: int = 0
+    cases_holding: int = 0
+    cases_unknown: int = 0
+    paths: int = 0
+    queries: int = 0
+    decided_by_intervals: int = 0
+    seconds: float = 0.0
+    counterexample: Optional[dict] = None
+    unknown_cases: list = field(default_factory=list)
+
+
+def parse_costs(text: str) -> tuple[int, int]:
+    """``LO..HI`` with 0 <= LO <= HI <= 253 (254 and 255 are the lethal layout choice)."""
+    try:
+        lo, hi = (int(v) for v in str(text).split(".."))
+    except ValueError:
+        raise NavfnInputError(f"--costs {text!r}: expected LO..HI, e.g. 50..253") from None
+    if not 0 <= lo <= hi <= 253:
+        raise NavfnInputError(f"--costs {text!r}: need 0 <= LO <= HI <= 253 (lethal cells are enumerated)")
+    return lo, hi
+
+
+def check_size(nx: int, ny: int) -> None:
+    if nx < 3 or ny < 3:
+        raise NavfnInputError(f"--size {nx} {ny}: NavFn needs at least 3x3 cells (the border is lethal)")
+    if (nx - 2) * (ny - 2) > 12:
+        raise NavfnInputError(f"--size {nx} {ny}: {(nx - 2) * (ny - 2)} interior cells; bounded checks enumerate "
+                              f"2**cells layouts and cells**2 start/goal pairs (at most 12 cells)")
+
+
+def _domain(semantics: str):
+    from ..smt.domains import FPDomain
+
+    if semantics != "fp32":
+        raise NavfnInputError("check: only --semantics fp32 is implemented for whole-planner checks "
+                              "(the concolic exploration follows float32 control paths)")
+    return FPDomain
+
+
+def _explore_job(args):
+    case, names, lo, hi, semantics, timeout = args
+    return explore(case, names, lo, hi, _domain(semantics), timeout=timeout)
+
+
+def replay(case: Case, costs: dict, name: str):
+    """The counterexample map run by the reference spec; the judge's reason, or None if it holds."""
+    arr = case.costs_array(costs)
+    r = P.run(arr, case.start, case.goal, case.astar)
+    return arr, r, P.judge(name, r)
+
+
+def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
+                   timeout: float = 60.0, jobs: int = 1, start=None, goal=None, ends: str = "any",
+                   progress: Optional[Callable[[int, int, object], None]] = None) -> dict:
+    """Every case of the size; returns ``{property: SizeResult}``."""
+    check_size(nx, ny)
+    _domain(semantics)
+    todo = list(cases(nx, ny, modes, start, goal, ends))
+    out = {n: SizeResult((nx, ny), n, "proved", cases=len(todo)) for n in names}
+    t0 = time.perf_counter()
+    work = [(c, tuple(names), lo, hi, semantics, timeout) for c in todo]
+    if jobs > 1:
+        with ProcessPoolExecutor(max_workers=jobs) as ex:
+            results = ex.map(_explore_job, work, chunksize=4)
+            _collect(results, out, len(work), progress)
+    else:
+        _collect(map(_explore_job, work), out, len(work), progress)
+    for r in out.values():
+        r.seconds = time.perf_counter() - t0
+        if r.counterexample is None and r.cases_unknown:
+            r.status = "unknown"
+    return out
+
+
+def _collect(results, out: dict, total: int, progress) -> None:
+    for i, cr in enumerate(results, 1):
+        case = cr.case
+        for name, pr in cr.results.items():
+            r = out[name]
+            r.paths += cr.paths
+            r.queries += pr.queries + cr.flip_queries
+            r.decided_by_intervals += cr.decided_by_intervals
+            if pr.status == "holds":
+                r.cases_holding += 1
+            elif pr.status == "unknown":
+                r.cases_unknown += 1
+                r.unknown_cases.append(_case_json(case) | {"reason": pr.reason})
+            elif pr.status == "refuted" and r.counterexample is None:
+                arr, run, why = replay(case, pr.counterexample, name)
+                if why is None:  # the spec does not confirm it: the encoding is wrong, never report it
+                    raise RuntimeError(f"{name}: the solver's counterexample {_case_json(case)} costs "
+                                       f"{pr.counterexample} does not replay on the spec")
+                r.status = "refuted"
+                r.counterexample = _case_json(case) | {"costs": arr.tolist(), "reason": why, "exit": run.exit,
+                                                       "start_potential": float(run.start_potential)}
+        if progress:
+            progress(i, total, cr)
+
+
+def _case_json(case: Case) -> dict:
+    return {"size": [case.nx, case.ny], "mode": case.mode, "start": list(case.start), "goal": list(case.goal),
+            "lethal": sorted([k % case.nx, k // case.nx] for k in case.lethal)}
+
+
+def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> list[tuple[int, int]]:
+    """Sizes from ``min`` up to ``max``, smallest interior first (ties: wider first)."""
+    out = [(w, h) for w in range(min_nx, max_nx + 1) for h in range(min_ny, max_ny + 1)]
+    return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), -s[0], s[1]))
+
+
+def induction(name: str, timeout: float = 30.0) -> Optional[dict]:
+    """The every-size proof of an inductive property: its predicates' obligations, in fp32."""
+    if name not in INDUCTION:
+        return None
+    from ..proofs import PREDICATES
+    from ..smt.checking import check
+    from ..smt.obligation import load_obligations
+    from ..smt.runner import default_proof_files, solve_query
+
+    preds = [p for p in PREDICATES if p.name in INDUCTION[name]]
+    wanted = [o for p in preds for o in (*p.base, *p.lemmas)]
+    obligations = {o.name: o for o in load_obligations(default_proof_files())}
+    outcomes = {w: check(obligations[w], "fp32", timeout, solve_query(("z3",))).status for w in wanted}
+    proved = bool(outcomes) and all(s == "proved" for s in outcomes.values())
+    return {"predicates": [p.name for p in preds], "status": "proved" if proved else "not proved",
+            "obligations": outcomes, "trusted": [t for p in preds for t in p.trusted]}

@@ -1,0 +1,92 @@
+"""``check``'s verdicts held against exhaustive concrete runs of the reference spec.
+
+Where the space of maps is small enough to enumerate (every layout, every start and goal,
+every cost of a narrow range), the spec runs every map and judges every property; the
+checker must then say ``proved`` exactly when no map breaks the property, and its
+counterexample must be one of the maps that do.  A proof that a concrete map refutes is
+the worst bug the checker can have: these tests are its guard.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+import z3
+
+from navfn_smt.check import properties as P
+from navfn_smt.check.bounded import CHECKABLE, Case, _symbolic_run, cases, explore
+from navfn_smt.check.concolic import V
+from navfn_smt.check.encoding import _interior
+from navfn_smt.check.runner import check_one_size
+from navfn_smt.smt.domains import FPDomain
+from navfn_smt.smt.evaluate import value
+
+
+def _exhaustive(nx, ny, lo, hi, modes):
+    """Per property, the set of cases (layout, start, goal, mode) some map of the range breaks."""
+    broken = {n: set() for n in CHECKABLE}
+    for case in cases(nx, ny, modes):
+        free = [k for k in _interior(nx, ny) if k not in case.lethal]
+        for values in itertools.product(range(lo, hi + 1), repeat=len(free)):
+            r = P.run(case.costs_array(dict(zip(free, values))), case.start, case.goal, case.astar)
+            for n in CHECKABLE:
+                if P.judge(n, r):
+                    broken[n].add(case)
+    return broken
+
+
+@pytest.mark.parametrize("nx, ny, lo, hi", [(3, 4, 50, 90), (4, 3, 200, 253), (3, 5, 120, 128)])
+def test_verdicts_match_exhaustive_runs(nx, ny, lo, hi):
+    modes = (True, False)
+    broken = _exhaustive(nx, ny, lo, hi, modes)
+    got = check_one_size(CHECKABLE, nx, ny, modes, lo, hi, timeout=60)
+    for n in CHECKABLE:
+        r = got[n]
+        assert r.cases_unknown == 0
+        assert r.status == ("refuted" if broken[n] else "proved"), n
+        if broken[n]:
+            cx = r.counterexample
+            assert any(c.start == tuple(cx["start"]) and c.goal == tuple(cx["goal"]) and c.mode == cx["mode"]
+                       for c in broken[n])
+
+
+def test_4x4_cases_match_exhaustive_runs():
+    """Each 4x4 case with three passable cells of four costs: per case, the checker's verdict
+    per property equals the exhaustive one."""
+    lo, hi = 100, 103
+    for case in [Case(4, 4, frozenset({5}), (2, 2), (1, 2), True), Case(4, 4, frozenset({10}), (1, 1), (2, 1), False),
+                 Case(4, 4, frozenset({6}), (1, 2), (2, 2), True), Case(4, 4, frozenset({9}), (2, 1), (1, 1), False)]:
+        free = [k for k in _interior(4, 4) if k not in case.lethal]
+        broken = set()
+        for values in itertools.product(range(lo, hi + 1), repeat=len(free)):
+            r = P.run(case.costs_array(dict(zip(free, values))), case.start, case.goal, case.astar)
+            broken |= {n for n in CHECKABLE if P.judge(n, r)}
+        res = explore(case, CHECKABLE, lo, hi, FPDomain, timeout=60)
+        for n in CHECKABLE:
+            assert res.results[n].status == ("refuted" if n in broken else "holds"), (case, n)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_intervals_hold_every_value_of_the_box(seed):
+    """The concolic domain's values are the spec's, and its intervals are sound: each value's
+    path-wise term, evaluated at other maps of the cost box, stays inside the interval."""
+    rng = np.random.default_rng(seed)
+    nx, ny = 4, 4
+    inner = _interior(nx, ny)
+    lo, hi = sorted(int(v) for v in rng.integers(50, 254, 2))
+    case = Case(nx, ny, frozenset(), (1 + seed % 2, 2), (2, 1), bool(seed % 2))
+    conc = {k: int(rng.integers(lo, hi + 1)) for k in inner}
+    D, costs, sp, ex = _symbolic_run(case, conc, lo, hi, FPDomain)
+    ref = P.run(case.costs_array(conc), case.start, case.goal, case.astar)
+    symbolic = [(k, p) for k, p in enumerate(sp.potential) if isinstance(p, V)]
+    assert symbolic
+    for k, p in enumerate(sp.potential):
+        v = p.conc if isinstance(p, V) else p
+        assert np.float32(v).tobytes() == ref.potential.ravel()[k].tobytes()
+    for _ in range(20):
+        point = {costs[k].term: z3.BitVecVal(int(rng.integers(lo, hi + 1)), 8) for k in inner}
+        for k, p in symbolic:
+            got = value(z3.simplify(z3.substitute(p.term, *point.items())))
+            assert p.lo <= got <= p.hi, (k, p.lo, got, p.hi)
