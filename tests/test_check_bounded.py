@@ -90,3 +90,34 @@ def test_intervals_hold_every_value_of_the_box(seed):
         for k, p in symbolic:
             got = value(z3.simplify(z3.substitute(p.term, *point.items())))
             assert p.lo <= got <= p.hi, (k, p.lo, got, p.hi)
+
+
+def test_exhaustive_evaluation_equals_z3():
+    """The numpy evaluator of the last-resort exhaustive decision gives Z3's value on every query
+    an exploration asks, at random maps of the box; and decides small boxes as the solver does."""
+    from navfn_smt.check import bounded as B
+    from navfn_smt.check import exhaustive as X
+
+    asked = []
+
+    def recording(a, v, t):
+        asked.append((a, v))
+        return B.solve_bitwuzla(a, v, t)
+
+    explore(Case(4, 4, frozenset({10}), (2, 1), (1, 2), True), CHECKABLE, 50, 253, FPDomain, timeout=30,
+            solve=recording)
+    assert asked
+    rng = np.random.default_rng(0)
+    for a, v in asked:
+        pts = [{k: int(rng.integers(50, 254)) for k in v} for _ in range(10)]
+        env = {str(v[k]): np.array([p[k] for p in pts]) for k in v}
+        memo = {}
+        for t in a:
+            got = X.evaluate(t, env, len(pts), memo)
+            for i, p in enumerate(pts):
+                want = z3.is_true(z3.simplify(z3.substitute(t, *[(v[k], z3.BitVecVal(p[k], 8)) for k in v])))
+                assert bool(got[i]) == want
+    for a, v in asked[:6]:
+        small = {k: (100, 111) for k in v}
+        box = [z3.And(z3.UGE(x, 100), z3.ULE(x, 111)) for x in v.values()]
+        assert X.solve(a + box, v, small)[0] == B.solve_bitwuzla(a + box, v, 30)[0]

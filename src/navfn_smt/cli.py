@@ -317,7 +317,8 @@ def cmd_check(args) -> int:
             break
         CR.check_size(nx, ny)
         got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, args.jobs,
-                                args.start, args.goal, args.ends, progress=report.progress(f"{nx}x{ny}"))
+                                args.start, args.goal, args.ends, int(args.exhaustive),
+                                progress=report.progress(f"{nx}x{ny}"))
         for n in list(open_names):
             results.append(got[n])
             if got[n].status == "refuted" and args.max_size:
@@ -579,7 +580,13 @@ def build_parser() -> argparse.ArgumentParser:
                     "NavFn's raw API); lethal cells are enumerated")
     ck.add_argument("--semantics", choices=("fp32", "real"), default="fp32",
                     help="fp32: bit-precise float32 and float64, as the C++ computes (real: not available for check)")
-    ck.add_argument("--timeout", type=float, default=60.0, help="seconds per solver query (a timeout is unknown)")
+    ck.add_argument("--timeout", type=float, default=20.0,
+                    help="seconds per solver query; a query bitwuzla and cvc5 leave undecided is split (its cost box "
+                    "cut in four, twice) or evaluated at every point of its box (--exhaustive); what stays "
+                    "undecided is unknown")
+    ck.add_argument("--exhaustive", type=float, default=1e7, metavar="POINTS",
+                    help="evaluate an undecided query at every point of its cost box when the box has at most this "
+                    "many points (numpy, about 5 million points a second)")
     ck.add_argument("--budget", type=float, help="with --max-size: stop starting new sizes after this many seconds")
     ck.add_argument("--jobs", type=int, default=1, help="worker processes exploring cases")
     ck.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="fix the start cell (default: every one)")

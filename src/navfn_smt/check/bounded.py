@@ -34,6 +34,7 @@ from ..smt import smtlib, solvers
 from ..spec.constants import COST_OBS, POT_HIGH
 from ..spec.planner import path_cycle_limit
 from . import properties as P
+from . import exhaustive
 from .concolic import ConcolicDomain, V, concrete, term
 from .encoding import EXIT_CODES, _interior, extract, propagate
 
@@ -129,14 +130,19 @@ def property_value(name: str, D, case: Case, costs: dict, sp, ex):
 # Solving
 # ---------------------------------------------------------------------------------------
 def solve_bitwuzla(assertions: list, variables: dict, timeout: float):
-    """``("sat", {cell: cost})``, ``("unsat", None)`` or ``("unknown", reason)`` (a timeout is unknown)."""
+    """``("sat", {cell: cost})``, ``("unsat", None)`` or ``("unknown", reason)`` (a timeout is
+    unknown): bitwuzla, and cvc5 on what bitwuzla leaves undecided."""
     q = smtlib.prepare(assertions)
-    r = solvers.run_bitwuzla(q.smt2, timeout, {n: n for n in q.consts}, q.logic)
-    if r["status"] == "sat":
-        return "sat", {k: int(r["model"][str(v)]) for k, v in variables.items()}
-    if r["status"] == "unsat":
-        return "unsat", None
-    return "unknown", f"bitwuzla: {r.get('detail', r['status'])}"
+    names = {n: n for n in q.consts}
+    reasons = []
+    for solver, run in (("bitwuzla", solvers.run_bitwuzla), ("cvc5", solvers.run_cvc5)):
+        r = run(q.smt2, timeout, names, q.logic)
+        if r["status"] == "sat":
+            return "sat", {k: int(r["model"][str(v)]) for k, v in variables.items()}
+        if r["status"] == "unsat":
+            return "unsat", None
+        reasons.append(f"{solver}: {r.get('detail', r['status'])}")
+    return "unknown", "; ".join(reasons)
 
 
 def solve_z3(assertions: list, variables: dict, timeout: float):
@@ -151,6 +157,41 @@ def solve_z3(assertions: list, variables: dict, timeout: float):
     if r == z3.unsat:
         return "unsat", None
     return "unknown", s.reason_unknown()
+
+
+EXHAUSTIVE_LIMIT = 10_000_000  # points of a box worth evaluating one by one (numpy: about a minute)
+
+
+def solve_split(assertions: list, variables: dict, timeout: float, solve, ranges: dict, depth: int = 2,
+                limit: int = EXHAUSTIVE_LIMIT):
+    """``solve``, and when it does not decide: a box of at most ``EXHAUSTIVE_LIMIT`` points is
+    decided by evaluating the query at every point (:mod:`.exhaustive`); a larger one is cut in
+    four along its widest cost range, each part solved the same way (``depth`` levels).  Every part unsat: unsat; a
+    part sat: its model; otherwise unknown.  The parts cover the box, so this is sound."""
+    status, model = solve(assertions, variables, timeout)
+    if status != "unknown":
+        return status, model
+    if exhaustive.points(ranges, variables, assertions) <= limit:
+        try:
+            return exhaustive.solve(assertions, variables, ranges)
+        except exhaustive.Unsupported as e:
+            model = f"{model}; exhaustive: {e}"
+    if depth == 0:
+        return status, model
+    k = max(ranges, key=lambda c: (ranges[c][1] - ranges[c][0], c))
+    lo, hi = ranges[k]
+    if lo == hi:
+        return status, model
+    step = -(-(hi - lo + 1) // 4)
+    for a in range(lo, hi + 1, step):
+        b = min(hi, a + step - 1)
+        part = assertions + [z3.UGE(variables[k], a), z3.ULE(variables[k], b)]
+        st, m = solve_split(part, variables, timeout, solve, {**ranges, k: (a, b)}, depth - 1, limit)
+        if st == "sat":
+            return st, m
+        if st != "unsat":
+            return st, m
+    return "unsat", None
 
 
 @dataclass
@@ -185,7 +226,8 @@ def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callabl
 
 
 def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
-            solve=solve_bitwuzla, initial: Optional[dict] = None) -> CaseResult:
+            solve=solve_bitwuzla, initial: Optional[dict] = None,
+            exhaustive_limit: int = EXHAUSTIVE_LIMIT) -> CaseResult:
     """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each."""
     t0 = time.perf_counter()
     inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
@@ -197,6 +239,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
         D, costs, sp, ex = _symbolic_run(case, conc, lo, hi, make_domain)
         out.paths += 1
         variables = {k: costs[k].term for k in inner}
+        ranges = {k: (lo, hi) for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches
         for n in names:
@@ -211,7 +254,8 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
                 out.decided_by_intervals += 1
                 continue
             r.queries += 1
-            status, model = solve(box + pc + [z3.Not(term(D, p))], variables, timeout)
+            status, model = solve_split(box + pc + [z3.Not(term(D, p))], variables, timeout, solve, ranges,
+                                        limit=exhaustive_limit)
             if status == "sat":
                 r.status, r.counterexample = "refuted", model
             elif status != "unsat" and r.status == "holds":
@@ -221,7 +265,8 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
         for j in range(bound, len(pc)):
             out.flips += 1
             out.flip_queries += 1
-            status, model = solve(box + pc[:j] + [z3.Not(pc[j])], variables, timeout)
+            status, model = solve_split(box + pc[:j] + [z3.Not(pc[j])], variables, timeout, solve, ranges,
+                                        limit=exhaustive_limit)
             if status == "sat":
                 todo.append((model, j + 1))
             elif status != "unsat":

@@ -79,8 +79,8 @@ def _domain(semantics: str):
 
 
 def _explore_job(args):
-    case, names, lo, hi, semantics, timeout = args
-    return explore(case, names, lo, hi, _domain(semantics), timeout=timeout)
+    case, names, lo, hi, semantics, timeout, limit = args
+    return explore(case, names, lo, hi, _domain(semantics), timeout=timeout, exhaustive_limit=limit)
 
 
 def replay(case: Case, costs: dict, name: str):
@@ -91,15 +91,15 @@ def replay(case: Case, costs: dict, name: str):
 
 
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
-                   timeout: float = 60.0, jobs: int = 1, start=None, goal=None, ends: str = "any",
-                   progress: Optional[Callable[[int, int, object], None]] = None) -> dict:
+                   timeout: float = 20.0, jobs: int = 1, start=None, goal=None, ends: str = "any",
+                   exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None) -> dict:
     """Every case of the size; returns ``{property: SizeResult}``."""
     check_size(nx, ny)
     _domain(semantics)
     todo = list(cases(nx, ny, modes, start, goal, ends))
     out = {n: SizeResult((nx, ny), n, "proved", cases=len(todo)) for n in names}
     t0 = time.perf_counter()
-    work = [(c, tuple(names), lo, hi, semantics, timeout) for c in todo]
+    work = [(c, tuple(names), lo, hi, semantics, timeout, exhaustive_limit) for c in todo]
     if jobs > 1:
         with ProcessPoolExecutor(max_workers=jobs) as ex:
             results = ex.map(_explore_job, work, chunksize=4)
