@@ -580,7 +580,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "NavFn's raw API); lethal cells are enumerated")
     ck.add_argument("--semantics", choices=("fp32", "real"), default="fp32",
                     help="fp32: bit-precise float32 and float64, as the C++ computes (real: not available for check)")
-    ck.add_argument("--timeout", type=float, default=20.0,
+    ck.add_argument("--timeout", type=float, default=60.0,
                     help="seconds per solver query; a query bitwuzla and cvc5 leave undecided is split (its cost box "
                     "cut in four, twice) or evaluated at every point of its box (--exhaustive); what stays "
                     "undecided is unknown")

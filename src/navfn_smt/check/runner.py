@@ -91,7 +91,7 @@ def replay(case: Case, costs: dict, name: str):
 
 
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
-                   timeout: float = 20.0, jobs: int = 1, start=None, goal=None, ends: str = "any",
+                   timeout: float = 60.0, jobs: int = 1, start=None, goal=None, ends: str = "any",
                    exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None) -> dict:
     """Every case of the size; returns ``{property: SizeResult}``."""
     check_size(nx, ny)
