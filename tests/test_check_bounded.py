@@ -121,3 +121,27 @@ def test_exhaustive_evaluation_equals_z3():
         small = {k: (100, 111) for k in v}
         box = [z3.And(z3.UGE(x, 100), z3.ULE(x, 111)) for x in v.values()]
         assert X.solve(a + box, v, small)[0] == B.solve_bitwuzla(a + box, v, 30)[0]
+
+
+def test_check_command(tmp_path, capsys):
+    """The command: verdicts, what was enumerated and solved, the induction, the saved
+    counterexample (replayed) in JSON; exit 1 because valid-path is refuted; bad input exits 2."""
+    import json
+
+    from navfn_smt.cli import main
+    from navfn_smt.search.counterexamples import replay
+
+    out, rep = tmp_path / "cx", tmp_path / "r.json"
+    assert main(["check", "all", "--size", "3", "4", "--out", str(out), "--json", str(rep)]) == 1
+    doc = json.loads(rep.read_text())
+    status = {r["property"]: r["status"] for r in doc["results"]}
+    assert status == {"queues-obstacle-free": "proved", "no-path-before-start-potential": "proved",
+                      "valid-path": "refuted", "start-reached": "proved", "complete": "proved"}
+    assert doc["results"][0]["enumerated"]["cases"] == 32
+    assert doc["every_size_by_induction"]["queues-obstacle-free"]["status"] == "proved"
+    saved = list(out.iterdir())
+    assert [d.name for d in saved] == ["valid-path-astar-3x4"]
+    again = replay(saved[0])
+    assert again["detail"] and not any(again["golden"].values())  # still violated; goldens bit-equal
+    for bad in (["--costs", "9"], ["--size", "2", "4"], ["--start", "0", "1"], ["--semantics", "real"]):
+        assert main(["check", "complete", "--size", "3", "4", *bad]) == 2

@@ -96,6 +96,10 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     """Every case of the size; returns ``{property: SizeResult}``."""
     check_size(nx, ny)
     _domain(semantics)
+    for what, cell in (("start", start), ("goal", goal)):
+        if cell is not None and not (1 <= cell[0] <= nx - 2 and 1 <= cell[1] <= ny - 2):
+            raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
+                                  f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
     todo = list(cases(nx, ny, modes, start, goal, ends))
     out = {n: SizeResult((nx, ny), n, "proved", cases=len(todo)) for n in names}
     t0 = time.perf_counter()
