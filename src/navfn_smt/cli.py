@@ -289,23 +289,21 @@ def cmd_check(args) -> int:
     from .search.runner import modes_list
 
     names = CR.CHECKABLE if args.property == "all" else (args.property,)
-    lo, hi = CR.parse_costs(args.costs)
+    from .search.hunt import parse_costs
+
+    lo, hi = parse_costs(args.costs)
     if args.timeout <= 0:
         raise NavfnInputError("--timeout must be positive")
     if args.jobs < 1:
         raise NavfnInputError("--jobs must be at least 1")
-    if args.size and args.max_size:
-        raise NavfnInputError("give either --size or --max-size")
     _check_files(args.json)
     if args.out:
         check_writable_dir(args.out)
-    CR._domain(args.semantics)
     modes = [m == "astar" for m in modes_list(args.mode)]
     if args.max_size:
         sizes = CR.sizes_up_to(*args.max_size)
     else:
         sizes = [tuple(args.size or (4, 4))]
-        CR.check_size(*sizes[0])
     t0 = time.perf_counter()
     results, skipped = [], []
     open_names = list(names)
@@ -315,7 +313,6 @@ def cmd_check(args) -> int:
             continue
         if not open_names:
             break
-        CR.check_size(nx, ny)
         got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, args.jobs,
                                 args.start, args.goal, args.ends, int(args.exhaustive),
                                 progress=report.progress(f"{nx}x{ny}"))

@@ -145,20 +145,6 @@ def solve_bitwuzla(assertions: list, variables: dict, timeout: float):
     return "unknown", "; ".join(reasons)
 
 
-def solve_z3(assertions: list, variables: dict, timeout: float):
-    """As :func:`solve_bitwuzla`, with Z3."""
-    s = z3.SolverFor("QF_BVFP")
-    s.set(timeout=max(1, int(timeout * 1000)))
-    s.add(*assertions)
-    r = s.check()
-    if r == z3.sat:
-        m = s.model()
-        return "sat", {k: m.eval(v, model_completion=True).as_long() for k, v in variables.items()}
-    if r == z3.unsat:
-        return "unsat", None
-    return "unknown", s.reason_unknown()
-
-
 EXHAUSTIVE_LIMIT = 10_000_000  # points of a box worth evaluating one by one (numpy: about a minute)
 
 
@@ -208,7 +194,6 @@ class CaseResult:
     case: Case
     results: dict  # name -> PropertyResult
     paths: int = 0
-    flips: int = 0
     flip_queries: int = 0
     decided_by_intervals: int = 0
     seconds: float = 0.0
@@ -263,7 +248,6 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
         if all(r.status == "refuted" for r in results.values()):
             break  # nothing left to prove in this case
         for j in range(bound, len(pc)):
-            out.flips += 1
             out.flip_queries += 1
             status, model = solve_split(box + pc[:j] + [z3.Not(pc[j])], variables, timeout, solve, ranges,
                                         limit=exhaustive_limit)

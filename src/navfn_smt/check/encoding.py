@@ -172,7 +172,6 @@ class SymbolicExtraction:
 
     exit: object
     points: list
-    running_after: list  # per iteration: still running after it
     goal_point: tuple  # the (x, y) appended on success
 
 
@@ -218,7 +217,6 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
     stc = start[1] * nx + start[0]
     dx = dy = zero
     points: list = []
-    running_after = []
     for i in range(n):
         if isinstance(code, int) and code != RUNNING:
             break  # a plain exit code: this run has left the loop
@@ -236,7 +234,6 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
             new_code = D.ite(at_goal, EXIT_CODES[ExtractionExit.NEAR_GOAL],
                              D.ite(oob, EXIT_CODES[ExtractionExit.OUT_OF_BOUNDS], EXIT_UNDEFINED))
             code = D.ite(running, new_code, code)
-            running_after.append(D.eq(code, RUNNING))
             continue
         osc = False
         if i >= 2:
@@ -281,6 +278,5 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
         stc = D.ite(keep, stc, D.ite(fallback, stc_fb, stc_step))
         dx = D.ite(keep, dx, D.ite(fallback, zero, ndx))
         dy = D.ite(keep, dy, D.ite(fallback, zero, ndy))
-        running_after.append(D.eq(code, RUNNING))
     code = D.ite(D.eq(code, RUNNING), EXIT_CODES[ExtractionExit.EXHAUSTED], code)
-    return SymbolicExtraction(code, points, running_after, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
+    return SymbolicExtraction(code, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))

@@ -50,17 +50,6 @@ class SizeResult:
     unknown_cases: list = field(default_factory=list)
 
 
-def parse_costs(text: str) -> tuple[int, int]:
-    """``LO..HI`` with 0 <= LO <= HI <= 253 (254 and 255 are the lethal layout choice)."""
-    try:
-        lo, hi = (int(v) for v in str(text).split(".."))
-    except ValueError:
-        raise NavfnInputError(f"--costs {text!r}: expected LO..HI, e.g. 50..253") from None
-    if not 0 <= lo <= hi <= 253:
-        raise NavfnInputError(f"--costs {text!r}: need 0 <= LO <= HI <= 253 (lethal cells are enumerated)")
-    return lo, hi
-
-
 def check_size(nx: int, ny: int) -> None:
     if nx < 3 or ny < 3:
         raise NavfnInputError(f"--size {nx} {ny}: NavFn needs at least 3x3 cells (the border is lethal)")

@@ -122,6 +122,16 @@ def gaps(costs, nx, ny, path, offsets):
 
 
 @njit(cache=True)
+def _steps_at(path, k):
+    """The steps into and out of point ``k`` (binary64 differences of the float32 points)."""
+    ux = np.float64(path[k, 0]) - np.float64(path[k - 1, 0])
+    uy = np.float64(path[k, 1]) - np.float64(path[k - 1, 1])
+    vx = np.float64(path[k + 1, 0]) - np.float64(path[k, 0])
+    vy = np.float64(path[k + 1, 1]) - np.float64(path[k, 1])
+    return ux, uy, vx, vy
+
+
+@njit(cache=True)
 def turns(path, offsets):
     """Per path: the number of obtuse turns (consecutive step vectors with a negative dot
     product, binary64 from the float32 points) and the number of turn positions (steps - 1)."""
@@ -131,10 +141,7 @@ def turns(path, offsets):
     for i in range(n):
         a, b = offsets[i], offsets[i + 1]
         for k in range(a + 1, b - 1):
-            ux = np.float64(path[k, 0]) - np.float64(path[k - 1, 0])
-            uy = np.float64(path[k, 1]) - np.float64(path[k - 1, 1])
-            vx = np.float64(path[k + 1, 0]) - np.float64(path[k, 0])
-            vy = np.float64(path[k + 1, 1]) - np.float64(path[k, 1])
+            ux, uy, vx, vy = _steps_at(path, k)
             slots[i] += 1
             if ux * vx + uy * vy < 0.0:
                 bad[i] += 1
@@ -149,10 +156,7 @@ def right_or_sharper(path, offsets):
     for i in range(n):
         a, b = offsets[i], offsets[i + 1]
         for k in range(a + 1, b - 1):
-            ux = np.float64(path[k, 0]) - np.float64(path[k - 1, 0])
-            uy = np.float64(path[k, 1]) - np.float64(path[k - 1, 1])
-            vx = np.float64(path[k + 1, 0]) - np.float64(path[k, 0])
-            vy = np.float64(path[k + 1, 1]) - np.float64(path[k, 1])
+            ux, uy, vx, vy = _steps_at(path, k)
             if (ux != 0.0 or uy != 0.0) and (vx != 0.0 or vy != 0.0) and ux * vx + uy * vy <= 0.0:
                 out[i] += 1
     return out
