@@ -18,7 +18,7 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..inputs import check_inputs
 from ..spec.costs import add_border
-from ..spec.extraction import ExtractionExit, UndefinedBehaviour
+from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
 from ..spec.planner import PlanResult, path_cycle_limit, plan
 from ..spec.constants import PRIORITYBUFSIZE
 from ..spec.propagation import check_capacity, cycle_limit
@@ -29,7 +29,9 @@ class Runner(Protocol):
 
     capacity: int
 
-    def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult: ...
+    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None) -> PlanResult: ...
+
+    def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]: ...
 
     def run_batch(self, cases, astar: bool) -> dict: ...
 
@@ -49,8 +51,16 @@ class ReferenceRunner:
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
 
-    def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
-        return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity)
+    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None) -> PlanResult:
+        return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
+                    path_cycles=path_cycles)
+
+    def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
+        """``calcPath(path_cycles)`` alone on a given potential: (exit, path; empty unless NEAR_GOAL)."""
+        ny, nx = self.costs.shape
+        ext = calc_path([float(v) for v in np.asarray(potential, np.float32).ravel()], nx, ny,
+                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), int(path_cycles))
+        return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
 
     def run_batch(self, cases, astar: bool) -> dict:
         """The columns of :func:`.jit.run_cases`, planned one case at a time by the spec."""
@@ -89,14 +99,15 @@ class JitRunner:
         self.cycles = cycle_limit(self.nx, self.ny)
         self.path_cycles = path_cycle_limit(self.nx)
 
-    def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
+    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None) -> PlanResult:
         from .jit import EXIT_UB, EXITS
 
         check_inputs(self.costs, start, goal)
         p = self.planner
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
-        reached, code, npath = p.run(start, goal, astar, self.cycles, self.path_cycles, trace)
+        n = self.path_cycles if path_cycles is None else int(path_cycles)
+        reached, code, npath = p.run(start, goal, astar, self.cycles, n, trace)
         if code == EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         pot = p.pot.reshape(self.ny, self.nx).copy()
@@ -112,6 +123,21 @@ class JitRunner:
             dropped=int(p.counters[2]),
             exit=exit_,
         )
+
+    def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
+        """``calcPath(path_cycles)`` alone on a given potential, compiled."""
+        from .jit import EXIT_UB, EXITS, _calc_path
+
+        pot = np.ascontiguousarray(potential, dtype=np.float32).ravel()
+        n = int(path_cycles)
+        path = np.empty((max(n, 0) + 1, 2), np.float32)
+        p = self.planner
+        code, npath = _calc_path(pot, self.nx, self.ny, int(start[0]), int(start[1]), int(goal[0]), int(goal[1]),
+                                 n, p.gradx, p.grady, path)
+        if code == EXIT_UB:
+            raise UndefinedBehaviour("calcPath reads outside the potential array")
+        exit_ = EXITS[code]
+        return exit_, path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32)
 
     def run_batch(self, cases, astar: bool) -> dict:
         """Plan many cases in one compiled call (no traces); see :func:`.jit.run_cases`."""
