@@ -433,6 +433,7 @@ def _version() -> str:
 def build_parser() -> argparse.ArgumentParser:
     """The whole command line: every subcommand with its options and handler."""
     from .backends import BACKENDS
+    from .diagnose.command import register as register_diagnose
     from .difftest.record_cli import register as register_record
     from .difftest.runner import MODE_CHOICES
     from .maps.mapserver import DEFAULT_DISTRO, DISTROS
@@ -617,6 +618,8 @@ def build_parser() -> argparse.ArgumentParser:
     se.add_argument("--summary", metavar="SUITE",
                     help="instead of hunting, count how often each kind occurs on a suite (JIT backend)")
     se.set_defaults(func=cmd_search)
+
+    register_diagnose(sub)
     return p
 
 
