@@ -169,13 +169,13 @@ def test_plan_world_on_map_server_yaml():
     rc, out, err = run("plan", ROOM, "--world", "--start", -1.2, -0.9, "--goal", 1.0, 1.1, "--json")
     assert rc == 0, err
     doc = json.loads(out)
-    assert doc["exit"] == "near_goal" and doc["path"]
+    assert doc["ok"] and doc["extraction_exit"] == "near_goal" and doc["poses"]
     # Nav2 returns the path from the robot to the goal, converted with origin + p * resolution
-    res = 0.1  # float32(0.1) in the costmap; cells of the robot and goal by rounding
-    sx, sy = doc["start_cell"]
-    gx, gy = doc["goal_cell"]
-    assert doc["path"][0] == pytest.approx([-2.0 + sx * res, -2.0 + sy * res], abs=1e-6)
-    assert doc["path"][-1] == pytest.approx([-2.0 + gx * res, -2.0 + gy * res], abs=1e-6)
+    res = doc["resolution"]
+    assert res == float(np.float32(0.1))
+    sx, sy = doc["robot_cell"]
+    assert [doc["poses"][0]["position"][k] for k in "xy"] == [-2.0 + sx * res, -2.0 + sy * res]
+    assert [doc["poses"][-1]["position"][k] for k in "xy"] == [1.0, 1.1]  # smoothApproachToGoal: the goal pose
 
 
 def test_plan_cells_on_map_server_yaml_and_bad_world_input(tmp_path):
@@ -184,7 +184,7 @@ def test_plan_cells_on_map_server_yaml_and_bad_world_input(tmp_path):
     rc, out, err = run("plan", ROOM, "--start", 8.5, 8, "--goal", 30, 30)
     assert_clean_error(rc, err, "integers")
     rc, out, err = run("plan", ROOM, "--world", "--start", 50, 0, "--goal", 0, 0)
-    assert_clean_error(rc, err, "outside")
+    assert rc == 1 and "StartOutsideMapBounds: Start Coordinates of(50.000000, 0.000000) was outside bounds" in err
     bad = tmp_path / "bad.yaml"
     bad.write_text("image: [unclosed\n")
     rc, out, err = run("plan", bad, "--world", "--start", 0, 0, "--goal", 1, 1)

@@ -17,8 +17,8 @@ Expected values are derived from Nav2's C++ by hand, not from the loader's outpu
   Rolling also map occupancy 99 to 253).
 * NavFn::setCostmap (ROS branch): v < 253 -> int(50 + 0.8 v) capped at 253; 253, 254 -> 254;
   255 -> 253 with allow_unknown (the planner's default), else 254.
-* Costmap2D::worldToMap / mapToWorld, NavfnPlanner::worldToMap / mapToWorld / makePlan; the
-  costmap's resolution is nav_msgs/MapMetaData's float32.
+
+World coordinates and planning between world poses are tested in test_nav2_plan.py.
 """
 
 from __future__ import annotations
@@ -40,14 +40,8 @@ from navfn_smt.maps.mapserver import (
     MapServerMap,
     interpret_value,
     load_map_yaml,
-    map_to_world,
-    navfn_map_to_world,
-    navfn_world_to_map,
-    plan_world,
-    world_to_map,
 )
 from navfn_smt.spec.costs import add_border
-from navfn_smt.spec.extraction import ExtractionExit
 
 HYP = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 ROS_MAPS = ("empty_room", "keepout_mask", "map_circular", "speed_mask")
@@ -99,13 +93,6 @@ def write_map(folder: Path, pixels, fmt: str = "p5", image: str | None = None, *
     image = image or f"m.{ext}"
     write_image(folder / image, np.asarray(pixels, np.uint8), fmt)
     return write_yaml(folder, image=image, **fields)
-
-
-def fake_map(width: int, height: int, resolution: float, ox: float, oy: float) -> MapServerMap:
-    """A MapServerMap for the coordinate functions (they use only size, origin, resolution)."""
-    z = np.zeros((1, 1), np.uint8)
-    return MapServerMap(Path("x.yaml"), Path("x.pgm"), resolution, float(F32(resolution)), (ox, oy, 0.0),
-                        width, height, "trinary", False, "rolling", 0.65, 0.196, z.astype(np.int8), z, z)
 
 
 def one_line_error(excinfo, *words):
@@ -192,129 +179,6 @@ def test_suite_map_bin_vs_nav2(shared_suite, name):
         grey = (pix == 205) | (pix == 128)
         grey[[0, -1], :] = grey[:, [0, -1]] = False  # the frame is lethal in both
         assert np.array_equal(differ, grey)
-
-
-# ------------------------------------------------------------------------------ plan_world
-def free_cells(pix: np.ndarray) -> np.ndarray:
-    """Grid (x, y) of pixels that are free in every setup above (254, 255), away from edges,
-    with all eight neighbours free too."""
-    h, w = pix.shape
-    free = pix >= 254
-    ok = free.copy()
-    for dr in (-1, 0, 1):
-        for dc in (-1, 0, 1):
-            ok &= np.roll(np.roll(free, dr, 0), dc, 1)
-    ok[:2, :] = ok[-2:, :] = ok[:, :2] = ok[:, -2:] = False
-    rows, cols = np.nonzero(ok)
-    return np.stack([cols, h - 1 - rows], axis=1)  # grid y = h - 1 - image row
-
-
-@pytest.mark.shared
-@pytest.mark.parametrize("astar", [True, False], ids=["astar", "dijkstra"])
-@pytest.mark.parametrize("name", ROS_MAPS)
-def test_plan_world_end_to_end(shared_suite, name, astar):
-    d = ros_dir(shared_suite, name)
-    doc = yaml.safe_load((d / f"{name}.yaml").read_text())
-    pix = np.array(Image.open(d / doc["image"]))
-    cells = free_cells(pix)
-    assert len(cells) > 100
-    (sx, sy), (gx, gy) = cells[len(cells) // 7], cells[6 * len(cells) // 7]
-    assert (sx, sy) != (gx, gy)
-    ox, oy = float(doc["origin"][0]), float(doc["origin"][1])
-    res = float(doc["resolution"])
-    # NavfnPlanner::worldToMap rounds (w - o) / r: o + k * r is cell k
-    start = (ox + sx * res, oy + sy * res)
-    goal = (ox + gx * res, oy + gy * res)
-    wp = plan_world(d / f"{name}.yaml", start, goal, astar=astar)
-    assert wp.start_cell == (sx, sy) and wp.goal_cell == (gx, gy)
-    assert wp.result is not None and wp.result.exit == ExtractionExit.NEAR_GOAL
-    assert len(wp.path_world) >= 2
-    # Nav2 swaps the poses: NavFn's path runs from the goal cell to the robot's cell
-    assert tuple(wp.result.path[0]) == (gx, gy) and tuple(wp.result.path[-1]) == (sx, sy)
-    # NavfnPlanner::mapToWorld: origin + p * resolution, with the costmap's float32 resolution
-    r32 = float(F32(res))
-    assert tuple(wp.path_world[0]) == (ox + sx * r32, oy + sy * r32)
-    assert tuple(wp.path_world[-1]) == (ox + gx * r32, oy + gy * r32)
-    # every point lies on the map
-    assert np.all(wp.path_world[:, 0] >= ox) and np.all(wp.path_world[:, 0] <= ox + pix.shape[1] * r32)
-    assert np.all(wp.path_world[:, 1] >= oy) and np.all(wp.path_world[:, 1] <= oy + pix.shape[0] * r32)
-
-
-def test_plan_world_clears_robot_cell_and_swaps(tmp_path):
-    # A 7x7 free room; the robot stands on an obstacle pixel.  makePlan's clearRobotCell
-    # makes that cell FREE_SPACE before setCostmap, so NavFn still plans from it.
-    pix = np.full((7, 7), 255, np.uint8)
-    pix[3, 2] = 0  # image row 3 -> grid row 7 - 1 - 3 = 3
-    y = write_map(tmp_path, pix, resolution=1.0, origin=[0.0, 0.0, 0.0])
-    m = load_map_yaml(y)
-    assert m.navfn_costs[3, 2] == 254
-    wp = plan_world(y, (2.0, 3.0), (4.0, 5.0), astar=True, backend="reference")
-    assert wp.start_cell == (2, 3) and wp.goal_cell == (4, 5)
-    assert wp.result.exit == ExtractionExit.NEAR_GOAL
-    assert tuple(wp.path_world[0]) == (2.0, 3.0) and tuple(wp.path_world[-1]) == (4.0, 5.0)
-    # The clearing cannot change NavFn's output: the robot's cell is NavFn's goal, whose cost
-    # is never read (initCost fixes its potential at 0, nothing lowers it so nothing pushes
-    # it, and calcPath reads no costs).  So the plan equals NavFn on either cost array; the
-    # reference backend on hand-made costs is the oracle.
-    from navfn_smt.backends import get_backend
-
-    cleared = np.full((7, 7), 50, np.uint8)
-    uncleared = cleared.copy()
-    uncleared[3, 2] = 254
-    for costs in (cleared, uncleared):
-        want = get_backend("reference").prepare(costs).run((4, 5), (2, 3), True)
-        assert wp.result.updates == want.updates and wp.result.cycles == want.cycles
-        assert np.array_equal(wp.result.path, want.path) and np.array_equal(wp.result.potential, want.potential)
-    # equal poses: Nav2 returns the start pose without calling NavFn
-    same = plan_world(y, (2.2, 3.1), (2.2, 3.1))
-    assert same.result is None and same.path_world.tolist() == [[2.2, 3.1]]
-
-
-def test_plan_world_tall_map_gets_4_max_steps(tmp_path):
-    # NavfnPlanner gives calcPath 4 * max(nx, ny) steps.  On a 5x80 corridor the path needs
-    # about 2 steps per cell (pathStep 0.5) over ~70 cells: more than 4 * nx = 20, fewer
-    # than 4 * ny = 320.
-    pix = np.full((80, 5), 255, np.uint8)
-    y = write_map(tmp_path, pix, resolution=1.0, origin=[0.0, 0.0, 0.0])
-    for backend in ("jit", "reference"):
-        wp = plan_world(y, (2.0, 3.0), (2.0, 75.0), astar=False, backend=backend)
-        assert wp.result.exit == ExtractionExit.NEAR_GOAL
-        assert len(wp.result.path) > 20
-        assert tuple(wp.path_world[0]) == (2.0, 3.0) and tuple(wp.path_world[-1]) == (2.0, 75.0)
-
-
-def test_plan_world_rejects_poses_off_the_map(tmp_path):
-    y = write_map(tmp_path, np.full((5, 5), 255, np.uint8), resolution=1.0, origin=[0.0, 0.0, 0.0])
-    with pytest.raises(NavfnInputError) as e:
-        plan_world(y, (-0.5, 1.0), (2.0, 2.0))
-    one_line_error(e, "start", "outside")
-    with pytest.raises(NavfnInputError) as e:
-        plan_world(y, (1.0, 1.0), (2.0, 5.0))
-    one_line_error(e, "goal", "outside")
-    # inside for Costmap2D::worldToMap (trunc(4.6) = 4), but NavfnPlanner rounds to 5: off the map
-    with pytest.raises(NavfnInputError) as e:
-        plan_world(y, (1.0, 1.0), (4.6, 2.0))
-    one_line_error(e, "rounds to cell (5, 2)")
-    with pytest.raises(NavfnInputError) as e:
-        plan_world(y, (1.0, float("nan")), (2.0, 2.0))
-    one_line_error(e, "finite")
-    for start in (5.0, (1.0, 2.0, 3.0), ("1", "2")):
-        with pytest.raises(NavfnInputError) as e:
-            plan_world(y, start, (2.0, 2.0))
-        one_line_error(e, "start")
-    with pytest.raises(NavfnInputError) as e:
-        plan_world(y, (1.0, 1.0), (2.0, 2.0), backend="bogus")
-    one_line_error(e, "unknown backend")
-
-
-@pytest.mark.parametrize("backend", ["jit", "reference"])
-def test_plan_world_goal_on_an_undefined_behaviour_cell(tmp_path, backend):
-    # NavFn's start (Nav2's goal) at (0, 1): calcPath reads potarr outside the array in the
-    # C++ (docs/spec.md, "Undefined behaviour"); the backends refuse, plan_world reports it.
-    y = write_map(tmp_path, np.full((5, 5), 255, np.uint8), resolution=1.0, origin=[0.0, 0.0, 0.0])
-    with pytest.raises(NavfnInputError) as e:
-        plan_world(y, (2.0, 2.0), (0.0, 1.0), backend=backend)
-    one_line_error(e, "goal cell (0, 1)", "outside its arrays")
 
 
 # ------------------------------------------------------------ pixel rules, by hand from map_io
@@ -641,75 +505,6 @@ def test_corrupt_images(tmp_path):
 @pytest.mark.parametrize("shape", [(2, 5), (5, 2), (1, 1)])
 def test_image_too_small(tmp_path, shape):
     bad(write_map(tmp_path, np.full(shape, 255, np.uint8)), "at least 3x3")
-
-
-# -------------------------------------------------------------------------------- coordinates
-def test_world_to_map_boundaries():
-    m = fake_map(3, 4, 0.5, 0.0, 0.0)
-    # Costmap2D::worldToMap: trunc((w - o) / r); w < o fails; the cell index must be < size
-    assert world_to_map(m, 0.0, 0.0) == (0, 0)
-    assert world_to_map(m, 1.4999, 1.9999) == (2, 3)
-    for wx, wy in ((1.5, 0.0), (0.0, 2.0), (-1e-12, 0.0), (0.0, -0.25)):
-        with pytest.raises(NavfnInputError) as e:
-            world_to_map(m, wx, wy)
-        one_line_error(e, "outside")
-    assert map_to_world(m, 2, 3) == (1.25, 1.75)  # centre: o + (m + 0.5) r
-    with pytest.raises(NavfnInputError):
-        map_to_world(m, 3, 0)
-    # NavfnPlanner::worldToMap rounds half away from zero: 0.25 / 0.5 = 0.5 -> 1
-    assert navfn_world_to_map(m, 0.25, 0.75) == (1, 2)
-    with pytest.raises(NavfnInputError) as e:
-        navfn_world_to_map(m, 1.25, 0.0)  # 2.5 -> 3 == size_x
-    one_line_error(e, "rounds to cell (3, 0)")
-    assert navfn_map_to_world(m, 1.5, 2.0) == (0.75, 1.0)  # o + p r, no half cell
-
-
-def test_float32_resolution_changes_the_cell():
-    # MapMetaData.resolution is float32: 0.05 becomes 0.0500000007450580596923828125, so
-    # (0.1 - 0) / r = 1.99999997 truncates to 1, where the YAML's double would give 2.
-    m = fake_map(10, 10, 0.05, 0.0, 0.0)
-    assert 0.1 / 0.05 == 2.0
-    assert world_to_map(m, 0.1, 0.1) == (1, 1)
-
-
-resolutions = st.one_of(
-    st.integers(1, 2000).map(lambda k: k / 1000),
-    st.floats(0.001, 10.0, allow_nan=False, allow_infinity=False),
-)
-origins = st.floats(-1000.0, 1000.0, allow_nan=False, allow_infinity=False)
-
-
-@HYP
-@given(st.integers(3, 400), st.integers(3, 400), resolutions, origins, origins, st.data())
-def test_world_map_round_trip(w, h, res, ox, oy, data):
-    m = fake_map(w, h, res, ox, oy)
-    mx = data.draw(st.integers(0, w - 1))
-    my = data.draw(st.integers(0, h - 1))
-    assert world_to_map(m, *map_to_world(m, mx, my)) == (mx, my)
-    assert navfn_world_to_map(m, *navfn_map_to_world(m, mx, my)) == (mx, my)
-
-
-@HYP
-@given(st.integers(3, 400), st.integers(3, 400), resolutions, origins, origins, st.data())
-def test_world_to_map_rejects_outside(w, h, res, ox, oy, data):
-    m = fake_map(w, h, res, ox, oy)
-    r = float(F32(res))
-    frac = data.draw(st.floats(0.01, 0.99))
-    inside_x = ox + (data.draw(st.integers(0, w - 1)) + 0.5) * r
-    inside_y = oy + (data.draw(st.integers(0, h - 1)) + 0.5) * r
-    side = data.draw(st.sampled_from(["left", "right", "below", "above"]))
-    k = data.draw(st.integers(0, 1000))
-    if side == "left":
-        pt = (ox - (k + frac) * r, inside_y)
-    elif side == "right":
-        pt = (ox + (w + k + frac) * r, inside_y)
-    elif side == "below":
-        pt = (inside_x, oy - (k + frac) * r)
-    else:
-        pt = (inside_x, oy + (h + k + frac) * r)
-    with pytest.raises(NavfnInputError) as e:
-        world_to_map(m, *pt)
-    one_line_error(e, "outside")
 
 
 # ------------------------------------------------------------- pixel -> cost, as properties

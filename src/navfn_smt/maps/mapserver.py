@@ -46,13 +46,9 @@ main branch, which the golden suite's NavFn also follows; see :data:`DISTROS`).
 Only the static layer is modelled: a Nav2 global costmap normally also has an obstacle and
 an inflation layer, which change the costs.
 
-World and map coordinates: :func:`world_to_map` / :func:`map_to_world` are
-``Costmap2D::worldToMap`` / ``mapToWorld`` (cell ``i`` covers ``[o + i*r, o + (i+1)*r)``,
-its centre is ``o + (i + 0.5)*r``).  The NavFn planner plugin has its own pair,
-:func:`navfn_world_to_map` / :func:`navfn_map_to_world` (``std::round`` and no half-cell
-offset), which is what it uses to plan and to turn the path back into world coordinates;
-:func:`plan_world` follows the plugin.  The origin's yaw is read but, as in Nav2's
-costmap, not used.
+World coordinates, and planning between world poses as Nav2's NavFn planner plugin does, are
+in :mod:`navfn_smt.nav2.plugin` (``Costmap2D::worldToMap`` truncates; the plugin's own
+``worldToMap`` rounds).  The origin's yaw is read but, as in Nav2's costmap, not used.
 
 Images are decoded with Pillow.  This matches GraphicsMagick for 8-bit grey, RGB, palette
 and alpha images (PGM, PNG, BMP, ...) and for 16-bit grey; Pillow reduces 16-bit colour
@@ -72,17 +68,14 @@ from __future__ import annotations
 import math
 import os
 import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Optional
+from typing import Optional
 
 import numpy as np
 
 from ..errors import NavfnInputError
 from ..spec.costs import set_costmap
-
-if TYPE_CHECKING:
-    from ..spec.planner import PlanResult
 
 MODES = ("trinary", "scale", "raw")
 MAP_IO = ("current", "legacy")
@@ -135,27 +128,6 @@ class MapServerMap:
     @property
     def image_size(self) -> tuple[int, int]:
         return (self.width, self.height)
-
-
-@dataclass
-class WorldPlan:
-    """The result of :func:`plan_world`.
-
-    ``result`` is the NavFn call as the backend returns it, in NavFn's own terms: Nav2 swaps
-    the poses, so NavFn's start is ``goal_cell``, its goal ``start_cell``, and
-    ``result.path`` runs from the goal cell to the start cell.  ``path_world`` is that path
-    reversed (start to goal, as Nav2 returns it) and converted with
-    :func:`navfn_map_to_world`; it is empty when NavFn found no path.  When the start and
-    goal poses are equal Nav2 does not call NavFn: ``result`` is None, ``path_world`` is
-    the start pose, and the cells are ``Costmap2D::worldToMap``'s (the ones ``createPlan``
-    checks).
-    """
-
-    map: MapServerMap
-    start_cell: tuple[int, int]
-    goal_cell: tuple[int, int]
-    result: Optional["PlanResult"]
-    path_world: np.ndarray  # (M, 2) float64
 
 
 # ------------------------------------------------------------------------------ the YAML
@@ -532,165 +504,3 @@ def load_map_yaml(
         ros_costmap=ros,
         navfn_costs=navfn,
     )
-
-
-# ---------------------------------------------------------------------------- coordinates
-def _finite(what: str, *vals) -> list[float]:
-    out = []
-    for v in vals:
-        if isinstance(v, (str, bytes)):
-            raise NavfnInputError(f"{what}: coordinates must be numbers, got {v!r}")
-        try:
-            f = float(v)
-        except (TypeError, ValueError, OverflowError):
-            raise NavfnInputError(f"{what}: coordinates must be numbers, got {v!r}") from None
-        if not math.isfinite(f):
-            raise NavfnInputError(f"{what}: coordinates must be finite, got {v!r}")
-        out.append(f)
-    return out
-
-
-def world_to_map(m: MapServerMap, wx, wy) -> tuple[int, int]:
-    """``Costmap2D::worldToMap``: the cell containing world point (wx, wy).
-
-    Fails (NavfnInputError) when ``wx < origin_x`` or ``wy < origin_y``, or when the
-    truncated ``(w - origin) / resolution`` is not below the map size.
-    """
-    fx, fy = _map_coordinates(m, wx, wy)
-    return int(fx), int(fy)  # static_cast<unsigned int>: truncation
-
-
-def _map_coordinates(m: MapServerMap, wx, wy) -> tuple[float, float]:
-    """``(w - origin) / resolution`` per axis, refused below the origin or past the map's size
-    (the bounds test both ``worldToMap`` functions share)."""
-    wx, wy = _finite("world point", wx, wy)
-    ox, oy = m.origin[0], m.origin[1]
-    res = m.costmap_resolution
-    if wx < ox or wy < oy:
-        raise NavfnInputError(f"world point ({wx!r}, {wy!r}) is outside the map (below its origin ({ox!r}, {oy!r}))")
-    fx = (wx - ox) / res
-    fy = (wy - oy) / res
-    if fx >= m.width or fy >= m.height:
-        raise NavfnInputError(f"world point ({wx!r}, {wy!r}) is outside the {m.width}x{m.height} map "
-                              f"(origin ({ox!r}, {oy!r}), resolution {res!r})")
-    return fx, fy
-
-
-def map_to_world(m: MapServerMap, mx, my) -> tuple[float, float]:
-    """``Costmap2D::mapToWorld``: the centre of cell (mx, my), ``origin + (m + 0.5) * res``."""
-    for v in (mx, my):
-        if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-            raise NavfnInputError(f"cell ({mx!r}, {my!r}): coordinates must be integers")
-    mx, my = int(mx), int(my)
-    if not (0 <= mx < m.width and 0 <= my < m.height):
-        raise NavfnInputError(f"cell ({mx}, {my}) is off the {m.width}x{m.height} map")
-    res = m.costmap_resolution
-    return m.origin[0] + (mx + 0.5) * res, m.origin[1] + (my + 0.5) * res
-
-
-def _round_half_away(v: float) -> int:
-    """C's ``round`` for v >= 0 (halves away from zero); ``v - floor(v)`` is exact."""
-    f = math.floor(v)
-    return int(f) + (1 if v - f >= 0.5 else 0)
-
-
-def navfn_world_to_map(m: MapServerMap, wx, wy) -> tuple[int, int]:
-    """``NavfnPlanner::worldToMap``: ``round((w - origin) / resolution)`` per axis.
-
-    Fails when the point is below the origin or rounds to a cell off the map (from Jazzy on,
-    ``makePlan`` ignores that failure and hands NavFn the off-map cell; Humble's fails the
-    plan; here it is an error).
-    """
-    fx, fy = _map_coordinates(m, wx, wy)
-    mx, my = _round_half_away(fx), _round_half_away(fy)
-    if mx >= m.width or my >= m.height:
-        raise NavfnInputError(f"world point ({wx!r}, {wy!r}) rounds to cell ({mx}, {my}), off the "
-                              f"{m.width}x{m.height} map (NavfnPlanner::worldToMap rounds to the nearest cell)")
-    return mx, my
-
-
-def navfn_map_to_world(m: MapServerMap, px, py) -> tuple[float, float]:
-    """``NavfnPlanner::mapToWorld``: ``origin + p * resolution`` in double, no half-cell offset.
-
-    ``px``, ``py`` may be fractional (NavFn's float32 path points).
-    """
-    px, py = _finite("map point", px, py)
-    res = m.costmap_resolution
-    return m.origin[0] + px * res, m.origin[1] + py * res
-
-
-# ------------------------------------------------------------------------------- planning
-def plan_world(
-    yaml_path,
-    start_world,
-    goal_world,
-    astar: bool = True,
-    backend: str = "jit",
-    allow_outside: bool = False,
-    distro: str = DEFAULT_DISTRO,
-) -> WorldPlan:
-    """Plan between two world poses on a map_server map, as Nav2's ``NavfnPlanner`` does.
-
-    ``createPlan``: both poses must lie on the map (``Costmap2D::worldToMap``); equal poses
-    give a one-pose path without planning.  ``makePlan``: the cells are
-    ``NavfnPlanner::worldToMap``'s (rounded); the robot's cell is cleared to FREE_SPACE
-    (``clearRobotCell``; it cannot change NavFn's output, since NavFn never reads its goal
-    cell's cost) before ``setCostmap``; NavFn's start is the goal cell and its goal
-    the robot's cell; ``getPlanFromPotential`` reverses the path and converts each float
-    point with ``NavfnPlanner::mapToWorld``.  ``calcPath`` gets ``4 * max(nx, ny)`` steps
-    (``max_cycles_factor`` 4).  Not modelled: the goal ``tolerance`` search (Nav2 default
-    0.5 m) when the goal is unreached, ``smoothApproachToGoal`` (which appends or
-    substitutes the exact goal pose), orientations.  Nav2's ``use_astar`` defaults to false.
-    ``distro`` selects the map loading rules as for :func:`load_map_yaml`; the static layer
-    and planner parameters are Nav2's defaults.
-    """
-    from ..backends import get_backend
-    from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
-    from ..spec.planner import path_cycle_limit
-
-    m = load_map_yaml(yaml_path, allow_outside, distro=distro)
-    points = []
-    for what, given in (("start", start_world), ("goal", goal_world)):
-        try:
-            pt = tuple(given)
-        except TypeError:
-            pt = ()
-        if len(pt) != 2:
-            raise NavfnInputError(f"{what}: expected a world point (x, y), got {given!r}")
-        points.append(_finite(what, *pt))
-    (swx, swy), (gwx, gwy) = points
-    checked = []
-    for what, (wx, wy) in (("start", (swx, swy)), ("goal", (gwx, gwy))):
-        try:
-            checked.append(world_to_map(m, wx, wy))
-        except NavfnInputError as e:
-            raise NavfnInputError(f"{what}: {e}") from None
-    if swx == gwx and swy == gwy:
-        return WorldPlan(m, checked[0], checked[1], None, np.array([[swx, swy]], dtype=np.float64))
-    try:
-        s = navfn_world_to_map(m, swx, swy)
-        g = navfn_world_to_map(m, gwx, gwy)
-    except NavfnInputError as e:
-        raise NavfnInputError(f"{m.path}: {e}") from None
-
-    ros = m.ros_costmap.copy()
-    ros[s[1], s[0]] = FREE_SPACE  # clearRobotCell
-    costs = set_costmap(ros, is_ros=True, allow_unknown=True)
-    try:
-        result = get_backend(backend).prepare(costs).run(g, s, astar, trace=False)
-        n_steps = 4 * max(m.width, m.height)  # NavfnPlanner's getPlanFromPotential budget
-        if result.exit == ExtractionExit.EXHAUSTED and n_steps > path_cycle_limit(m.width):
-            # the backends give calcPath NavFn's own 4 * nx steps; Nav2 gives 4 * max(nx, ny).  calcPath is
-            # deterministic on the potential, so a longer run continues the same path.
-            ext = calc_path([float(v) for v in np.asarray(result.potential).ravel()],
-                            m.width, m.height, g, s, n_steps)
-            result = replace(result, path=np.array(ext.path, dtype=np.float32).reshape(-1, 2), exit=ext.exit)
-    except UndefinedBehaviour as e:
-        raise NavfnInputError(f"goal cell {g}: NavFn's calcPath would read outside its arrays ({e})") from None
-    path = np.asarray(result.path, dtype=np.float32)[::-1]
-    ox, oy = m.origin[0], m.origin[1]
-    res = m.costmap_resolution
-    path_world = np.empty((len(path), 2), dtype=np.float64)
-    path_world[:, 0] = ox + path[:, 0].astype(np.float64) * res
-    path_world[:, 1] = oy + path[:, 1].astype(np.float64) * res
-    return WorldPlan(m, s, g, result, path_world)

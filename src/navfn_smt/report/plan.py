@@ -82,3 +82,70 @@ def world_plan(wp, mode: str, backend: str, start, goal, as_json: bool) -> None:
         print(f"NavFn runs from the goal cell back to the robot's (Nav2 swaps them); start reached: "
               f"{res.start_reached}; cycles: {res.cycles}")
     print_path(_points(wp.path_world), "poses (world coordinates)", res)
+
+
+def _pose(p) -> dict:
+    """A ``geometry_msgs/Pose`` as Nav2 publishes it (doubles printed to round-trip exactly)."""
+    return {"position": {"x": p.x, "y": p.y, "z": 0.0},
+            "orientation": {"x": p.qx, "y": p.qy, "z": p.qz, "w": p.qw}}
+
+
+def plugin_plan_doc(setup, run, start, goal, backend: str) -> dict:
+    """The JSON object of one ``createPlan`` call: the path Nav2 publishes, or its exception."""
+    from dataclasses import asdict
+
+    return {
+        "map": str(setup.map.path),
+        "size": [setup.costmap.size_x, setup.costmap.size_y],
+        "resolution": setup.costmap.resolution,
+        "origin": [setup.costmap.origin_x, setup.costmap.origin_y],
+        "layers": setup.layers,
+        "notes": setup.notes,
+        "params": asdict(setup.params),
+        "backend": backend,
+        "start": _pose(start), "goal": _pose(goal),
+        "ok": run.ok,
+        "exception": run.error,
+        "message": run.message or None,
+        "log": run.log,
+        "start_cell": run.start_cell and list(run.start_cell),
+        "goal_cell": run.goal_cell and list(run.goal_cell),
+        "robot_cell": run.robot_cell and list(run.robot_cell),
+        "target_cell": run.target_cell and list(run.target_cell),
+        "goal_potential": run.goal_potential,
+        "used_tolerance": run.used_tolerance,
+        "best_pose": run.best_pose and _pose(run.best_pose),
+        "propagation_cycles": run.cycles if run.potential is not None else None,
+        "max_cycles": run.max_cycles,
+        "extraction_exit": run.extraction.value if run.extraction else None,
+        "header": {"frame_id": "map"},
+        "poses": [_pose(p) for p in run.poses],
+    }
+
+
+def plugin_plan(setup, run, start, goal, backend: str, as_json: bool) -> None:
+    """Print one ``createPlan`` call: its JSON object, or a summary and the poses (x y and the
+    quaternion z w), or the exception as one line on stderr."""
+    import sys
+
+    if as_json:
+        print(json.dumps(plugin_plan_doc(setup, run, start, goal, backend)))
+    else:
+        c = setup.costmap
+        p = setup.params
+        print(f"map {setup.map.path} ({c.size_x}x{c.size_y} cells of {c.resolution!r} m, layers: "
+              f"{', '.join(setup.layers)}); {'A*' if p.use_astar else 'Dijkstra'}, tolerance {p.tolerance!r}, "
+              f"max_cycles_factor {p.max_cycles_factor}")
+        for note in setup.notes:
+            print(f"note: {note}")
+        for line in run.log:
+            print(f"[nav2 ERROR] {line}")
+        if run.ok:
+            how = f" (goal unreached: tolerance search chose ({run.best_pose.x!r}, {run.best_pose.y!r}))" \
+                if run.used_tolerance else ""
+            print(f"path: {len(run.poses)} poses in frame map{how}")
+            print("  x y qz qw")
+            for q in run.poses:
+                print(f"  {q.x!r} {q.y!r} {q.qz!r} {q.qw!r}")
+    if not run.ok:
+        print(f"navfn-smt: {run.error}: {run.message}", file=sys.stderr)
