@@ -18,6 +18,11 @@ from .params import PlannerParams, planner_params
 from .plugin import Costmap, costmap_from_map
 
 
+# The plugin is Rolling's navfn_planner.cpp; its max_cycles_factor parameter exists only there
+# (earlier distributions give calcPath 4 * max(size_x, size_y) cycles, the factor's default).
+CYCLES_FACTOR_DISTROS = ("rolling",)
+
+
 @dataclass
 class Setup:
     map: MapServerMap
@@ -35,6 +40,12 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
     params = planner_params(params_file) if params_file else PlannerParams()
     if overrides:
         params = replace(params, **{k: v for k, v in overrides.items() if v is not None})
+    distro_notes = [] if distro == "rolling" else [
+        f"the planner plugin is Rolling's navfn_planner.cpp (map loading and costmap layers follow {distro})"]
+    if distro not in CYCLES_FACTOR_DISTROS and params.max_cycles_factor != 4:
+        distro_notes.append(f"max_cycles_factor {params.max_cycles_factor} ignored: {distro} has no such parameter "
+                            f"(Nav2 PR #6308, August 2026); calcPath gets 4 * max(size_x, size_y) cycles")
+        params = replace(params, max_cycles_factor=4)
     costmap_params = None
     try:
         from . import costmap as layers
@@ -48,10 +59,10 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
     m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro,
                       **(layers.static_layer_kwargs(costmap_params) if costmap_params is not None else {}))
     if costmap_params is None:
-        return Setup(m, costmap_from_map(m), params, ["static_layer"],
-                     [] if params_file else ["no params file: Nav2's default plugin parameters, static layer only"])
+        return Setup(m, costmap_from_map(m), params, ["static_layer"], distro_notes + (
+            [] if params_file else ["no params file: Nav2's default plugin parameters, static layer only"]))
     gc = layers.build_global_costmap(m, costmap_params, distro)
-    return Setup(m, costmap_from_map(m, gc.master), params, list(gc.layers), list(gc.notes))
+    return Setup(m, costmap_from_map(m, gc.master), params, list(gc.layers), distro_notes + list(gc.notes))
 
 
 def check_params_file(path) -> None:
