@@ -103,6 +103,39 @@ def test_backend_agrees_with_reference_at_small_capacity(backend, case, capacity
     assert_same(_plan(backend, costs, start, goal, astar, capacity), ref, backend)
 
 
+def _extract(backend: str, costs, potential, start, goal, n):
+    try:
+        exit_, path = get_backend(backend).prepare(costs).extract(potential, start, goal, n)
+        return exit_, _bits(path)
+    except UndefinedBehaviour:
+        return "undefined"
+
+
+@pytest.mark.parametrize("backend", OTHERS)
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case=planning_cases(), data=st.data())
+def test_extraction_alone_agrees_with_reference(backend, case, data):
+    """``extract`` (calcPath on a given potential, from any cell, with any budget, as the Nav2
+    plugin calls it after its tolerance search) agrees bit for bit; so does ``run`` with a budget."""
+    costs, start, goal, astar = case
+    h, w = costs.shape
+    ref = _plan("reference", costs, start, goal, astar)
+    if isinstance(ref, str):
+        return
+    other = data.draw(st.tuples(st.integers(0, w - 1), st.integers(0, h - 1)), label="extraction start")
+    n = data.draw(st.integers(-1, 6 * max(w, h)), label="path cycles")
+    assert _extract(backend, costs, ref.potential, other, goal, n) == \
+        _extract("reference", costs, ref.potential, other, goal, n)
+
+    def budgeted(b):
+        try:
+            return get_backend(b).prepare(costs).run(start, goal, astar, trace=True, path_cycles=n)
+        except UndefinedBehaviour:
+            return "undefined"
+
+    assert_same(budgeted(backend), budgeted("reference"), backend)
+
+
 def test_small_capacity_drops_and_default_does_not():
     """The capacity reaches both planners: 3 cells drop pushes on an open 9x9 map, the default
     (PRIORITYBUFSIZE) and an unbounded capacity do not, and give the same result."""
