@@ -115,3 +115,42 @@ def _work_bytes(runner) -> int:
         return 0
     return int(sum(a.nbytes for a in vars(p).values() if isinstance(a, np.ndarray)))
 
+
+
+# ------------------------------------------------------------------------- whole-map sweep
+SWEEP_SIZE = 400
+SWEEP_ASTAR_GOALS = 2000
+
+
+def bench_sweep(n: int = SWEEP_SIZE, modes: str = "both", astar_goals=SWEEP_ASTAR_GOALS, seed: int = 0) -> list[dict]:
+    """Time :func:`~navfn_smt.diagnose.sweep.sweep` on a generated n x n rooms costmap
+    (:func:`~navfn_smt.diagnose.sweep.rooms_costmap`), robot in the first room, every free cell
+    a goal (A*: ``astar_goals`` sampled ones unless ``"all"``: one propagation per goal); one
+    row per mode, with the first call's time (compiling, or loading the on-disk cache) apart."""
+    from .diagnose.sweep import rooms_costmap, sweep
+    from .nav2.params import PlannerParams
+    from .nav2.plugin import Pose
+
+    if n < 30:
+        raise NavfnInputError(f"--sweep {n}: the sweep map must be at least 30 cells a side")
+    cm = rooms_costmap(n, seed=seed)
+    res = cm.resolution
+    start = Pose(cm.origin_x + 20.3 * res, cm.origin_y + 20.7 * res)
+    tiny = rooms_costmap(30, seed=seed, room=12)
+    tiny_start = Pose(tiny.origin_x + 5.3 * res, tiny.origin_y + 5.7 * res)
+    rows = []
+    for md in modes_of(modes):
+        params = PlannerParams(use_astar=md == "astar")
+        t0 = time.perf_counter()
+        sweep(tiny, tiny_start, params, goals=20)
+        warm = time.perf_counter() - t0
+        goals = None if md == "dijkstra" or astar_goals == "all" else int(astar_goals)
+        with progress_bar(1, f"sweep {md}") as advance:
+            r = sweep(cm, start, params, goals=goals, seed=seed)
+            advance(1)
+        counts = r.counts()
+        rows.append({"mode": md, "size": n, "goals": len(r), "seconds": round(r.seconds, 3),
+                     "goals_per_second": round(len(r) / r.seconds, 1), "first_call_seconds": round(warm, 3),
+                     "planned": counts["ok"] + counts["ok_tolerance"], "issue_4655": counts["legal_no_plan"],
+                     "no_path": counts["no_legal"]})
+    return rows

@@ -274,6 +274,16 @@ def cmd_bench(args) -> int:
     from .bench import SEED, bench_sizes, bench_suite, check_sizes
     from .report import bench as report
 
+    if args.sweep is not None:  # whole-map sweep benchmark
+        from .bench import bench_sweep
+
+        _check_files(args.json)
+        goals = args.sweep_astar_goals if args.sweep_astar_goals == "all" else int(args.sweep_astar_goals)
+        rows = bench_sweep(args.sweep, args.mode, goals)
+        report.sweep_table(rows)
+        if args.json:
+            report.write_sweep_json(args.json, 0, rows)
+        return 0
     if args.size:
         check_sizes(args.size, args.repeat)
         _check_files(args.json)
@@ -580,6 +590,11 @@ def build_parser() -> argparse.ArgumentParser:
     be.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
     be.add_argument("--repeat", type=int, default=3, help="plans per map and mode with --size (best is kept)")
     be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
+    be.add_argument("--sweep", nargs="?", type=int, const=400, metavar="N",
+                    help="instead, time the whole-map sweep (every free cell a goal of one robot pose) on a "
+                         "generated NxN rooms costmap (default 400)")
+    be.add_argument("--sweep-astar-goals", default="2000", metavar="K|all",
+                    help="goals sampled for the A* sweep (one propagation each; default 2000)")
     be.set_defaults(func=cmd_bench)
 
     ck = sub.add_parser("check", help="prove or refute a whole-planner property on every map of a size "

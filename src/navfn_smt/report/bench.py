@@ -46,3 +46,20 @@ def write_suite_json(path, suite, rows: list[dict]) -> None:
 def write_sizes_json(path, seed: int, rows: list[dict]) -> None:
     """Write a generated-map benchmark (with the maps' random seed) as one JSON document."""
     atomic_write_text(path, json.dumps({"seed": seed, "results": rows}, indent=1))
+
+
+# ------------------------------------------------------------------------- whole-map sweep
+SWEEP_COLUMNS = ["mode", "size", "goals", "seconds", "goals_per_second", "first_call_seconds", "planned",
+                 "issue_4655", "no_path"]
+
+
+def sweep_table(rows: list[dict]) -> None:
+    """Print goals per second of the whole-map sweep per mode."""
+    _table("bench: whole-map sweep (one robot pose, every free cell a goal)", rows, SWEEP_COLUMNS,
+           headers={"seconds": "s", "goals_per_second": "goals/s", "first_call_seconds": "1st call s",
+                    "issue_4655": "#4655", "no_path": "no path", "mode": "mode"})
+
+
+def write_sweep_json(path, seed: int, rows: list[dict]) -> None:
+    """Write a sweep benchmark (with its map's seed) as one JSON document."""
+    atomic_write_text(path, json.dumps({"seed": seed, "sweep": rows}, indent=1))
