@@ -6,10 +6,11 @@ and raise the cost of every cell within ``inflation_radius`` of an obstacle cell
 that falls with the distance.  They differ in how they find that distance:
 
 ``inflate_current``: ``nav2_costmap_2d::InflationLayer`` from Nav2 1.5.0 on (#5933, March
-  2026: Lyrical, Rolling).  An exact Euclidean distance transform (Felzenszwalb and
-  Huttenlocher's lower envelope of parabolas, columns then rows, all in **float32**, then a
-  float ``sqrt``), and a cost table sampled every 1/100 cell, indexed by
-  ``(unsigned)(distance * 100 + 0.5f)`` in float.
+  2026: Lyrical, Rolling).  A Euclidean distance transform (Felzenszwalb and Huttenlocher's
+  lower envelope of parabolas, columns then rows, all in **float32**, then Eigen's
+  ``cwiseSqrt``, which on x86 with Eigen 3.4 is *not* the correctly rounded square root but
+  ``rsqrtps`` plus one Newton step, CPU-dependent: see :func:`matrix_sqrt`), and a cost table
+  sampled every 1/100 cell, indexed by ``(unsigned)(distance * 100 + 0.5f)`` in float.
 ``inflate_legacy``: the breadth-first layer (``InflationLayer`` up to Kilted,
   ``LegacyInflationLayer`` from 1.5.0 on).  Cells are visited in bins of increasing integer
   squared distance to the obstacle cell that reached them first, spreading to the four
@@ -132,7 +133,8 @@ def _dt_1d(f, d, n, v, z):
 
 @njit(cache=True)
 def _dt_2d(img):
-    """``DistanceTransform::distanceTransform2D``: columns, then rows, then ``cwiseSqrt`` (float)."""
+    """``DistanceTransform::distanceTransform2D`` up to its square root: the column pass, then
+    the row pass, leaving squared distances (float32) in ``img``."""
     h, w = img.shape
     n = max(h, w)
     f = np.empty(n, np.float32)
@@ -150,19 +152,63 @@ def _dt_2d(img):
             f[x] = img[y, x]
         _dt_1d(f, d, w, v, z)
         for x in range(w):
-            img[y, x] = np.sqrt(d[x])
+            img[y, x] = d[x]
 
 
-def distance_map(costmap: np.ndarray, inflate_around_unknown: bool = False) -> np.ndarray:
+def eigen_sse_sqrt(x: np.ndarray, table: np.ndarray) -> np.ndarray:
+    """Eigen 3.4's ``psqrt<Packet4f>`` with ``EIGEN_FAST_MATH`` (its default) on SSE, float32.
+
+    ``r = rsqrtps(x)`` (from ``table``, see :mod:`.rsqrt_tables`); one Newton step
+    ``r = r * ((x * -0.5f) * (r * r) + 1.5f)`` (no FMA: two roundings); ``x * r``; inputs below
+    FLT_MIN (0 here) give 0.  Not the correctly rounded square root: ``sqrt(49)`` is
+    ``7.0000005`` on the measured CPU.
+    """
+    x = np.ascontiguousarray(x, dtype=np.float32)
+    bits = x.view(np.uint32).astype(np.int64)
+    e = ((bits >> 23) & 0xFF) - 127
+    par = e & 1
+    r = np.ldexp(table[par * 4096 + ((bits >> 11) & 0xFFF)], -((e - par) // 2)).astype(np.float32)
+    f = np.float32
+    with np.errstate(all="ignore"):
+        r = r * (((x * f(-0.5)) * (r * r)) + f(1.5))
+        y = x * r
+    return np.where(x < np.finfo(np.float32).tiny, f(0.0), y).astype(np.float32)
+
+
+SQRT_MODES = ("eigen-sse-amd", "exact")
+
+
+def matrix_sqrt(sq: np.ndarray, sqrt: str = "eigen-sse-amd") -> np.ndarray:
+    """``img = img.cwiseSqrt()`` on the row-major ROI matrix (here: the whole map).
+
+    ``"eigen-sse-amd"``: Eigen 3.4 on SSE vectorises the assignment over the flat storage in
+    packets of 4 (:func:`eigen_sse_sqrt`, with the ``rsqrtps`` table measured on AMD Zen) and
+    does the last ``size % 4`` elements with the scalar, correctly rounded ``std::sqrt``.
+    ``"exact"``: the correctly rounded float square root everywhere (a build whose Eigen
+    takes ``sqrtps``).
+    """
+    if sqrt not in SQRT_MODES:
+        raise NavfnInputError(f"unknown sqrt mode {sqrt!r} (choose from {', '.join(SQRT_MODES)})")
+    flat = np.ascontiguousarray(sq, dtype=np.float32).ravel()
+    out = np.sqrt(flat)
+    if sqrt == "eigen-sse-amd":
+        from .rsqrt_tables import rsqrt_table
+
+        n = flat.size - flat.size % 4
+        out[:n] = eigen_sse_sqrt(flat[:n], rsqrt_table("amd-zen"))
+    return out.reshape(sq.shape)
+
+
+def distance_map(costmap: np.ndarray, inflate_around_unknown: bool = False, sqrt: str = "eigen-sse-amd") -> np.ndarray:
     """The float32 distance (in cells) of every cell to the nearest obstacle cell, as
     ``InflationLayer::updateCosts`` computes it: 0 at LETHAL (and NO_INFORMATION with
-    ``inflate_around_unknown``), ``DT_INF`` (FLT_MAX) elsewhere, then the transform.
-    A map without obstacle cells stays at ``sqrt(FLT_MAX)``."""
+    ``inflate_around_unknown``), ``DT_INF`` (FLT_MAX) elsewhere, the transform, the square
+    root (:func:`matrix_sqrt`).  A map without obstacle cells stays near ``sqrt(FLT_MAX)``."""
     c = _check_costmap(costmap)
     src = (c == LETHAL_OBSTACLE) | ((c == NO_INFORMATION) if inflate_around_unknown else False)
     img = np.where(src, np.float32(0.0), FLT_MAX).astype(np.float32)
     _dt_2d(img)
-    return img
+    return matrix_sqrt(img, sqrt)
 
 
 @njit(cache=True)
@@ -195,12 +241,15 @@ def inflate_current(
     inflate_unknown: bool = False,
     inflate_around_unknown: bool = False,
     enabled: bool = True,
+    sqrt: str = "eigen-sse-amd",
 ) -> np.ndarray:
     """``InflationLayer::updateCosts`` (Nav2 >= 1.5.0) over the whole map; returns a new array.
 
     ``resolution``, ``inscribed_radius``, ``inflation_radius`` and ``cost_scaling_factor`` are
     the layer's doubles (defaults: the layer's own, 0.55 m and 10.0).  Nothing happens when
-    the layer is disabled or ``cellDistance(inflation_radius)`` is 0.
+    the layer is disabled or ``cellDistance(inflation_radius)`` is 0.  ``sqrt`` selects how the
+    distance transform's square root is taken (:func:`matrix_sqrt`): the default reproduces
+    an x86-64 build with Eigen 3.4 on an AMD Zen CPU; other CPUs' ``rsqrtps`` differ.
     """
     master = _check_costmap(costmap).copy()
     _check_numbers(resolution=resolution, inscribed_radius=inscribed_radius,
@@ -209,7 +258,7 @@ def inflate_current(
     if not enabled or cir == 0 or master.size == 0:
         return master
     lut = cost_lut(cir, float(resolution), float(inscribed_radius), float(cost_scaling_factor))
-    dist = distance_map(master, inflate_around_unknown)
+    dist = distance_map(master, inflate_around_unknown, sqrt)
     _apply_inflation(master, dist, cir, lut, bool(inflate_unknown))
     return master
 
