@@ -1,18 +1,131 @@
 """``navfn-smt diagnose``: the command (arguments and handler).
 
-Wired into the command line by ``register(subparsers)``.
+Wired into the command line by ``register(subparsers)``.  Exit status: 0 when every plan
+succeeds, 1 when one fails (and is diagnosed), 2 on bad input.
 """
 
 from __future__ import annotations
 
+import sys
+import time
+from pathlib import Path
+
 from ..errors import NavfnInputError
 
 
+def _check_outputs(args) -> None:
+    from ..fileio import check_writable
+    from ..report.diagnose import check_picture_path
+
+    for p in (args.json, args.picture):
+        if p:
+            check_writable(p)
+    if args.picture:
+        check_picture_path(args.picture)
+    if args.json and args.picture and Path(args.json).resolve() == Path(args.picture).resolve():
+        raise NavfnInputError("--json and --picture name the same file")
+
+
+class _Progress:
+    """A rich bar on a terminal; one plain line per goal otherwise (stderr)."""
+
+    def __init__(self, total: int, label: str, quiet: bool):
+        self.total, self.label, self.quiet, self.done = total, label, quiet, 0
+        self.bar = None
+
+    def __enter__(self):
+        if not self.quiet and sys.stderr.isatty():
+            from ..report.tables import progress_bar
+
+            self.bar = progress_bar(self.total, self.label)
+            self.advance = self.bar.__enter__()
+        return self
+
+    def step(self, d) -> None:
+        self.done += 1
+        if self.bar is not None:
+            self.advance(1)
+        elif not self.quiet:
+            state = "ok" if d.ok else d.cause
+            print(f"{self.label}: {self.done}/{self.total} ({d.goal.x:g}, {d.goal.y:g}) {state}", file=sys.stderr,
+                  flush=True)
+
+    def __exit__(self, *exc):
+        if self.bar is not None:
+            return self.bar.__exit__(*exc)
+        return False
+
+
 def cmd_diagnose(args) -> int:
-    raise NavfnInputError("diagnose is not built yet")
+    from ..report import diagnose as report
+    from .core import diagnose
+    from .inputs import load_inputs, parse_goals, pose_arg
+
+    if args.goals and args.goal:
+        raise NavfnInputError("give --goal or --goals, not both")
+    if not args.goals and not args.goal:
+        raise NavfnInputError("give --goal X Y [YAW] or --goals FILE")
+    if args.max_steps is not None and args.max_steps < 1:
+        raise NavfnInputError("--max-steps must be at least 1")
+    start = pose_arg("start", args.start)
+    goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
+    _check_outputs(args)
+    if args.sweep:
+        return _sweep(args)
+    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside)
+    t0 = time.perf_counter()
+    results = []
+    batch = len(goals) > 1 or bool(args.goals)
+    with _Progress(len(goals), "diagnose", quiet=not batch or args.quiet) as prog:
+        for g in goals:
+            d = diagnose(setup.costmap, start, g, setup.params, args.backend, what_ifs=not args.no_what_ifs,
+                         max_steps=args.max_steps)
+            results.append(d)
+            prog.step(d)
+    seconds = time.perf_counter() - t0
+    report.print_text(args.map, setup, args.backend, results)
+    if args.json:
+        report.write_json(args.json, report.report_doc(args.map, setup, args.backend, results, seconds))
+    if args.picture:
+        title = f"{Path(args.map).name} ({'A*' if setup.params.use_astar else 'Dijkstra'})"
+        if batch:
+            report.write_batch_picture(args.picture, setup, results, title)
+        else:
+            report.write_picture(args.picture, results[0], title)
+    return 0 if all(d.ok for d in results) else 1
+
+
+def _sweep(args) -> int:  # replaced when diagnose/sweep.py provides a sweep
+    raise NavfnInputError("--sweep is not available")
 
 
 def register(sub) -> None:
+    from ..backends import BACKENDS
+    from ..maps.mapserver import DEFAULT_DISTRO, DISTROS
+
     d = sub.add_parser("diagnose", help="explain why a Nav2 NavFn plan fails and what fixes it")
     d.add_argument("map", help="a map_server YAML map")
-    d.set_defaults(func=cmd_diagnose)
+    d.add_argument("--start", nargs="+", type=float, required=True, metavar="V",
+                   help="the robot's pose: X Y [YAW] (world coordinates, metres, radians)")
+    d.add_argument("--goal", nargs="+", type=float, metavar="V", help="the goal pose: X Y [YAW]")
+    d.add_argument("--goals", metavar="FILE",
+                   help="a batch of goals: one 'x y [yaw]' a line, or a YAML/JSON list (one report for all)")
+    d.add_argument("--params", metavar="FILE",
+                   help="a Nav2 params file: the NavfnPlanner plugin's parameters (planner_server) and the global "
+                   "costmap's layers (global_costmap); default: Nav2's defaults, static layer only")
+    d.add_argument("--distro", default=DEFAULT_DISTRO,
+                   help=f"Nav2 distribution whose map loading and costmap rules apply ({', '.join(DISTROS)})")
+    d.add_argument("--allow-outside", action="store_true",
+                   help="let the map YAML name an image outside its own folder")
+    d.add_argument("--backend", choices=BACKENDS, default="jit",
+                   help="planner implementation: the numba JIT or the reference spec")
+    d.add_argument("--json", metavar="FILE", help="write the machine-readable report (docs/diagnose.md)")
+    d.add_argument("--picture", metavar="FILE",
+                   help="a .png or .svg: costmap, potential, the path or the trap, the failing cell (with --goals: "
+                   "every goal marked by its outcome)")
+    d.add_argument("--no-what-ifs", action="store_true",
+                   help="do not re-plan with use_astar, tolerance and allow_unknown changed")
+    d.add_argument("--max-steps", type=int, metavar="N",
+                   help="iterations of the unbudgeted calcPath before a trap is called undecided (default 400000)")
+    d.add_argument("--quiet", action="store_true", help="no progress bar or progress lines")
+    d.set_defaults(func=cmd_diagnose, sweep=False)
