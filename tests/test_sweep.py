@@ -197,3 +197,15 @@ def test_plugin_goal_in_first_column():
     start = pose_in_cell(cm, 5, 6)
     run = create_plan(cm, start, goal_pose(cm, (0, 1)), PlannerParams())
     assert run.error != "UndefinedBehaviour"
+
+
+def test_bench_sweep_command(tmp_path, capsys):
+    from navfn_smt.cli import main
+
+    out = tmp_path / "b.json"
+    assert main(["bench", "--sweep", "40", "--sweep-astar-goals", "5", "--json", str(out)]) == 0
+    rows = json.loads(out.read_text())["sweep"]
+    assert [r["mode"] for r in rows] == ["astar", "dijkstra"]
+    assert rows[0]["goals"] == 5 and rows[1]["goals"] > 100 and all(r["goals_per_second"] > 0 for r in rows)
+    assert "goals/s" in capsys.readouterr().out
+    assert main(["bench", "--sweep", "10"]) == 2

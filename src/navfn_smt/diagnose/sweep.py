@@ -22,7 +22,7 @@ positions, the tolerance search's world points) is taken by the plugin's own fun
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Optional, Union
 
 import numpy as np
@@ -97,7 +97,6 @@ class SweepResult:
     fallback: int = 0  # goals planned by create_plan itself (see the module doc)
     path_offsets: Optional[np.ndarray] = None  # (G,) start of each kept path in ``paths``
     paths: Optional[np.ndarray] = None  # (P, 2) float32 NavFn points, when kept
-    extra: dict = field(default_factory=dict)
 
     def __len__(self) -> int:
         return int(len(self.cells))
@@ -217,13 +216,12 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         exit=np.full(G, -1, np.int8), used_tolerance=np.zeros(G, bool), best_cell=np.full((G, 2), -1, np.int64),
         cycles=np.full(G, -1, np.int64), goal_potential=np.full(G, np.nan), path_points=np.zeros(G, np.int64),
         path_length=np.zeros(G))
-    done = 0
     report = progress or (lambda d, t: None)
 
     # createPlan's checks before makePlan, by the plugin's own functions
     if costmap_world_to_map(cm, start.x, start.y) is None:
         res.outcome[:] = _CODE["start_outside"]
-        return _finish(res, t0, keep_paths, [], report)
+        return _finish(res, t0, report)
     planned = []  # goals for the compiled loops
     fallback = []  # goals create_plan plans alone
     robot_ok, robot = plugin_world_to_map(cm, start.x, start.y)
@@ -312,7 +310,7 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
     if keep_paths:
         res.paths, res.path_offsets = pts, offsets
     res.fallback = len(fallback)
-    return _finish(res, t0, keep_paths, [], report)
+    return _finish(res, t0, report)
 
 
 def _refused(out_i, planned, col_of, row_of, xerr, yerr) -> None:
@@ -352,7 +350,7 @@ def _plan_alone(cm, start, params, res, ks, pts, offsets, keep, report, done):
     return pts, offsets
 
 
-def _finish(res: SweepResult, t0: float, keep, _, report) -> SweepResult:
+def _finish(res: SweepResult, t0: float, report) -> SweepResult:
     res.seconds = time.perf_counter() - t0
     report(len(res), len(res))
     return res
