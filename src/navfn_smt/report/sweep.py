@@ -66,7 +66,8 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     length[ys[planned], xs[planned]] = res.path_length[planned]
 
     side = 6.5 if max(nx, ny) >= 100 else 5.0
-    fig, axes = plt.subplots(1, 2, figsize=(2 * side + 1.5, side + 1.6), constrained_layout=True)
+    fig, axes = plt.subplots(1, 2, figsize=(2 * side + 1.5, side + 2.2))
+    fig.subplots_adjust(left=0.06, right=0.97, top=0.88, bottom=0.24, wspace=0.18)
     a0, a1 = axes
     a0.imshow(over, origin="lower", extent=ext, interpolation="nearest")
     a0.set_title("outcome per goal cell")
@@ -74,11 +75,11 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     handles.append(Patch(facecolor="black", label="lethal / inscribed (costmap)"))
     if (costs == 255).any():
         handles.append(Patch(facecolor=(0.75, 0.82, 0.95), label="unknown (costmap)"))
-    a0.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.07), ncol=2, fontsize=8, frameon=False)
+    fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.01), ncol=3, fontsize=9, frameon=False)
     a1.imshow(bg, origin="lower", extent=ext, interpolation="nearest")
     im = a1.imshow(length, origin="lower", extent=ext, interpolation="nearest", cmap="viridis")
     a1.set_title("path length of planned goals (m)")
-    fig.colorbar(im, ax=a1, shrink=0.8)
+    fig.colorbar(im, ax=a1, shrink=0.85, pad=0.02)
     for a in axes:
         a.plot([res.start.x], [res.start.y], marker="*", markersize=18, color="white", markeredgecolor="black",
                markeredgewidth=1.2, linestyle="none", label="robot")
