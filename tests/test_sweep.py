@@ -18,16 +18,6 @@ from conftest import REPO
 ROOM = REPO / "src/navfn_smt/examples/mapserver/room.yaml"
 
 
-@pytest.fixture
-def no_incidental_calcpath(monkeypatch):
-    """The plugin's propagation step runs a backend ``run``, which also runs calcPath from
-    NavFn's start with the spec's 4*nx budget; NavFn's calcNavFnDijkstra/Astar do not, and that
-    calcPath raises UndefinedBehaviour for a goal in the map's first column (reads before the
-    array) although Nav2 would move that goal by the tolerance search.  Budget 0 turns it off
-    (the plugin's own extraction passes its max_cycles explicitly)."""
-    monkeypatch.setattr("navfn_smt.backends.path_cycle_limit", lambda nx: 0)
-
-
 def expected(cm, start, params, cell):
     run = create_plan(cm, start, goal_pose(cm, cell), params)
     path = run.path if run.ok and run.path is not None else np.zeros((0, 2), np.float32)
@@ -81,7 +71,7 @@ def pose_in_cell(cm, x, y, fx=0.3, fy=0.2):
 
 @pytest.mark.parametrize("astar", [False, True])
 @pytest.mark.parametrize("tolerance", [0.5, 0.0, 0.12])
-def test_small_maps_every_cell(no_incidental_calcpath, astar, tolerance):
+def test_small_maps_every_cell(astar, tolerance):
     for seed in range(3):
         cm = small_map(seed)
         start = pose_in_cell(cm, 5 + seed, 6)
@@ -90,7 +80,7 @@ def test_small_maps_every_cell(no_incidental_calcpath, astar, tolerance):
 
 
 @pytest.mark.parametrize("astar", [False, True])
-def test_room_map(no_incidental_calcpath, astar):
+def test_room_map(astar):
     cm = costmap_from_map(load_map_yaml(ROOM))
     start = pose_in_cell(cm, 8, 9, 0.6, 0.45)
     res = assert_equal_per_goal(cm, start, PlannerParams(use_astar=astar), goals=None if not astar else 400, seed=3)
@@ -108,7 +98,7 @@ def maze_costmap():
 
 
 @pytest.mark.parametrize("astar", [False, True])
-def test_cycle_limited(no_incidental_calcpath, astar):
+def test_cycle_limited(astar):
     cm = maze_costmap()
     start = pose_in_cell(cm, 2, 1)
     res = assert_equal_per_goal(cm, start, PlannerParams(use_astar=astar), goals=None)
@@ -118,7 +108,7 @@ def test_cycle_limited(no_incidental_calcpath, astar):
 
 
 @pytest.mark.parametrize("astar", [False, True])
-def test_legal_potential_no_plan(no_incidental_calcpath, astar):
+def test_legal_potential_no_plan(astar):
     """#4655's outcome: a legal potential, and calcPath runs out of its max_cycles budget."""
     cm = maze_costmap()
     start = pose_in_cell(cm, 2, 1)
@@ -127,7 +117,7 @@ def test_legal_potential_no_plan(no_incidental_calcpath, astar):
     assert summary(res)["issue_4655"] == res.counts()["legal_no_plan"]
 
 
-def test_same_pose_and_occupied_goal(no_incidental_calcpath):
+def test_same_pose_and_occupied_goal():
     cm = small_map(4)
     start = goal_pose(cm, (6, 7))  # the robot exactly on the pose of its cell's goal
     for astar in (False, True):
@@ -136,7 +126,7 @@ def test_same_pose_and_occupied_goal(no_incidental_calcpath):
         assert c["same_pose"] == 1 and c["goal_occupied"] > 0
 
 
-def test_robot_rounding_off_the_map_is_planned_alone(no_incidental_calcpath):
+def test_robot_rounding_off_the_map_is_planned_alone():
     cm = small_map(5, 9, 8)
     start = Pose(cm.origin_x + 8.7 * cm.resolution, cm.origin_y + 3.2 * cm.resolution)  # rounds to x = 9
     assert not plugin_world_to_map(cm, start.x, start.y)[0]
@@ -189,10 +179,9 @@ def test_picture_and_summary(tmp_path):
     assert sum(doc["outcomes"].values()) == len(res) and set(doc["outcomes"]) == set(OUTCOMES)
 
 
-@pytest.mark.xfail(strict=True, reason="the plugin's propagation step also runs calcPath from NavFn's start "
-                                       "(JitRunner.run's 4*nx budget), which Nav2 does not; a goal in the first "
-                                       "column then reports UndefinedBehaviour")
 def test_plugin_goal_in_first_column():
+    """Nav2's calcNavFn* only propagate: NavFn's start in the first column (where calcPath from it
+    would read before the array) is never extracted from; the tolerance search moves the goal."""
     cm = small_map(0)
     start = pose_in_cell(cm, 5, 6)
     run = create_plan(cm, start, goal_pose(cm, (0, 1)), PlannerParams())

@@ -386,7 +386,8 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
     run.cycle_limit = cycle_limit(nx, ny)
     on_map = all(0 <= c[0] < nx and 0 <= c[1] < ny for c in (navfn_start, navfn_goal))
     if on_map:
-        r = get_backend(backend).prepare(run.costs).run(navfn_start, navfn_goal, astar, trace=False)
+        # calcNavFn* only propagate; calcPath comes later, from the chosen pose's cell
+        r = get_backend(backend).prepare(run.costs).run(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
         run.potential, run.reached, run.cycles, run.dropped = r.potential, r.start_reached, r.cycles, r.dropped
         return
     for what, c in (("start", navfn_start), ("goal", navfn_goal)):
