@@ -31,12 +31,12 @@ costmap_resolution``).  ``exp`` is the C library's (``math.exp`` calls it).
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 from numba import njit
 
 from ..errors import NavfnInputError
-from .footprint import c_hypot
 
 LETHAL_OBSTACLE, INSCRIBED_INFLATED_OBSTACLE, NO_INFORMATION, FREE_SPACE = 254, 253, 255, 0
 COST_LUT_PRECISION = 100  # InflationLayer: samples of the cost table per cell
@@ -91,15 +91,19 @@ def _write_cost(old, cost, inflate_unknown):
 
 
 # ------------------------------------------------------------- the current InflationLayer
+@lru_cache(maxsize=64)
 def cost_lut(cell_inflation_radius: int, resolution: float, inscribed_radius: float,
              cost_scaling_factor: float) -> np.ndarray:
     """``InflationLayer::computeCaches``: ``computeCost(d / 100.0)`` for d = 0 .. cir * 100 + 1.
 
     ``static_cast<double>(d_scaled) / COST_LUT_PRECISION``: a double division by the int 100.
+    Read-only (cached).
     """
     n = cell_inflation_radius * COST_LUT_PRECISION + 1
-    return np.array([compute_cost(d / float(COST_LUT_PRECISION), resolution, inscribed_radius, cost_scaling_factor)
-                     for d in range(n + 1)], dtype=np.uint8)
+    lut = np.array([compute_cost(d / float(COST_LUT_PRECISION), resolution, inscribed_radius, cost_scaling_factor)
+                    for d in range(n + 1)], dtype=np.uint8)
+    lut.setflags(write=False)
+    return lut
 
 
 @njit(cache=True)
@@ -264,24 +268,31 @@ def inflate_current(
 
 
 # -------------------------------------------------------------- the breadth-first layer
+@lru_cache(maxsize=64)
 def legacy_tables(cell_inflation_radius: int, resolution: float, inscribed_radius: float,
                   cost_scaling_factor: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``LegacyInflationLayer::computeCaches`` and ``generateIntegerDistances``.
 
     Returns ``(distances, costs, levels)``, each indexed ``[|dx|, |dy|]``:
-    ``distances`` = ``hypot(dx, dy)`` (double, for dx, dy < cir + 2), ``costs`` =
+    ``distances`` = ``hypot(dx, dy)`` (C's, double, for dx, dy < cir + 2), ``costs`` =
     ``computeCost`` of those, and ``levels`` = the bin of an offset: the rank of
     ``dx^2 + dy^2`` among the distinct squared lengths ``<= r^2`` of integer offsets,
-    ``r = cir + 2`` (offset (0, 0) is bin 0).
+    ``r = cir + 2`` (offset (0, 0) is bin 0).  Read-only (cached).
     """
     n = cell_inflation_radius + 2  # cache_length_
-    distances = np.array([[c_hypot(float(i), float(j)) for j in range(n)] for i in range(n)], dtype=np.float64)
-    costs = np.array([[compute_cost(distances[i, j], resolution, inscribed_radius, cost_scaling_factor)
-                       for j in range(n)] for i in range(n)], dtype=np.uint8)
+    ij = np.arange(n, dtype=np.float64)
+    distances = np.hypot.outer(ij, ij)  # numpy's hypot is the C library's
+    costs = np.empty((n, n), np.uint8)
+    for i in range(n):
+        for j in range(i, n):  # hypot is symmetric, and so is the cost
+            costs[i, j] = costs[j, i] = compute_cost(float(distances[i, j]), resolution, inscribed_radius,
+                                                     cost_scaling_factor)
     r = n
     sq = np.add.outer(np.arange(r + 1) ** 2, np.arange(r + 1) ** 2)
     distinct = np.unique(sq[sq <= r * r])
     levels = np.searchsorted(distinct, sq).astype(np.int64)  # offsets beyond r are never looked up
+    for a in (distances, costs, levels):
+        a.setflags(write=False)
     return distances, costs, levels
 
 
