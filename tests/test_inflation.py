@@ -268,6 +268,8 @@ def test_legacy_tables():
     assert dist.shape == costs.shape == (5, 5) and dist[3, 4] == 5.0
     assert levels[0, 0] == 0 and levels[1, 0] == levels[0, 1] == 1 and levels[1, 1] == 2 and levels[2, 0] == 3
     assert levels[3, 4] == levels[5, 0]  # 25 = 9 + 16: one bin
+    big, _, _ = legacy_tables(150, RES, 0.1, 3.0)  # numpy's hypot is the C library's hypot
+    assert all(big[i, j] == c_hypot(float(i), float(j)) for i in range(152) for j in range(152))
 
 
 def test_bad_input():
