@@ -61,17 +61,17 @@ def cmd_diagnose(args) -> int:
     from .core import diagnose
     from .inputs import load_inputs, parse_goals, pose_arg
 
-    if args.goals and args.goal:
-        raise NavfnInputError("give --goal or --goals, not both")
-    if not args.goals and not args.goal:
-        raise NavfnInputError("give --goal X Y [YAW] or --goals FILE")
+    given = [o for o, v in (("--goal", args.goal), ("--goals", args.goals), ("--sweep", args.sweep)) if v]
+    if len(given) != 1:
+        raise NavfnInputError("give one of --goal X Y [YAW], --goals FILE or --sweep [N]" +
+                              (f" (got {' and '.join(given)})" if given else ""))
     if args.max_steps is not None and args.max_steps < 1:
         raise NavfnInputError("--max-steps must be at least 1")
     start = pose_arg("start", args.start)
-    goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
     _check_outputs(args)
     if args.sweep:
-        return _sweep(args)
+        return _sweep(args, start)
+    goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
     setup = load_inputs(args.map, args.params, args.distro, args.allow_outside)
     t0 = time.perf_counter()
     results = []
@@ -95,8 +95,40 @@ def cmd_diagnose(args) -> int:
     return 0 if all(d.ok for d in results) else 1
 
 
-def _sweep(args) -> int:  # replaced when diagnose/sweep.py provides a sweep
-    raise NavfnInputError("--sweep is not available")
+def _sweep(args, start) -> int:
+    """Every free cell (or a sample of N) as a goal from one robot pose: outcome counts, JSON, picture."""
+    import json
+
+    from ..report.sweep import render_sweep, write_summary_json
+    from .inputs import load_inputs
+    from .sweep import summary, sweep
+
+    n = None if args.sweep == "all" else _sample_size(args.sweep)
+    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside)
+    cm = setup.costmap
+    res = sweep(cm, start, setup.params, goals=n, seed=args.seed)
+    doc = summary(res)
+    print(f"map      {args.map}: {cm.size_x}x{cm.size_y} cells, costmap layers: {', '.join(setup.layers)}")
+    print(f"sweep    {doc['goals']} goals from ({start.x:g}, {start.y:g}), {doc['mode']}, {doc['seconds']} s")
+    for name, k in doc["outcomes"].items():
+        if k:
+            print(f"  {name:20s} {k}")
+    if args.json:
+        write_summary_json(args.json, res)
+    if args.picture:
+        render_sweep(res, cm.costs, (cm.origin_x, cm.origin_y), args.picture, title=Path(args.map).name)
+    ok = doc["outcomes"].get("ok", 0) + doc["outcomes"].get("ok_tolerance", 0) + doc["outcomes"].get("same_pose", 0)
+    return 0 if ok == doc["goals"] else 1
+
+
+def _sample_size(v) -> int:
+    try:
+        n = int(v)
+    except ValueError:
+        raise NavfnInputError(f"--sweep takes a number of goals or 'all', got {v!r}") from None
+    if n < 1:
+        raise NavfnInputError("--sweep needs at least one goal")
+    return n
 
 
 def register(sub) -> None:
@@ -110,6 +142,10 @@ def register(sub) -> None:
     d.add_argument("--goal", nargs="+", type=float, metavar="V", help="the goal pose: X Y [YAW]")
     d.add_argument("--goals", metavar="FILE",
                    help="a batch of goals: one 'x y [yaw]' a line, or a YAML/JSON list (one report for all)")
+    d.add_argument("--sweep", nargs="?", const="all", metavar="N",
+                   help="instead of one goal, every free cell of the map as a goal (or a random sample of N): "
+                   "counts of each outcome, --json summary, --picture of the outcomes")
+    d.add_argument("--seed", type=int, default=0, help="random seed of the --sweep sample")
     d.add_argument("--params", metavar="FILE",
                    help="a Nav2 params file: the NavfnPlanner plugin's parameters (planner_server) and the global "
                    "costmap's layers (global_costmap); default: Nav2's defaults, static layer only")
@@ -128,4 +164,4 @@ def register(sub) -> None:
     d.add_argument("--max-steps", type=int, metavar="N",
                    help="iterations of the unbudgeted calcPath before a trap is called undecided (default 400000)")
     d.add_argument("--quiet", action="store_true", help="no progress bar or progress lines")
-    d.set_defaults(func=cmd_diagnose, sweep=False)
+    d.set_defaults(func=cmd_diagnose)

@@ -236,8 +236,8 @@ def _overlay(ax, d, zoom: bool = False) -> None:
                 ax.plot(lead[:, 0], lead[:, 1], "-", color="tab:orange", lw=1.4, marker="." if zoom else None,
                         ms=4, label="extraction")
         if cyc is not None:
-            ax.plot(cyc[:, 0], cyc[:, 1], "-", color="red", lw=2.2, marker="o" if zoom else None, ms=3,
-                    label=f"cycle ({len(cyc) - 1} iterations)")
+            ax.plot(cyc[:, 0], cyc[:, 1], "-", color="red", lw=2.2 if not zoom else 1.4, marker="o" if zoom else None,
+                    ms=3, label=f"cycle (every {d.walk.cycle_period} iterations)")
             if zoom:
                 ax.annotate("", xy=cyc[1], xytext=cyc[0],
                             arrowprops=dict(arrowstyle="->", color="red", lw=2))
@@ -265,13 +265,14 @@ def _window(d, nx: int, ny: int):
         return None
     pts = []
     lead, cyc = _trap(d)
+    least = 10.0
     if cyc is not None:
-        pts = cyc
+        pts, least = cyc, 3.0
     elif lead is not None:
         pts = lead[-30:]
     pts = np.vstack([np.asarray(pts, float).reshape(-1, 2), [d.failing_cell]])
     cx, cy = pts.mean(axis=0)
-    half = max(10.0, 0.6 * float(np.ptp(pts[:, 0])), 0.6 * float(np.ptp(pts[:, 1])))
+    half = max(least, 0.8 * float(np.ptp(pts[:, 0])), 0.8 * float(np.ptp(pts[:, 1])))
     x0, x1 = max(-0.5, cx - half), min(nx - 0.5, cx + half)
     y0, y1 = max(-0.5, cy - half), min(ny - 0.5, cy + half)
     return x0, x1, y0, y1
@@ -317,6 +318,8 @@ def write_picture(path, d, title: str = "") -> None:
                       cmap="viridis", vmin=np.nanmin(_sub(pot, win)), vmax=np.nanmax(_sub(pot, win)))
             ax.imshow(np.where(cm.costs >= 254, 1.0, np.nan), origin="lower", extent=extent,
                       interpolation="nearest", cmap="Greys", vmin=0, vmax=1)
+        if pot is not None and x1 - x0 <= 16:
+            _label_cells(ax, pot, cm.costs, win)
         _overlay(ax, d, zoom=True)
         ax.set_xlim(x0, x1)
         ax.set_ylim(y0, y1)
@@ -339,6 +342,17 @@ def write_picture(path, d, title: str = "") -> None:
     fig.suptitle(f"{title}\n{status}".strip(), fontsize=10)
     fig.tight_layout(rect=(0, 0.07, 1, 1))
     _save(fig, path)
+
+
+def _label_cells(ax, pot: np.ndarray, costs: np.ndarray, win) -> None:
+    """Each cell's potential (and cost) written in it, on small zoom windows."""
+    x0, x1, y0, y1 = win
+    for y in range(max(0, math.ceil(y0)), min(pot.shape[0] - 1, math.floor(y1)) + 1):
+        for x in range(max(0, math.ceil(x0)), min(pot.shape[1] - 1, math.floor(x1)) + 1):
+            p = float(pot[y, x])
+            txt = f"{p:.1f}" if p < POT_HIGH else "unreached"
+            ax.text(x, y + 0.12, txt, ha="center", va="center", fontsize=6, color="white")
+            ax.text(x, y - 0.22, f"c{int(costs[y, x])}", ha="center", va="center", fontsize=5, color="0.85")
 
 
 def _sub(pot: np.ndarray, win) -> np.ndarray:
