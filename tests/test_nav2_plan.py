@@ -34,6 +34,8 @@ from navfn_smt.nav2.plugin import (
 )
 from navfn_smt.spec.extraction import ExtractionExit
 
+from conftest import REPO
+
 HYP = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 F32 = np.float32
 ROS_MAPS = ("empty_room", "keepout_mask", "map_circular", "speed_mask")
@@ -242,3 +244,22 @@ def test_plan_command_prints_poses_or_the_exception(tmp_path):
     assert rc == 2 and "X Y or X Y YAW" in err and "Traceback" not in err
     rc, out, err = run("--start", 2, 2, "--goal", 3, 3, "--params", tmp_path / "missing.yaml")
     assert rc == 2 and "no such params file" in err
+
+
+def test_setup_builds_the_global_costmap_from_the_params_file(tmp_path):
+    from navfn_smt.nav2 import costmap as layers
+    from navfn_smt.nav2.setup import load_setup
+
+    room = REPO / "src/navfn_smt/examples/mapserver/room.yaml"
+    example = REPO / "src/navfn_smt/examples/nav2/nav2_params.yaml"
+    m = load_map_yaml(room)
+    default = load_setup(room)  # no params file: nav2_bringup's costmap (inflation 0.7 m on rolling)
+    want = layers.build_global_costmap(m, layers.bringup_params("rolling"), "rolling").costmap
+    assert np.array_equal(default.costmap.costs, want)
+    assert not np.array_equal(default.costmap.costs, m.ros_costmap)  # the inflation layer ran
+    given = load_setup(room, example)  # inflation 0.55 m, scaling 3.0
+    want = layers.build_global_costmap(m, layers.load_costmap_params(example), "rolling").costmap
+    assert np.array_equal(given.costmap.costs, want) and not np.array_equal(given.costmap.costs, default.costmap.costs)
+    assert given.params.tolerance == 0.5 and not given.params.use_astar
+    humble = load_setup(room, example, distro="humble", overrides={"max_cycles_factor": 9})
+    assert humble.params.max_cycles_factor == 4 and any("PR #6308" in n for n in humble.notes)

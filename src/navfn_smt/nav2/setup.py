@@ -1,20 +1,20 @@
 """A Nav2 planning set-up from files: the map, the global costmap built on it, the plugin's
 parameters; what ``plan --world`` and ``diagnose`` start from.
 
-The global costmap is the static layer of the map (:mod:`navfn_smt.maps.mapserver`), then the
-params file's inflation layer when :mod:`.costmap` provides one; without a params file, the
-static layer alone with Nav2's defaults.
+The global costmap is built by :mod:`.costmap` from the map (static layer) and the params
+file's ``global_costmap`` section (its inflation layer); without a params file, from
+nav2_bringup's shipped values.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
 from ..maps.mapserver import DEFAULT_DISTRO, MapServerMap, load_map_yaml
-from .params import PlannerParams, planner_params
+from .params import PlannerParams, load_params_yaml, planner_params
 from .plugin import Costmap, costmap_from_map
 
 
@@ -34,35 +34,34 @@ class Setup:
 
 def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
                overrides: Optional[dict] = None) -> Setup:
-    """Map + params file (optional) -> :class:`Setup`; ``overrides`` replace plugin parameters."""
-    from dataclasses import replace
+    """Map + params file -> :class:`Setup`; ``overrides`` replace plugin parameters.
+
+    Without a params file the plugin has Nav2's default parameters and the global costmap is
+    nav2_bringup's (static and inflation layers, robot radius 0.22 m), as a robot brought up
+    with Nav2's shipped params file has them.
+    """
+    from . import costmap as layers
 
     params = planner_params(params_file) if params_file else PlannerParams()
     if overrides:
         params = replace(params, **{k: v for k, v in overrides.items() if v is not None})
-    distro_notes = [] if distro == "rolling" else [
+    notes = [] if distro == "rolling" else [
         f"the planner plugin is Rolling's navfn_planner.cpp (map loading and costmap layers follow {distro})"]
     if distro not in CYCLES_FACTOR_DISTROS and params.max_cycles_factor != 4:
-        distro_notes.append(f"max_cycles_factor {params.max_cycles_factor} ignored: {distro} has no such parameter "
-                            f"(Nav2 PR #6308, August 2026); calcPath gets 4 * max(size_x, size_y) cycles")
+        notes.append(f"max_cycles_factor {params.max_cycles_factor} ignored: {distro} has no such parameter "
+                     f"(Nav2 PR #6308, August 2026); calcPath gets 4 * max(size_x, size_y) cycles")
         params = replace(params, max_cycles_factor=4)
-    costmap_params = None
-    try:
-        from . import costmap as layers
-    except ImportError:  # the inflation layers are optional to this module
-        layers = None
-    if layers is not None and not all(hasattr(layers, f) for f in ("costmap_params", "static_layer_kwargs",
-                                                                      "build_global_costmap")):
-        layers = None
-    if layers is not None and params_file:
-        costmap_params = layers.costmap_params(params_file)
-    m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro,
-                      **(layers.static_layer_kwargs(costmap_params) if costmap_params is not None else {}))
-    if costmap_params is None:
-        return Setup(m, costmap_from_map(m), params, ["static_layer"], distro_notes + (
-            [] if params_file else ["no params file: Nav2's default plugin parameters, static layer only"]))
-    gc = layers.build_global_costmap(m, costmap_params, distro)
-    return Setup(m, costmap_from_map(m, gc.master), params, list(gc.layers), distro_notes + list(gc.notes))
+    if params_file and not any(k in load_params_yaml(params_file) for k in ("global_costmap", "/global_costmap")):
+        cparams = layers.CostmapParams()
+        notes.append(f"{params_file} has no global_costmap section: Nav2's code defaults for the global costmap")
+    elif params_file:
+        cparams = layers.load_costmap_params(params_file, distro)
+    else:
+        cparams = layers.bringup_params(distro)
+        notes.append("no params file: Nav2's default planner parameters and nav2_bringup's global costmap")
+    m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro)
+    gc = layers.build_global_costmap(m, cparams, distro)
+    return Setup(m, costmap_from_map(m, gc.costmap), params, list(gc.layers_run), notes + list(gc.notes))
 
 
 def check_params_file(path) -> None:
