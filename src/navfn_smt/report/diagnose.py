@@ -377,10 +377,12 @@ def write_batch_picture(path, setup, diagnoses: Sequence, title: str = "") -> No
     causes = sorted({d.cause for d in diagnoses})
     colours = plt.get_cmap("tab10")
     for i, cause in enumerate(causes):
-        pts = [_goal_cell(cm, d) for d in diagnoses if d.cause == cause]
-        pts = np.asarray([p for p in pts if p is not None], float).reshape(-1, 2)
+        cells = [_goal_cell(cm, d) for d in diagnoses if d.cause == cause]
+        pts = np.asarray([p for p in cells if p is not None], float).reshape(-1, 2)
+        off = len(cells) - len(pts)
         style = dict(marker="o", color="limegreen") if cause == "ok" else dict(marker="X", color=colours(i % 10))
-        ax.plot(pts[:, 0], pts[:, 1], linestyle="none", mec="k", ms=8, label=f"{cause} ({len(pts)})", **style)
+        ax.plot(pts[:, 0], pts[:, 1], linestyle="none", mec="k", ms=8,
+                label=f"{cause} ({len(cells)}{f', {off} off the map' if off else ''})", **style)
     starts = {d.run.start_cell for d in diagnoses if d.run.start_cell is not None}
     for s in starts:
         ax.plot([s[0]], [s[1]], "o", color="white", mec="k", ms=11)
