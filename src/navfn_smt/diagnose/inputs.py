@@ -1,59 +1,28 @@
 """What ``diagnose`` reads: the map and its global costmap, the plugin's parameters, the goals.
 
-The costmap: the map's static layer, then, when a params file has a ``global_costmap``
-section, its layers as :func:`navfn_smt.nav2.costmap.build_global_costmap` runs them
-(static and inflation; sensor layers skipped).  Without a params file, or without that
-section, the static layer alone (nav2_bringup's ``track_unknown_space: true``).
+The map, costmap and parameters are read as ``plan --world`` reads them
+(:func:`navfn_smt.nav2.setup.load_setup`).
 """
 
 from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
-from ..maps.mapserver import DEFAULT_DISTRO, MapServerMap, load_map_yaml
-from ..nav2.params import PlannerParams, planner_params
-from ..nav2.plugin import Costmap, Pose, check_pose, costmap_from_map
+from ..maps.mapserver import DEFAULT_DISTRO
+from ..nav2.plugin import Pose, check_pose
+from ..nav2.setup import Setup, check_params_file, load_setup
 
 
-@dataclass
-class DiagnoseSetup:
-    map: MapServerMap
-    costmap: Costmap  # the master costmap the plugin plans on
-    params: PlannerParams
-    layers: list = field(default_factory=list)  # the costmap layers that ran, in order
-    notes: list = field(default_factory=list)
 
 
-def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False) -> DiagnoseSetup:
-    """Map + optional params file -> the costmap and the plugin's parameters."""
-    if params_file is not None and not Path(params_file).is_file():
-        raise NavfnInputError(f"{params_file}: no such params file")
-    params = planner_params(params_file) if params_file else PlannerParams()
-    m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro)
-    if params_file is None:
-        return DiagnoseSetup(m, costmap_from_map(m), params, ["static_layer"],
-                             ["no params file: Nav2's default planner parameters, static layer only"])
-    try:
-        from ..nav2 import costmap as layers
-    except ImportError:
-        layers = None
-    if layers is None or not all(hasattr(layers, f) for f in ("load_costmap_params", "build_global_costmap")):
-        return DiagnoseSetup(m, costmap_from_map(m), params, ["static_layer"],
-                             ["global costmap layers not available: static layer only"])
-    try:
-        cp = layers.load_costmap_params(params_file, distro)
-    except NavfnInputError as e:
-        if "no 'global_costmap" not in str(e):
-            raise
-        return DiagnoseSetup(m, costmap_from_map(m), params, ["static_layer"],
-                             [f"{params_file} has no global_costmap section: static layer only"])
-    gc = layers.build_global_costmap(m, cp, distro)
-    return DiagnoseSetup(m, costmap_from_map(m, gc.costmap), params, list(gc.layers_run), list(gc.notes))
+def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False) -> Setup:
+    """Map + optional params file -> the costmap and the plugin's parameters (:func:`load_setup`)."""
+    check_params_file(params_file)
+    return load_setup(map_yaml, params_file, distro, allow_outside)
 
 
 def parse_goals(path) -> list[Pose]:

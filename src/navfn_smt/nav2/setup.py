@@ -2,8 +2,8 @@
 parameters; what ``plan --world`` and ``diagnose`` start from.
 
 The global costmap is built by :mod:`.costmap` from the map (static layer) and the params
-file's ``global_costmap`` section (its inflation layer); without a params file, from
-nav2_bringup's shipped values.
+file's ``global_costmap`` section (its inflation layer); without a params file, the static
+layer alone.
 """
 
 from __future__ import annotations
@@ -36,9 +36,10 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
                overrides: Optional[dict] = None) -> Setup:
     """Map + params file -> :class:`Setup`; ``overrides`` replace plugin parameters.
 
-    Without a params file the plugin has Nav2's default parameters and the global costmap is
-    nav2_bringup's (static and inflation layers, robot radius 0.22 m), as a robot brought up
-    with Nav2's shipped params file has them.
+    Without a params file the plugin has Nav2's default parameters and the costmap is the map's
+    static layer alone; a params file without a ``global_costmap`` section gives Nav2's code
+    defaults for the costmap (static, obstacle and inflation layers; the obstacle layer is
+    skipped).
     """
     from . import costmap as layers
 
@@ -57,8 +58,10 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
     elif params_file:
         cparams = layers.load_costmap_params(params_file, distro)
     else:
-        cparams = layers.bringup_params(distro)
-        notes.append("no params file: Nav2's default planner parameters and nav2_bringup's global costmap")
+        m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro)
+        notes.append("no params file: Nav2's default planner parameters, the map's static layer only "
+                     "(nav2_bringup's track_unknown_space: true; pass --params for the inflation layer)")
+        return Setup(m, costmap_from_map(m), params, ["static_layer (static)"], notes)
     m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro)
     gc = layers.build_global_costmap(m, cparams, distro)
     return Setup(m, costmap_from_map(m, gc.costmap), params, list(gc.layers_run), notes + list(gc.notes))
