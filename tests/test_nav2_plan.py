@@ -261,3 +261,29 @@ def test_setup_builds_the_global_costmap_from_the_params_file(tmp_path):
     assert given.params.tolerance == 0.5 and not given.params.use_astar
     humble = load_setup(room, example, distro="humble", overrides={"max_cycles_factor": 9})
     assert humble.params.max_cycles_factor == 4 and any("PR #6308" in n for n in humble.notes)
+
+
+def test_costmap_given_directly(tmp_path):
+    from navfn_smt.nav2.setup import load_setup
+
+    costs = np.zeros((12, 16), np.uint8)
+    costs[2:10, 8] = 254  # a wall at x = 8, rows 2..9 (grid rows: row 0 at the bottom)
+    np.save(tmp_path / "c.npy", costs)
+    pgm = tmp_path / "c.pgm"  # the same values as an image: its top row is the grid's last row
+    pgm.write_bytes(b"P5\n16 12\n255\n" + costs[::-1].tobytes())
+    a = load_setup(tmp_path / "c.npy", resolution=0.05, origin=(1.0, 2.0))
+    b = load_setup(pgm, resolution=0.05, origin=(1.0, 2.0))
+    assert np.array_equal(a.costmap.costs, costs) and np.array_equal(b.costmap.costs, costs)
+    assert a.costmap.resolution == float(F32(0.05)) and (a.costmap.origin_x, a.costmap.origin_y) == (1.0, 2.0)
+    run = create_plan(a.costmap, Pose(1.0 + 3 * a.costmap.resolution, 2.0 + 5 * a.costmap.resolution),
+                      Pose(1.0 + 12 * a.costmap.resolution, 2.0 + 5 * a.costmap.resolution))
+    assert run.ok and run.robot_cell == (3, 5) and run.target_cell == (12, 5)
+    assert all(costs[int(round(y)), int(round(x))] != 254 for x, y in run.path.tolist())
+    for bad, words in (((tmp_path / "c.npy", None), "give --resolution"), ((tmp_path / "no.npy", 0.05), "no such")):
+        with pytest.raises(Exception) as e:
+            load_setup(bad[0], resolution=bad[1])
+        assert words in str(e.value) and "\n" not in str(e.value)
+    np.save(tmp_path / "f.npy", np.zeros((4, 4), np.float32) + 0.5)
+    with pytest.raises(Exception) as e:
+        load_setup(tmp_path / "f.npy", resolution=0.05)
+    assert "integers 0..255" in str(e.value)

@@ -55,17 +55,18 @@ def _plan_world(args) -> int:
     """Plan between world poses on a map_server map, as Nav2's NavfnPlanner plugin does."""
     from .maps.loading import is_yaml
     from .nav2.plugin import check_pose, create_plan
-    from .nav2.setup import check_params_file, load_setup
+    from .nav2.setup import COSTMAP_FILES, check_params_file, load_setup
     from .report import plan as report
 
-    if not is_yaml(args.map):
-        raise NavfnInputError(f"{args.map}: --world needs a map_server YAML map")
+    if not is_yaml(args.map) and Path(args.map).suffix.lower() not in COSTMAP_FILES:
+        raise NavfnInputError(f"{args.map}: --world needs a map_server YAML map or a costmap (.npy, .pgm)")
     if args.size:
         raise NavfnInputError("--size is for a raw map file, not a map_server map")
     start, goal = check_pose("start", args.start), check_pose("goal", args.goal)
     check_params_file(args.params)
     overrides = {"use_astar": True if args.astar else False if args.dijkstra else None}
-    setup = load_setup(args.map, args.params, args.distro, args.allow_outside, overrides)
+    setup = load_setup(args.map, args.params, args.distro, args.allow_outside, overrides, args.resolution,
+                       tuple(args.origin))
     run = create_plan(setup.costmap, start, goal, setup.params, args.backend)
     report.plugin_plan(setup, run, start, goal, args.backend, args.json)
     return 0 if run.ok else 1
@@ -491,6 +492,12 @@ def build_parser() -> argparse.ArgumentParser:
     pl.add_argument("--params", metavar="FILE",
                     help="with --world: a Nav2 params file; the planner_server's NavfnPlanner parameters and the "
                     "global_costmap's layers are read from it (default: Nav2's defaults, static layer only)")
+    pl.add_argument("--resolution", type=float, metavar="M",
+                    help="with --world on a costmap file (.npy of costmap values, row 0 at the bottom; or an 8-bit "
+                    "PGM of them): metres per cell")
+    pl.add_argument("--origin", nargs=2, type=float, default=(0.0, 0.0), metavar=("X", "Y"),
+                    help="with --world on a costmap file: the world position of its lower-left corner "
+                    "(default: 0 0)")
     pl.add_argument("--allow-outside", action="store_true",
                     help="let a map_server YAML name an image outside its own folder")
     pl.add_argument("--distro", default=DEFAULT_DISTRO, choices=tuple(DISTROS),

@@ -72,7 +72,8 @@ def cmd_diagnose(args) -> int:
     if args.sweep:
         return _sweep(args, start)
     goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
-    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside)
+    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
+                        tuple(args.origin))
     t0 = time.perf_counter()
     results = []
     batch = len(goals) > 1 or bool(args.goals)
@@ -104,7 +105,8 @@ def _sweep(args, start) -> int:
     from .sweep import summary, sweep
 
     n = None if args.sweep == "all" else _sample_size(args.sweep)
-    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside)
+    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
+                        tuple(args.origin))
     cm = setup.costmap
     res = sweep(cm, start, setup.params, goals=n, seed=args.seed)
     doc = summary(res)
@@ -136,7 +138,12 @@ def register(sub) -> None:
     from ..maps.mapserver import DEFAULT_DISTRO, DISTROS
 
     d = sub.add_parser("diagnose", help="explain why a Nav2 NavFn plan fails and what fixes it")
-    d.add_argument("map", help="a map_server YAML map")
+    d.add_argument("map", help="a map_server YAML map, or a costmap file (.npy, .pgm) with --resolution")
+    d.add_argument("--resolution", type=float, metavar="M",
+                   help="for a costmap file (.npy of costmap values, row 0 at the bottom; or an 8-bit PGM of them): "
+                   "metres per cell")
+    d.add_argument("--origin", nargs=2, type=float, default=(0.0, 0.0), metavar=("X", "Y"),
+                   help="for a costmap file: the world position of its lower-left corner (default: 0 0)")
     d.add_argument("--start", nargs="+", type=float, required=True, metavar="V",
                    help="the robot's pose: X Y [YAW] (world coordinates, metres, radians)")
     d.add_argument("--goal", nargs="+", type=float, metavar="V", help="the goal pose: X Y [YAW]")

@@ -19,10 +19,12 @@ from ..nav2.setup import Setup, check_params_file, load_setup
 
 
 
-def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False) -> Setup:
-    """Map + optional params file -> the costmap and the plugin's parameters (:func:`load_setup`)."""
+def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
+                resolution=None, origin=(0.0, 0.0)) -> Setup:
+    """Map (or costmap file) + optional params file -> the costmap and the plugin's parameters
+    (:func:`load_setup`)."""
     check_params_file(params_file)
-    return load_setup(map_yaml, params_file, distro, allow_outside)
+    return load_setup(map_yaml, params_file, distro, allow_outside, resolution=resolution, origin=origin)
 
 
 def parse_goals(path) -> list[Pose]:

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Optional
 
+import numpy as np
+
 from ..errors import NavfnInputError
 from ..maps.mapserver import DEFAULT_DISTRO, MapServerMap, load_map_yaml
 from .params import PlannerParams, load_params_yaml, planner_params
@@ -32,9 +34,53 @@ class Setup:
     notes: list = field(default_factory=list)  # what was read or left out, for the report
 
 
+COSTMAP_FILES = (".npy", ".pgm")
+
+
+def load_costmap_file(path, resolution: Optional[float], origin=(0.0, 0.0), distro: str = DEFAULT_DISTRO) -> MapServerMap:
+    """A costmap given directly: a ``.npy`` array of costmap values (uint8, (height, width), row 0
+    the grid's bottom row, as ``Costmap2D`` indexes it) or an 8-bit PGM whose pixels are the values
+    (image row 0 at the top, as map_server images are).  ``resolution`` (metres per cell) is
+    narrowed to float32 as a map message would carry it."""
+    from ..maps.mapserver import read_image_quanta
+    from ..spec.costs import set_costmap
+
+    p = Path(path)
+    if resolution is None:
+        raise NavfnInputError(f"{p}: a costmap file has no resolution; give --resolution")
+    if not (resolution > 0 and np.isfinite(np.float32(resolution)) and np.float32(resolution) > 0):
+        raise NavfnInputError(f"--resolution must be a positive float32 number, got {resolution!r}")
+    if not all(np.isfinite(v) for v in origin):
+        raise NavfnInputError(f"--origin must be finite, got {origin!r}")
+    if p.suffix.lower() == ".npy":
+        try:
+            a = np.load(p, allow_pickle=False)
+        except FileNotFoundError:
+            raise NavfnInputError(f"{p}: no such costmap file") from None
+        except (OSError, ValueError) as e:
+            raise NavfnInputError(f"{p}: not a readable .npy array ({' '.join(str(e).split())})") from None
+        if a.ndim != 2 or not (np.issubdtype(a.dtype, np.integer) and a.size and 0 <= a.min() and a.max() <= 255):
+            raise NavfnInputError(f"{p}: a costmap must be a 2-D array of integers 0..255, got {a.dtype} {a.shape}")
+        costs = np.ascontiguousarray(a, dtype=np.uint8)
+    else:
+        q = read_image_quanta(p)
+        if q.channels.ndim != 2:
+            raise NavfnInputError(f"{p}: a costmap image must be greyscale")
+        costs = np.ascontiguousarray((q.channels // 257)[::-1], dtype=np.uint8)
+    h, w = costs.shape
+    if w < 3 or h < 3:
+        raise NavfnInputError(f"{p}: the costmap is {w}x{h}; NavFn needs at least 3x3 cells")
+    return MapServerMap(p, p, float(resolution), float(np.float32(resolution)), (float(origin[0]), float(origin[1]), 0.0),
+                        w, h, "costmap", False, distro, 0.0, 0.0, np.zeros((h, w), np.int8), costs,
+                        set_costmap(costs, is_ros=True))
+
+
 def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
-               overrides: Optional[dict] = None) -> Setup:
+               overrides: Optional[dict] = None, resolution: Optional[float] = None, origin=(0.0, 0.0)) -> Setup:
     """Map + params file -> :class:`Setup`; ``overrides`` replace plugin parameters.
+
+    ``map_yaml`` may also be a costmap given directly (:data:`COSTMAP_FILES`, with ``resolution``
+    and ``origin``): the plugin plans on it as it is, no layer runs.
 
     Without a params file the plugin has Nav2's default parameters and the costmap is the map's
     static layer alone; a params file without a ``global_costmap`` section gives Nav2's code
@@ -52,6 +98,10 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
         notes.append(f"max_cycles_factor {params.max_cycles_factor} ignored: {distro} has no such parameter "
                      f"(Nav2 PR #6308, August 2026); calcPath gets 4 * max(size_x, size_y) cycles")
         params = replace(params, max_cycles_factor=4)
+    if Path(map_yaml).suffix.lower() in COSTMAP_FILES:
+        m = load_costmap_file(map_yaml, resolution, origin, distro)
+        notes.append("a costmap given directly: no costmap layer ran")
+        return Setup(m, costmap_from_map(m), params, [], notes)
     if params_file and not any(k in load_params_yaml(params_file) for k in ("global_costmap", "/global_costmap")):
         cparams = layers.CostmapParams()
         notes.append(f"{params_file} has no global_costmap section: Nav2's code defaults for the global costmap")

@@ -134,7 +134,7 @@ def plugin_plan(setup, run, start, goal, backend: str, as_json: bool) -> None:
         c = setup.costmap
         p = setup.params
         print(f"map {setup.map.path} ({c.size_x}x{c.size_y} cells of {c.resolution!r} m, layers: "
-              f"{', '.join(setup.layers)}); {'A*' if p.use_astar else 'Dijkstra'}, tolerance {p.tolerance!r}, "
+              f"{', '.join(setup.layers) or 'none'}); {'A*' if p.use_astar else 'Dijkstra'}, tolerance {p.tolerance!r}, "
               f"max_cycles_factor {p.max_cycles_factor}")
         for note in setup.notes:
             print(f"note: {note}")
