@@ -167,7 +167,7 @@ def print_text(map_path, setup, backend: str, diagnoses: Sequence, console=None)
     out = console.print if console is not None else print
     cm, p = setup.costmap, setup.params
     out(f"map      {map_path}: {cm.size_x}x{cm.size_y} cells, {cm.resolution:g} m, costmap layers: "
-        f"{', '.join(setup.layers)}")
+        f"{', '.join(setup.layers) or 'none'}")
     for n in setup.notes:
         out(f"note     {n}")
     out(f"params   {'A*' if p.use_astar else 'Dijkstra'}, tolerance {p.tolerance:g}, allow_unknown "
