@@ -91,10 +91,7 @@ def test_robot_right_half_cell_path_crosses_the_map():
     assert expected["robot_cell"] == [8, 2] and xs[0] == 8.0 and xs[1] == 1.0  # from x = size_x to column 1
 
 
-# ------------------------------------------------------------------ a plugin.py deviation
-@pytest.mark.xfail(strict=True, reason="plugin.py: Costmap2D::worldToMap's cast of a quotient >= 2^32 (or NaN, "
-                                       "inf) to unsigned int is undefined behaviour, modelled as outside bounds / "
-                                       "a Python ValueError")
+# ---------------------------------------------------------- Costmap2D::worldToMap's cast
 def test_costmap_world_to_map_cast_out_of_range_is_undefined():
     m = Costmap(np.zeros((6, 8), np.uint8), 0.0, 0.0, RES)
     far = 2.0 ** 32 * RES  # (w - o) / res = 2^32: static_cast<unsigned int> is undefined

@@ -122,6 +122,15 @@ def costmap_world_to_map(cm: Costmap, wx: float, wy: float) -> Optional[tuple[in
     return int(fx), int(fy)
 
 
+def _cast_overflows(cm: Costmap, pose: Pose) -> bool:
+    """``static_cast<unsigned int>`` of a quotient of 2^32 or more (or NaN) in ``Costmap2D::worldToMap``:
+    undefined behaviour, reached when the point is not below the origin."""
+    if pose.x < cm.origin_x or pose.y < cm.origin_y:
+        return False
+    fx, fy = (pose.x - cm.origin_x) / cm.resolution, (pose.y - cm.origin_y) / cm.resolution
+    return not (fx < 2.0**32 and fy < 2.0**32)
+
+
 def _round(v: float) -> int:
     """``std::round`` on a non-negative double (halves away from zero), exactly."""
     f = math.floor(v)
@@ -201,6 +210,11 @@ def create_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams = Pl
                 backend: str = "jit") -> PluginRun:
     """``NavfnPlanner::createPlan(start, goal)`` on a costmap; never raises for planning outcomes."""
     run = PluginRun(poses=[])
+    for what, pose in (("start", start), ("goal", goal)):
+        if _cast_overflows(cm, pose):
+            return _fail(run, "UndefinedBehaviour", f"Costmap2D::worldToMap casts ({cpp_double(pose.x)} - origin) / "
+                                                    f"resolution to unsigned int for the {what}: the quotient is not "
+                                                    f"below 2^32 (or not a number)")
     run.start_cell = costmap_world_to_map(cm, start.x, start.y)
     if run.start_cell is None:
         return _fail(run, "StartOutsideMapBounds", f"Start Coordinates of({cpp_double(start.x)}, "
