@@ -165,14 +165,18 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
 
 
 @jit
-def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
-    """calcPath(nmax); ``path`` is (nmax + 1, 2) float32.  Returns (exit code, npath)."""
+def _calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, touched):
+    """calcPath(nmax); ``path`` is (nmax + 1, 2) float32.  Returns (exit code, npath, ntouched).
+
+    The gradient arrays must be all zero on entry (``setupNavFn`` leaves them so; gradCell's
+    cache is a pure function of the potential): no reset here.  Every cell whose gradient is
+    written goes to ``touched`` while it has room (4 * nmax entries suffice), so a caller can
+    zero just those afterwards.
+    """
     ns = nx * ny
     zero = ND.f32const(0.0)
     step = ND.f32const(PATH_STEP)
-    for i in range(ns):
-        gradx[i] = zero
-        grady[i] = zero
+    nt = 0
     stc = sy * nx + sx
     dx = zero
     dy = zero
@@ -183,11 +187,11 @@ def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
             path[npath, 0] = ND.int_to_f32(gx)
             path[npath, 1] = ND.int_to_f32(gy)
             npath += 1
-            return EXIT_NEAR_GOAL, npath
+            return EXIT_NEAR_GOAL, npath, nt
         if stc < nx or stc > ns - nx:
-            return EXIT_OUT_OF_BOUNDS, npath
+            return EXIT_OUT_OF_BOUNDS, npath, nt
         if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
-            return EXIT_UB, npath
+            return EXIT_UB, npath, nt
         px, py = K.path_point(ND, stc, nx, dx, dy)
         path[npath, 0] = px
         path[npath, 1] = py
@@ -207,25 +211,37 @@ def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
             dx = zero
             dy = zero
             if K.unreached(ND, pot[stc]):
-                return EXIT_HIGH_POTENTIAL, npath
+                return EXIT_HIGH_POTENTIAL, npath, nt
         else:
-            # gradCell for the four cells of the interpolation square (written out: array
-            # arguments to a helper cost reference-count updates on every call)
             for n in (stc, stc + 1, down, down + 1):
                 if K.grad_cached(ND, gradx[n], grady[n]):
                     continue
                 if n < nx or n > ns - nx:
                     continue
-                if n + nx >= ns:  # n == ns - nx: the C++ reads potarr[ns]
-                    return EXIT_UB, npath
+                if n + nx >= ns:
+                    return EXIT_UB, npath, nt
                 gradx[n], grady[n] = K.grad_cell(ND, pot[n], pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx])
+                if nt < touched.shape[0]:
+                    touched[nt] = n
+                    nt += 1
             x = K.interpolate_gradient(ND, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
             y = K.interpolate_gradient(ND, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
             if x == zero and y == zero:
-                return EXIT_ZERO_GRADIENT, npath
+                return EXIT_ZERO_GRADIENT, npath, nt
             dx, dy, cdx, cdy = K.step_offsets(ND, dx, dy, x, y, step)
             stc += cdx + cdy * nx
-    return EXIT_EXHAUSTED, npath
+    return EXIT_EXHAUSTED, npath, nt
+
+
+@jit
+def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
+    """calcPath(nmax) on gradient arrays in any state (zeroed first, O(cells)).  Returns (exit code, npath)."""
+    zero = ND.f32const(0.0)
+    for i in range(nx * ny):
+        gradx[i] = zero
+        grady[i] = zero
+    code, npath, _ = _calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, np.empty(0, np.int64))
+    return code, npath
 
 
 class JitPlanner:

@@ -13,10 +13,11 @@ its run stops at the end of cycle 0 (or never starts when the buffers are empty)
 
 A*: the heuristic depends on the goal, so every goal is planned alone (:func:`.jit._propagate`).
 
-``calcPath`` here is :func:`.jit._calc_path` without its reset of the whole gradient arrays:
-the cells it writes are recorded and zeroed after the call, which leaves the arrays as the
-reset would (all zero) at the next call; ``gradCell``'s cache is a pure function of the
-potential, so the results are bit-identical at O(path) instead of O(cells) per goal.
+``calcPath`` here is :func:`.jit._calc_path_touched`, the body of :func:`.jit._calc_path`
+without its reset of the whole gradient arrays: the cells it writes are recorded and zeroed
+after the call, which leaves the arrays as the reset would (all zero) at the next call;
+``gradCell``'s cache is a pure function of the potential, so the results are bit-identical at
+O(path) instead of O(cells) per goal.
 
 The tolerance search is ``_legal_pose`` of the plugin over tables of its own world points:
 the plugin's ``tolerance_steps`` and rounding ``worldToMap`` computed once per goal column and
@@ -29,9 +30,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..spec import kernels as K
-from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC
-from .jit import EXIT_HIGH_POTENTIAL, EXIT_NEAR_GOAL, EXIT_OUT_OF_BOUNDS, EXIT_UB, EXIT_ZERO_GRADIENT, \
-    EXIT_EXHAUSTED, _propagate
+from ..spec.constants import COST_OBS, POT_HIGH, PRI_INC
+from .jit import EXIT_NEAR_GOAL, EXIT_UB, _calc_path_touched, _propagate
 from .numba_domain import ND, jit
 
 # per-goal integer columns of the compiled result (``out_i``); CYCLE: the cycles the goal's
@@ -46,70 +46,6 @@ S_PENDING, S_PATH, S_NO_LEGAL, S_NO_PLAN, S_UB = range(5)
 # the resumable Dijkstra loop's integer state (``st``)
 CUR, NXT, OVER, CYC, DONE, NPTS, NNEW = range(7)
 NSTATE = 7
-
-
-@jit
-def _calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, touched):
-    """calcPath(nmax) as :func:`.jit._calc_path`, on gradient arrays that are all zero on entry
-    (no reset); every cell whose gradient it writes goes to ``touched`` (4 * nmax + 4 long).
-    Returns (exit code, npath, ntouched)."""
-    ns = nx * ny
-    zero = ND.f32const(0.0)
-    step = ND.f32const(PATH_STEP)
-    nt = 0
-    stc = sy * nx + sx
-    dx = zero
-    dy = zero
-    npath = 0
-    for _ in range(nmax):
-        near = K.nearest_cell(ND, stc, dx, dy, nx, ns)
-        if K.near_goal(ND, pot[near]):
-            path[npath, 0] = ND.int_to_f32(gx)
-            path[npath, 1] = ND.int_to_f32(gy)
-            npath += 1
-            return EXIT_NEAR_GOAL, npath, nt
-        if stc < nx or stc > ns - nx:
-            return EXIT_OUT_OF_BOUNDS, npath, nt
-        if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
-            return EXIT_UB, npath, nt
-        px, py = K.path_point(ND, stc, nx, dx, dy)
-        path[npath, 0] = px
-        path[npath, 1] = py
-        npath += 1
-        osc = npath > 2 and path[npath - 1, 0] == path[npath - 3, 0] and path[npath - 1, 1] == path[npath - 3, 1]
-        up = stc - nx
-        down = stc + nx
-        ring = (up - 1, up, up + 1, stc - 1, stc + 1, down - 1, down, down + 1)
-        fallback = osc or K.unreached(ND, pot[stc])
-        for m in ring:
-            fallback = fallback or K.unreached(ND, pot[m])
-        if fallback:
-            best = K.lowest_of_eight(ND, pot[stc], (pot[up - 1], pot[up], pot[up + 1], pot[stc - 1],
-                                                    pot[stc + 1], pot[down - 1], pot[down], pot[down + 1]))
-            if best >= 0:
-                stc = ring[best]
-            dx = zero
-            dy = zero
-            if K.unreached(ND, pot[stc]):
-                return EXIT_HIGH_POTENTIAL, npath, nt
-        else:
-            for n in (stc, stc + 1, down, down + 1):
-                if K.grad_cached(ND, gradx[n], grady[n]):
-                    continue
-                if n < nx or n > ns - nx:
-                    continue
-                if n + nx >= ns:
-                    return EXIT_UB, npath, nt
-                gradx[n], grady[n] = K.grad_cell(ND, pot[n], pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx])
-                touched[nt] = n
-                nt += 1
-            x = K.interpolate_gradient(ND, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
-            y = K.interpolate_gradient(ND, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
-            if x == zero and y == zero:
-                return EXIT_ZERO_GRADIENT, npath, nt
-            dx, dy, cdx, cdy = K.step_offsets(ND, dx, dy, x, y, step)
-            stc += cdx + cdy * nx
-    return EXIT_EXHAUSTED, npath, nt
 
 
 @jit
