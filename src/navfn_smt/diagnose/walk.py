@@ -12,9 +12,8 @@ and no ``max_cycles`` makes it reach the goal.  When it stops instead, it stops 
 iteration whatever the budget, so the budget decides only whether it gets there: a path of
 ``L`` points (the goal point included) needs ``calcPath(n)`` with ``n >= L``.
 
-The iteration below is :func:`navfn_smt.spec.extraction.calc_path` (same kernels, same
-concrete float32/double domain, same order of tests), with the points, the grid-following
-steps and the state kept; the tests hold the two equal.
+The iteration is :func:`navfn_smt.spec.extraction.calc_path` itself, with a watch that keeps
+the points, the grid-following steps and the states seen.
 """
 
 from __future__ import annotations
@@ -24,9 +23,7 @@ from typing import Optional
 
 import numpy as np
 
-from ..spec import kernels as K
-from ..spec.constants import PATH_STEP
-from ..spec.numeric import CONCRETE as D
+from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
 
 UB = "undefined_behaviour"  # the exit the spec refuses (a read outside potarr)
 UNDECIDED = "undecided"  # neither an exit nor a repeated state within the step cap
@@ -53,93 +50,66 @@ class Walk:
         return self.exit == "cycle"
 
 
+class _Repeat(Exception):
+    """The state of iteration ``i`` is the state of iteration ``first``."""
+
+
+class _Watch:
+    """Keeps the walk's record and stops the run when a state repeats."""
+
+    def __init__(self):
+        self.seen: dict = {}
+        self.fallbacks: list = []
+        self.oscillations: list = []
+        self.i, self.stc, self.xs, self.ys = -1, -1, [], []
+
+    def iteration(self, i, stc, dx, dy, xs, ys):
+        self.i, self.stc, self.xs, self.ys = i, stc, xs, ys
+        if len(xs) >= 2:
+            key = (stc, dx, dy, xs[-2], ys[-2], xs[-1], ys[-1])
+            first = self.seen.setdefault(key, i)
+            if first != i:
+                raise _Repeat(first, i)
+
+    def fallback(self, i, oscillation):
+        self.fallbacks.append(i)
+        if oscillation:
+            self.oscillations.append(i)
+
+
+_DETAILS = {
+    "out_of_bounds": "the path reached the first or last row",
+    "high_potential": "grid-following landed on an unreached cell",
+    "zero_gradient": "the interpolated gradient is exactly (0, 0)",
+}
+
+
 def walk_extraction(potential: np.ndarray, start: tuple[int, int], goal: tuple[int, int],
                     max_steps: int = DEFAULT_MAX_STEPS) -> Walk:
     """``calcPath(infinity)`` from NavFn's start cell ``start`` towards its goal ``goal`` on a
-    (ny, nx) float32 potential: the exit it takes, or the cycle it enters."""
+    (ny, nx) float32 potential: the exit it takes, or the cycle it enters.  The iteration is the
+    spec's own :func:`~navfn_smt.spec.extraction.calc_path`, watched."""
     pot_arr = np.asarray(potential, dtype=np.float32)
     ny, nx = pot_arr.shape
-    ns = nx * ny
-    pot = pot_arr.ravel().tolist()
-    grads: dict = {}  # gradCell's cache: a pure function of the potential
-    step = D.f32const(PATH_STEP)
-    stc = start[1] * nx + start[0]
-    dx = dy = D.f32const(0.0)
-    xs: list = []
-    ys: list = []
-    seen: dict = {}
-    w = Walk(exit=UNDECIDED, iterations=0, points=np.zeros((0, 2), np.float32))
-
-    def grad(m: int):
-        # gradCell(m): rows 0 and ny-1 keep the zero setupNavFn wrote; m == ns - nx would read potarr[ns]
-        g = grads.get(m)
-        if g is None:
-            if m < nx or m > ns - nx:
-                g = (0.0, 0.0)
-            elif m + nx >= ns:
-                raise _Ub(m)
-            else:
-                g = K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1], pot[m - nx], pot[m + nx])
-            grads[m] = g
-        return g
-
-    def finish(exit_: str, i: int, detail: str = "") -> Walk:
-        w.exit, w.iterations, w.detail = exit_, i + 1, detail
-        w.exit_cell = (stc % nx, stc // nx)
-        w.points = np.array(list(zip(xs, ys)), dtype=np.float32).reshape(-1, 2)
-        return w
-
-    for i in range(max_steps):
-        if len(xs) >= 2:
-            key = (stc, dx, dy, xs[-2], ys[-2], xs[-1], ys[-1])
-            first = seen.get(key)
-            if first is not None:
-                w.cycle_start, w.cycle_period = first, i - first
-                return finish("cycle", i - 1, f"iteration {i} repeats the state of iteration {first}")
-            seen[key] = i
-        near = K.nearest_cell(D, stc, dx, dy, nx, ns)
-        if K.near_goal(D, pot[near]):
-            xs.append(D.int_to_f32(goal[0]))
-            ys.append(D.int_to_f32(goal[1]))
-            w.path_length = len(xs)
-            return finish("near_goal", i)
-        if stc < nx or stc > ns - nx:
-            return finish("out_of_bounds", i, "the path reached the first or last row")
-        if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
-            return finish(UB, i, f"calcPath would read outside the potential array around cell {stc}")
-        px, py = K.path_point(D, stc, nx, dx, dy)
-        xs.append(px)
-        ys.append(py)
-        oscillation = len(xs) > 2 and xs[-1] == xs[-3] and ys[-1] == ys[-3]
-        up, down = stc - nx, stc + nx
-        ring = (up - 1, up, up + 1, stc - 1, stc + 1, down - 1, down, down + 1)
-        if oscillation:
-            w.oscillations.append(i)
-        if oscillation or K.unreached(D, pot[stc]) or any(K.unreached(D, pot[m]) for m in ring):
-            w.fallbacks.append(i)
-            best = K.lowest_of_eight(D, pot[stc], [pot[m] for m in ring])
-            if best >= 0:
-                stc = ring[best]
-            dx = dy = D.f32const(0.0)
-            if K.unreached(D, pot[stc]):
-                return finish("high_potential", i, "grid-following landed on an unreached cell")
+    watch = _Watch()
+    w = Walk(exit=UNDECIDED, iterations=max_steps, points=np.zeros((0, 2), np.float32))
+    try:
+        ext = calc_path(pot_arr.ravel().tolist(), nx, ny, tuple(start), tuple(goal), max_steps, watch=watch)
+    except _Repeat as r:
+        first, i = r.args
+        w.exit, w.iterations, w.cycle_start, w.cycle_period = "cycle", i, first, i - first
+        w.detail, cell = f"iteration {i} repeats the state of iteration {first}", watch.stc
+    except UndefinedBehaviour as e:
+        w.exit, w.iterations, w.detail, cell = UB, watch.i + 1, str(e), watch.stc
+    else:
+        cell = ext.cell
+        if ext.exit is ExtractionExit.EXHAUSTED:
+            w.detail = f"no exit and no repeated state in {max_steps} iterations"
         else:
-            try:
-                g = [grad(m) for m in (stc, stc + 1, down, down + 1)]
-            except _Ub as e:
-                return finish(UB, i, f"gradCell would read past the potential array at cell {e.args[0]}")
-            x = K.interpolate_gradient(D, dx, dy, g[0][0], g[1][0], g[2][0], g[3][0])
-            y = K.interpolate_gradient(D, dx, dy, g[0][1], g[1][1], g[2][1], g[3][1])
-            if x == 0.0 and y == 0.0:
-                return finish("zero_gradient", i, "the interpolated gradient is exactly (0, 0)")
-            dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
-            stc += cdx + cdy * nx
-    w.exit, w.iterations = UNDECIDED, max_steps
-    w.exit_cell = (stc % nx, stc // nx)
-    w.points = np.array(list(zip(xs, ys)), dtype=np.float32).reshape(-1, 2)
-    w.detail = f"no exit and no repeated state in {max_steps} iterations"
+            w.exit, w.iterations, w.detail = ext.exit.value, watch.i + 1, _DETAILS.get(ext.exit.value, "")
+            if ext.exit is ExtractionExit.NEAR_GOAL:
+                w.path_length = len(ext.path)
+    w.exit_cell = (cell % nx, cell // nx)
+    w.points = np.array(list(zip(watch.xs, watch.ys)), dtype=np.float32).reshape(-1, 2)
+    w.fallbacks, w.oscillations = watch.fallbacks, watch.oscillations
     return w
-
-
-class _Ub(Exception):
-    pass

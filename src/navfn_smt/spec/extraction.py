@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
+from typing import Optional, Protocol
 
 from . import kernels as K
 from .constants import PATH_STEP
@@ -30,6 +31,18 @@ class Extraction:
     path: list  # [(x, y), ...] float32 values, empty unless exit is NEAR_GOAL
     exit: ExtractionExit
     points_written: int  # npath at the exit (C++ leaves them in pathx/pathy)
+    cell: int = -1  # stc at the exit
+
+
+class Watch(Protocol):
+    """What an observer of :func:`calc_path` is told (it may raise to stop the run)."""
+
+    def iteration(self, i: int, stc: int, dx, dy, xs: list, ys: list) -> None:
+        """At the start of iteration ``i``: the cell, the offsets and the points so far (the
+        lists themselves, which the run keeps appending to)."""
+
+    def fallback(self, i: int, oscillation: bool) -> None:
+        """Iteration ``i`` follows the grid (lowest of eight); ``oscillation``: the test fired."""
 
 
 class UndefinedBehaviour(Exception):
@@ -44,8 +57,10 @@ def calc_path(
     goal: tuple[int, int],
     n: int,
     path_step: float = PATH_STEP,
+    watch: Optional[Watch] = None,
 ) -> Extraction:
-    """``calcPath(n)`` on a propagated potential (flat list of float32 values)."""
+    """``calcPath(n)`` on a propagated potential (flat list of float32 values); ``watch`` is
+    told each iteration and each grid-following step."""
     ns = nx * ny
     pot = potential
     gradx = [0.0] * ns
@@ -68,14 +83,16 @@ def calc_path(
             raise UndefinedBehaviour(f"gradCell reads past the potential array at cell {m}")
         gradx[m], grady[m] = K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1], pot[m - nx], pot[m + nx])
 
-    for _ in range(n):
+    for i in range(n):
+        if watch is not None:
+            watch.iteration(i, stc, dx, dy, xs, ys)
         near = K.nearest_cell(D, stc, dx, dy, nx, ns)
         if K.near_goal(D, pot[near]):
             xs.append(D.int_to_f32(goal[0]))
             ys.append(D.int_to_f32(goal[1]))
-            return Extraction(list(zip(xs, ys)), ExtractionExit.NEAR_GOAL, len(xs))
+            return Extraction(list(zip(xs, ys)), ExtractionExit.NEAR_GOAL, len(xs), stc)
         if stc < nx or stc > ns - nx:
-            return Extraction([], ExtractionExit.OUT_OF_BOUNDS, len(xs))
+            return Extraction([], ExtractionExit.OUT_OF_BOUNDS, len(xs), stc)
         if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
             # (0, 1), (nx-1, ny-2) and (0, ny-1) pass the bound test, but their eight-cell
             # ring reaches one cell outside potarr
@@ -89,20 +106,22 @@ def calc_path(
         up, down = stc - nx, stc + nx
         ring = (up - 1, up, up + 1, stc - 1, stc + 1, down - 1, down, down + 1)
         if oscillation or K.unreached(D, pot[stc]) or any(K.unreached(D, pot[m]) for m in ring):
+            if watch is not None:
+                watch.fallback(i, oscillation)
             best = K.lowest_of_eight(D, pot[stc], [pot[m] for m in ring])
             if best >= 0:
                 stc = ring[best]
             dx = D.f32const(0.0)
             dy = D.f32const(0.0)
             if K.unreached(D, pot[stc]):
-                return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs))
+                return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs), stc)
         else:
             for m in (stc, stc + 1, down, down + 1):
                 grad(m)
             x = K.interpolate_gradient(D, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
             y = K.interpolate_gradient(D, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
             if x == 0.0 and y == 0.0:
-                return Extraction([], ExtractionExit.ZERO_GRADIENT, len(xs))
+                return Extraction([], ExtractionExit.ZERO_GRADIENT, len(xs), stc)
             dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
             stc += cdx + cdy * nx
-    return Extraction([], ExtractionExit.EXHAUSTED, len(xs))
+    return Extraction([], ExtractionExit.EXHAUSTED, len(xs), stc)
