@@ -59,8 +59,9 @@ from typing import Mapping, Optional, Union
 import numpy as np
 
 from ..errors import NavfnInputError
-from ..maps.mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, _load_yaml, static_layer_costs
+from ..maps.mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
 from .footprint import robot_footprint
+from .params import load_params_yaml
 from .inflation import NO_INFORMATION, FREE_SPACE, inflate_current, inflate_legacy
 
 STATIC = "nav2_costmap_2d::StaticLayer"
@@ -257,12 +258,7 @@ def _section(doc: Mapping, node: str, path) -> Mapping:
 def load_costmap_params(path, distro: str = DEFAULT_DISTRO, node: str = "global_costmap") -> CostmapParams:
     """Read a Nav2 params YAML's global costmap section; every problem raises NavfnInputError."""
     p = Path(path)
-    try:
-        doc = _load_yaml(p)
-    except NavfnInputError as e:
-        raise NavfnInputError(str(e).replace("map YAML file", "params file")) from None
-    if not isinstance(doc, Mapping):
-        raise NavfnInputError(f"{p}: a Nav2 params file must be a mapping of node names to parameters")
+    doc = load_params_yaml(p)
     return costmap_params(_section(doc, node, p), distro, where=f"{p}: {node}")
 
 
