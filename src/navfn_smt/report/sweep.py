@@ -48,6 +48,7 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.colors import to_rgb
+    from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
     ny, nx = costs.shape
@@ -75,6 +76,8 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     handles.append(Patch(facecolor="black", label="lethal / inscribed (costmap)"))
     if (costs == 255).any():
         handles.append(Patch(facecolor=(0.75, 0.82, 0.95), label="unknown (costmap)"))
+    handles.append(Line2D([], [], marker="*", markersize=14, color="white", markeredgecolor="black",
+                          linestyle="none", label="robot (the start of every plan)"))
     fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.01), ncol=3, fontsize=9, frameon=False)
     a1.imshow(bg, origin="lower", extent=ext, interpolation="nearest")
     im = a1.imshow(length, origin="lower", extent=ext, interpolation="nearest", cmap="viridis")
@@ -86,8 +89,9 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
         a.set_xlabel("x (m)")
         a.set_ylabel("y (m)")
     mode = "A*" if res.mode == "astar" else "Dijkstra"
-    fig.suptitle(title or f"sweep from the robot at ({res.start.x:.3f}, {res.start.y:.3f}), {mode}, "
-                          f"tolerance {res.params.tolerance:g}: {len(res)} goals")
+    what = (f"sweep from the robot at ({res.start.x:.3f}, {res.start.y:.3f}), {mode}, "
+            f"tolerance {res.params.tolerance:g}: {len(res)} goals")
+    fig.suptitle(f"{title}: {what}" if title else what)
     with atomic_path(out, suffix=Path(out).suffix) as tmp:
         fig.savefig(tmp, dpi=110)
     plt.close(fig)
