@@ -322,64 +322,24 @@ def circus_map(rng: np.random.Generator, width: int, height: int, side: Optional
 
 # ---- inflated: Nav2's inflation layer (nav2_costmap_2d InflationLayer::updateCosts / computeCost)
 ROS_LETHAL = 254  # nav2_costmap_2d LETHAL_OBSTACLE
-ROS_INSCRIBED = 253  # INSCRIBED_INFLATED_OBSTACLE
 
 
 def inflation_cost(distance: float, resolution: float, inscribed_radius: float, cost_scaling_factor: float) -> int:
-    """``InflationLayer::computeCost``: the ROS cost at ``distance`` cells from an obstacle cell."""
-    if distance == 0:
-        return ROS_LETHAL
-    if distance * resolution <= inscribed_radius:
-        return ROS_INSCRIBED
-    factor = math.exp(-1.0 * cost_scaling_factor * (distance * resolution - inscribed_radius))
-    return int((ROS_INSCRIBED - 1) * factor)  # the C++ casts the double to unsigned char: truncation
+    """``InflationLayer::computeCost``: the ROS cost at ``distance`` cells from an obstacle cell
+    (:func:`navfn_smt.nav2.inflation.compute_cost`)."""
+    from ..nav2.inflation import compute_cost
+
+    return compute_cost(distance, resolution, inscribed_radius, cost_scaling_factor)
 
 
 def inflate(ros: np.ndarray, resolution: float, inscribed_radius: float, inflation_radius: float,
             cost_scaling_factor: float) -> np.ndarray:
-    """Inflate a ROS costmap (0 free, 254 lethal) over the whole map as the Nav2 layer does.
+    """Inflate a ROS costmap (0 free, 254 lethal) over the whole map with Nav2's breadth-first
+    layer (:func:`navfn_smt.nav2.inflation.inflate_legacy`, ``InflationLayer`` up to Kilted)."""
+    from ..nav2.inflation import inflate_legacy
 
-    The wave starts from every lethal cell (row-major) and visits cells in order of their
-    (integer-ranked) distance to the obstacle cell that reached them first; a cell takes the
-    cost of that distance when it is first visited, kept only where it raises the old cost.
-    Cells farther than the inflation radius (``ceil(radius / resolution)`` cells) keep theirs.
-    """
-    out = np.array(ros, dtype=np.uint8, copy=True)
-    h, w = out.shape
-    cir = max(0, math.ceil(inflation_radius / resolution))  # Costmap2D::cellDistance
-    if cir == 0:
-        return out
-    r = cir + 2
-    # distance levels: squared distances within radius r, ranked (equal squares share a level)
-    sq = sorted({dx * dx + dy * dy for dx in range(-r, r + 1) for dy in range(-r, r + 1) if dx * dx + dy * dy <= r * r})
-    level_of_sq = {s: i for i, s in enumerate(sq)}
-    cost_cache: dict[tuple[int, int], int] = {}
-    bins: list[list[tuple[int, int, int, int]]] = [[] for _ in range(len(sq))]
-    for y, x in zip(*np.nonzero(out == ROS_LETHAL)):
-        bins[0].append((int(x), int(y), int(x), int(y)))
-    seen = np.zeros((h, w), dtype=bool)
-    for b in bins:
-        i = 0
-        while i < len(b):  # the bin may grow while it is walked
-            mx, my, sx, sy = b[i]
-            i += 1
-            if seen[my, mx]:
-                continue
-            seen[my, mx] = True
-            dx, dy = abs(mx - sx), abs(my - sy)
-            cost = cost_cache.get((dx, dy))
-            if cost is None:
-                cost = cost_cache[(dx, dy)] = inflation_cost(math.hypot(dx, dy), resolution, inscribed_radius,
-                                                             cost_scaling_factor)
-            if cost > out[my, mx]:
-                out[my, mx] = cost
-            for nx_, ny_ in ((mx - 1, my), (mx, my - 1), (mx + 1, my), (mx, my + 1)):
-                if 0 <= nx_ < w and 0 <= ny_ < h and not seen[ny_, nx_]:
-                    ddx, ddy = nx_ - sx, ny_ - sy
-                    if math.hypot(ddx, ddy) > cir:
-                        continue
-                    bins[level_of_sq[ddx * ddx + ddy * ddy]].append((nx_, ny_, sx, sy))
-    return out
+    return inflate_legacy(np.asarray(ros, dtype=np.uint8), resolution, inscribed_radius, inflation_radius,
+                          cost_scaling_factor)
 
 
 def inflated_map(rng: np.random.Generator, width: int, height: int, resolution: float = 0.05,
