@@ -457,6 +457,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The whole command line: every subcommand with its options and handler."""
     from .backends import BACKENDS
     from .diagnose.command import register as register_diagnose
+    from .report.docs_command import register as register_docs
     from .difftest.record_cli import register as register_record
     from .difftest.runner import MODE_CHOICES
     from .maps.mapserver import DEFAULT_DISTRO, DISTROS
@@ -662,6 +663,7 @@ def build_parser() -> argparse.ArgumentParser:
     se.set_defaults(func=cmd_search)
 
     register_diagnose(sub)
+    register_docs(sub)
     return p
 
 
