@@ -20,7 +20,7 @@ from .backends import BACKENDS, get_backend
 from .difftest.runner import modes_of
 from .errors import NavfnInputError
 from .maps.suite import discover, load_map
-from .report.tables import progress_bar
+from .report.tables import progress_bar, progress_counts
 
 SEED = 12345
 
@@ -83,28 +83,38 @@ def bench_sizes(sizes, backend: str, repeat: int, modes: str = "both") -> list[d
     """Time plans on generated open and random NxN maps per backend and mode; one row each."""
     check_sizes(sizes, repeat)
     rows = []
-    for b in backends_of(backend):
-        if b == "jit":  # warm-up: load the compiled code before timing
-            get_backend(b).prepare(generated_map("open", 12)).run((5, 5), (6, 6), True, trace=False)
-        for n in sizes:
-            for kind in ("open", "random"):
-                costs = generated_map(kind, n)
-                runner = get_backend(b).prepare(costs)
-                for md in modes_of(modes):
-                    astar = md == "astar"
-                    best = None
-                    res = None
-                    for _ in range(repeat if b == "jit" else 1):
-                        t0 = time.perf_counter()
-                        res = runner.run((5, 5), (n - 6, n - 6), astar, trace=False)
-                        dt = time.perf_counter() - t0
-                        best = dt if best is None else min(best, dt)
-                    rows.append({
-                        "backend": b, "size": n, "map": kind, "mode": md,
-                        "seconds_per_plan": round(best, 4),
-                        "path_points": int(len(res.path)), "dropped_pushes": int(res.dropped),
-                        "work_bytes": _work_bytes(runner),
-                    })
+    steps = len(backends_of(backend)) * len(sizes) * 2 * len(modes_of(modes))
+    with progress_bar(steps, "bench sizes") as advance:
+        for b in backends_of(backend):
+            rows += _bench_sizes_of(b, sizes, repeat, modes, advance)
+    return rows
+
+
+def _bench_sizes_of(b: str, sizes, repeat: int, modes: str, advance) -> list[dict]:
+    """The rows of :func:`bench_sizes` for one backend; ``advance(1)`` after each map and mode."""
+    rows = []
+    if b == "jit":  # warm-up: load the compiled code before timing
+        get_backend(b).prepare(generated_map("open", 12)).run((5, 5), (6, 6), True, trace=False)
+    for n in sizes:
+        for kind in ("open", "random"):
+            costs = generated_map(kind, n)
+            runner = get_backend(b).prepare(costs)
+            for md in modes_of(modes):
+                astar = md == "astar"
+                best = None
+                res = None
+                for _ in range(repeat if b == "jit" else 1):
+                    t0 = time.perf_counter()
+                    res = runner.run((5, 5), (n - 6, n - 6), astar, trace=False)
+                    dt = time.perf_counter() - t0
+                    best = dt if best is None else min(best, dt)
+                rows.append({
+                    "backend": b, "size": n, "map": kind, "mode": md,
+                    "seconds_per_plan": float(f"{best:.4g}"),
+                    "path_points": int(len(res.path)), "dropped_pushes": int(res.dropped),
+                    "work_bytes": _work_bytes(runner),
+                })
+                advance(1)
     return rows
 
 
@@ -145,9 +155,8 @@ def bench_sweep(n: int = SWEEP_SIZE, modes: str = "both", astar_goals=SWEEP_ASTA
         sweep(tiny, tiny_start, params, goals=20)
         warm = time.perf_counter() - t0
         goals = None if md == "dijkstra" or astar_goals == "all" else int(astar_goals)
-        with progress_bar(1, f"sweep {md}") as advance:
-            r = sweep(cm, start, params, goals=goals, seed=seed)
-            advance(1)
+        with progress_counts(f"sweep {md} (goals)") as progress:
+            r = sweep(cm, start, params, goals=goals, seed=seed, progress=progress)
         counts = r.counts()
         rows.append({"mode": md, "size": n, "goals": len(r), "seconds": round(r.seconds, 3),
                      "goals_per_second": round(len(r) / r.seconds, 1), "first_call_seconds": round(warm, 3),

@@ -84,9 +84,12 @@ def compare_case(res: PlanResult, g: dict, i: int, full_pos: dict) -> Optional[t
             gpot = g["full_potential"][j]
             ours_pot = np.asarray(res.potential, dtype=np.float32).reshape(gpot.shape)
             cells = np.argwhere(ours_pot.view(np.uint32) != gpot.view(np.uint32))
-            y, x = (int(c) for c in cells[0])
-            detail.update(cell=[x, y], ours=_f32_repr(ours_pot[y, x]), golden=_f32_repr(gpot[y, x]),
-                          cells_differing=int(len(cells)))
+            if len(cells) == 0:
+                detail["note"] = "the golden file's potential equals ours but not its own hash (corrupt golden file)"
+            else:
+                y, x = (int(c) for c in cells[0])
+                detail.update(cell=[x, y], ours=_f32_repr(ours_pot[y, x]), golden=_f32_repr(gpot[y, x]),
+                              cells_differing=int(len(cells)))
         return "potential", detail
     if sha256_i32(res.trace) != bytes(g["trace_sha256"][i]):
         detail = {"length": int(len(res.trace))}

@@ -13,10 +13,34 @@ SUITE_COLUMNS = ["backend", "mode", "cases", "seconds", "cases_per_second"]
 SIZE_COLUMNS = ["backend", "size", "map", "mode", "seconds_per_plan", "path_points", "dropped_pushes", "work_bytes"]
 
 
-def _table(title: str, rows: list[dict], cols: list[str], headers=None, fmt=None) -> None:
-    """Print ``rows`` under ``title``: the given columns, renamed by ``headers``, formatted by ``fmt``."""
+def duration(seconds) -> str:
+    """A time in a unit that shows it: ``850 ns``, ``42.1 µs``, ``3.20 ms``, ``1.53 s``."""
+    if seconds is None:
+        return "-"
+    s = float(seconds)
+    for unit, scale in (("s", 1.0), ("ms", 1e-3), ("µs", 1e-6)):
+        if s >= scale:
+            v = s / scale
+            return f"{v:.3g} {unit}" if v < 100 else f"{v:.0f} {unit}"
+    return f"{s / 1e-9:.3g} ns" if s > 0 else "0 s"
+
+
+def size_in_bytes(b) -> str:
+    """Bytes in a unit that shows them (``-`` for 0: not measured)."""
+    if not b:
+        return "-"
+    for unit, scale in (("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
+        if b >= scale:
+            return f"{b / scale:.3g} {unit}"
+    return f"{b} B"
+
+
+def _table(title: str, rows: list[dict], cols: list[str], headers=None, fmt=None, extra=None) -> None:
+    """Print ``rows`` under ``title``: the given columns, renamed by ``headers``, formatted by ``fmt``;
+    ``extra`` computes columns a row does not hold."""
     headers = headers or {}
     fmt = fmt or {}
+    rows = [{**r, **{c: f(r) for c, f in (extra or {}).items()}} for r in rows]
     t = Table(title=title)
     for c in cols:
         t.add_column(headers.get(c, c), justify="right" if c not in ("backend", "mode", "map") else "left")
@@ -27,15 +51,18 @@ def _table(title: str, rows: list[dict], cols: list[str], headers=None, fmt=None
 
 def suite_table(suite, rows: list[dict]) -> None:
     """Print cases per second per backend and mode on a whole suite."""
-    _table("bench: whole suite " + str(suite), rows, SUITE_COLUMNS, headers={"cases_per_second": "cases/s"})
+    _table("bench: whole suite " + str(suite), rows, SUITE_COLUMNS + ["per_case"],
+           headers={"cases_per_second": "cases/s", "seconds": "time", "per_case": "per case"},
+           fmt={"seconds": duration, "per_case": duration},
+           extra={"per_case": lambda r: r["seconds"] / r["cases"] if r["cases"] else None})
 
 
 def sizes_table(rows: list[dict]) -> None:
     """Print seconds per plan and working memory per backend, size, map and mode."""
-    _table("bench: generated maps, seconds per plan", rows, SIZE_COLUMNS,
-           headers={"seconds_per_plan": "s/plan", "path_points": "points", "dropped_pushes": "dropped",
-                    "work_bytes": "work MiB"},
-           fmt={"work_bytes": lambda b: f"{b / 2**20:.1f}"})
+    _table("bench: generated maps, time per plan", rows, SIZE_COLUMNS,
+           headers={"seconds_per_plan": "time/plan", "path_points": "points", "dropped_pushes": "dropped",
+                    "work_bytes": "work memory"},
+           fmt={"work_bytes": size_in_bytes, "seconds_per_plan": duration})
 
 
 def write_suite_json(path, suite, rows: list[dict]) -> None:
@@ -56,8 +83,9 @@ SWEEP_COLUMNS = ["mode", "size", "goals", "seconds", "goals_per_second", "first_
 def sweep_table(rows: list[dict]) -> None:
     """Print goals per second of the whole-map sweep per mode."""
     _table("bench: whole-map sweep (one robot pose, every free cell a goal)", rows, SWEEP_COLUMNS,
-           headers={"seconds": "s", "goals_per_second": "goals/s", "first_call_seconds": "1st call s",
-                    "issue_4655": "#4655", "no_path": "no path", "mode": "mode"})
+           headers={"seconds": "time", "goals_per_second": "goals/s", "first_call_seconds": "1st call",
+                    "issue_4655": "#4655", "no_path": "no path", "mode": "mode"},
+           fmt={"seconds": duration, "first_call_seconds": duration})
 
 
 def write_sweep_json(path, seed: int, rows: list[dict]) -> None:

@@ -10,20 +10,49 @@ from ..fileio import atomic_write_text
 from .tables import console
 
 
+def _value(v, bits: bool = False) -> str:
+    """A value as the detail holds it; a float32 ``{value, bits}`` with its bit pattern if ``bits``."""
+    if isinstance(v, dict) and "value" in v:
+        return f"{v['value']!r} ({v['bits']})" if bits else repr(v["value"])
+    if isinstance(v, list):
+        return "(" + ", ".join(_value(x, bits) for x in v) + ")"
+    return str(v)
+
+
+def _ours_golden(ours, golden) -> str:
+    """``ours A, golden B``; float32 bit patterns too when the printed values are equal (NaNs)."""
+    bits = _value(ours) == _value(golden)
+    return f"ours {_value(ours, bits)}, golden {_value(golden, bits)}"
+
+
 def describe(d) -> str:
-    """A disagreement in one line: where, which field, and how the values differ."""
+    """A disagreement in one line: where, which field, and our value against the golden file's."""
     if d is None:
         return "-"
     det = d["detail"]
     where = f"{d['map']} case {d['case_index']} {tuple(d['case'])}: {d['field']}"
     if d["field"] == "potential" and "cell" in det:
-        where += f" at cell {tuple(det['cell'])} ({det['ours']['value']!r} vs {det['golden']['value']!r})"
+        where += (f" at cell {tuple(det['cell'])}: {_ours_golden(det['ours'], det['golden'])}"
+                  f" ({det['cells_differing']} cells differ)")
+    elif d["field"] == "potential":
+        where += (f" hash differs; start potential: "
+                  f"{_ours_golden(det['start_potential'], det['golden_start_potential'])}")
+        if "note" in det:
+            where += f" ({det['note']})"
     elif d["field"] == "path" and "point" in det:
-        where += f" at point {det['point']}"
+        where += f" at point {det['point']}: {_ours_golden(det['ours'], det['golden'])}"
+        if det["length"] != det["golden_length"]:
+            where += f"; length: ours {det['length']}, golden {det['golden_length']}"
     elif d["field"] == "path":
-        where += f" length {det['length']} vs {det['golden_length']}"
-    elif "ours" in det and not isinstance(det["ours"], dict):
-        where += f" {det['ours']} vs {det['golden']}"
+        where += f" length: ours {det['length']}, golden {det['golden_length']}"
+    elif d["field"] == "trace" and "position" in det:
+        where += f" at position {det['position']}: {_ours_golden(det['ours'], det['golden'])}"
+    elif d["field"] == "trace":
+        where += f" hash differs; length: ours {det['length']}"
+        if "golden_length" in det:
+            where += f", golden {det['golden_length']}"
+    elif "ours" in det:
+        where += f": {_ours_golden(det['ours'], det['golden'])}"
     return where
 
 
@@ -34,7 +63,7 @@ def table(summary: dict) -> None:
     t.add_column("mode")
     t.add_column("cases", justify="right")
     t.add_column("agreeing", justify="right")
-    t.add_column("first disagreement", overflow="fold")
+    t.add_column("first disagreement (ours vs golden file)", overflow="fold")
     for c in summary["categories"]:
         ok = c["agreeing"] == c["cases"]
         t.add_row(c["category"], c["mode"], str(c["cases"]),
