@@ -1,15 +1,69 @@
-"""``navfn-smt docs``: the command (arguments and handler); wired by ``register(subparsers)``."""
+"""``navfn-smt docs``: the command (arguments and handler); wired by ``register(subparsers)``.
+
+Writes the invariants page (:mod:`navfn_smt.report.invariants_page`) from the obligations,
+the paper's predicates and the committed reports, or with ``--check`` compares it with the
+committed page and fails (exit 1, one line naming the first differing line) when they
+differ.  No solver runs: the command only reads.
+"""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from ..errors import NavfnInputError
+from ..fileio import atomic_write_text, check_writable
+from . import invariants_page as page
+
+
+def _short(line: str, width: int = 70) -> str:
+    return repr(line if len(line) <= width else line[:width] + "...")
 
 
 def cmd_docs(args) -> int:
-    raise NavfnInputError("docs is not built yet")
+    out = Path(args.out)
+    check_reports = (args.check_report if args.check_report is not None
+                     else page.default_check_reports(Path(args.prove_report).parent))
+    if args.check:
+        if not out.is_file():
+            raise NavfnInputError(f"{out}: no such page to check" + (" (it is a directory)" if out.is_dir() else ""))
+    else:
+        check_writable(out)
+    text = page.generate(args.prove_report, check_reports)
+    if not args.check:
+        atomic_write_text(out, text)
+        print(f"wrote {out}")
+        return 0
+    try:
+        committed = out.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise NavfnInputError(f"{out}: cannot read ({getattr(e, 'strerror', None) or e})") from None
+    diff = page.first_difference(committed, text)
+    if diff is None:
+        print(f"{out} is up to date")
+        return 0
+    line, was, want = diff
+    print(f"{out}:{line}: differs from the generated page: has {_short(was)}, generated {_short(want)} "
+          f"(regenerate with `navfn-smt docs`)")
+    return 1
 
 
 def register(sub) -> None:
-    d = sub.add_parser("docs", help="generate docs/invariants.md from the obligations and the latest reports "
-                       "(--check: fail when the committed page differs)")
+    d = sub.add_parser(
+        "docs", help="generate docs/invariants.md from the obligations and the latest reports "
+                     "(--check: fail when the committed page differs)",
+        description="Generate the invariants page from the proof obligations, the paper's predicates and the "
+                    "committed reports of `prove` and `check` (no solver runs). Paths are relative to the "
+                    "working directory: run it from the repository's root.")
+    d.add_argument("--out", default=str(page.DEFAULT_OUT), metavar="FILE",
+                   help="the page to write, or with --check to compare (default: %(default)s)")
+    d.add_argument("--check", action="store_true",
+                   help="write nothing; exit 1 with one line naming the first differing line when FILE differs "
+                        "from the generated page")
+    d.add_argument("--prove-report", default=str(page.DEFAULT_PROVE_REPORT), metavar="FILE",
+                   help="the `navfn-smt prove --report` JSON the obligations' verdicts come from "
+                        "(default: %(default)s)")
+    d.add_argument("--check-report", nargs="+", metavar="FILE",
+                   help="`navfn-smt check --json` reports the whole-planner properties come from; a later one's "
+                        "row for a property and size replaces an earlier one's (default: every check*.json in the "
+                        "prove report's directory, by name)")
     d.set_defaults(func=cmd_docs)

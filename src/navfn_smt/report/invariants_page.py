@@ -1,0 +1,514 @@
+"""The invariants page, ``docs/invariants.md``: the one generator behind ``navfn-smt docs``
+and ``navfn-smt prove --markdown``.
+
+The page is built from three sources and nothing else:
+
+* the proof obligations as declared now (``navfn_smt/proofs/*.py``): their statements in
+  English and as formulas, their scopes, and the spec kernels they run, which name the
+  C++ function each one is about;
+* the paper's predicates as chains of obligations (``navfn_smt/proofs/__init__.py``);
+* the latest reports, committed as data: a ``navfn-smt prove --report`` run
+  (``docs/reports/prove.json``) for the obligations' verdicts, and ``navfn-smt check
+  --json`` runs (``docs/reports/check*.json``) for the whole-planner properties.
+
+No solver runs here: generating the page only reads, so it takes well under a second and
+gives the same text for the same inputs (the only times on the page are the reports' own).
+What no report covers is written as *not run*, never guessed.  Counterexamples of
+``check`` link to a picture under ``images/`` beside the reports directory
+(``images/check-<property>-<mode>-<W>x<H>.png``) when one is committed there; the
+obligations' witnesses are kernel inputs, not maps, and are given as values.
+"""
+
+from __future__ import annotations
+
+import ast
+import inspect
+import json
+import textwrap
+from pathlib import Path
+from typing import Optional
+
+from ..errors import NavfnInputError
+from . import predicates
+
+DEFAULT_OUT = Path("docs") / "invariants.md"
+REPORTS_DIR = Path("docs") / "reports"
+DEFAULT_PROVE_REPORT = REPORTS_DIR / "prove.json"
+CHECK_REPORT_GLOB = "check*.json"
+
+# The C++ code each spec kernel (spec/kernels.py) is the arithmetic of, in navfn.cpp.
+KERNEL_CODE = {
+    "planar_wave": "`NavFn::updateCell` / `updateCellAstar`: the planar-wave candidate potential",
+    "cell_update": "`NavFn::updateCell` / `updateCellAstar`: one update of a cell's potential",
+    "edge_weight": "`NavFn::updateCell`: the neighbour's edge weight `INVSQRT2 * costarr[m]`",
+    "astar_heuristic": "`NavFn::updateCellAstar`: the distance heuristic",
+    "push_wanted": "`NavFn::updateCell`: the test that asks to enqueue a neighbour",
+    "to_low_buffer": "`NavFn::updateCell`: `push_next` below `curT`, else `push_over`",
+    "push_admitted": "the `push_cur` / `push_next` / `push_over` macros: their guard",
+    "is_passable": "`NavFn::updateCell`: the obstacle test",
+    "grad_cell": "`NavFn::gradCell`",
+    "grad_vector": "`NavFn::gradCell`: the unnormalised difference vector",
+    "normalise": "`NavFn::gradCell`: the normalisation by `hypotf`",
+    "grad_cached": "`NavFn::gradCell`: the early return on a stored gradient",
+    "bilinear": "`NavFn::calcPath`: one bilinear interpolation",
+    "interpolate_gradient": "`NavFn::calcPath`: the interpolated gradient",
+    "step_offsets": "`NavFn::calcPath`: the gradient step of the offsets",
+    "nearest_cell": "`NavFn::calcPath`: the near-goal probe",
+    "path_point": "`NavFn::calcPath`: the point appended to the path",
+    "lowest_of_eight": "`NavFn::calcPath`: the grid-following fallback",
+    "near_goal": "`NavFn::calcPath`: the goal test",
+    "unreached": "`potarr[n] >= POT_HIGH` tests",
+}
+
+# The whole-planner properties of ``check``: formula and the planner code they are about
+# (their English statements come from check/properties.py).
+CHECK_DOCS = {
+    "queues-obstacle-free": (
+        "always (for every n in curP + nextP + overP:  costarr[n] < COST_OBS)",
+        "`NavFn::propNavFnDijkstra` / `propNavFnAstar`: the three priority buffers over the whole run "
+        "(`setupNavFn`, `initCost`, every cycle's `push_cur` / `push_next` / `push_over`); the paper's LTL "
+        "invariant over the queues"),
+    "no-path-before-start-potential": (
+        "not PathComputed  W  potarr[start] < POT_HIGH   (calcPath returns npath > 0 only if potarr[start] "
+        "< POT_HIGH)",
+        "`NavFn::calcNavFnDijkstra` / `calcNavFnAstar`, then `NavFn::calcPath`: the paper's "
+        "`~PathComputed W NonInfinitePotAtInit`"),
+    "valid-path": (
+        "for every point p of the returned path:  some cell c with |p - c| <= 1/2 per axis,  "
+        "potarr[c] < POT_HIGH  and  costarr[c] < COST_OBS",
+        "`NavFn::calcPath`: the path NavFn hands to Nav2; the paper's ValidPath over the whole run"),
+    "start-reached": (
+        "start and goal joined by a 4-connected chain of passable cells (the goal's cost aside)  "
+        "==>  potarr[start] < POT_HIGH",
+        "`NavFn::propNavFnDijkstra` / `propNavFnAstar`: the wave within the cycle limit "
+        "`max(nx*ny/20, nx+ny)`"),
+    "complete": (
+        "potarr[start] < POT_HIGH  ==>  calcPath returns a path (exit near_goal)",
+        "`NavFn::calcPath`: its `4*nx` iterations, fallback and near-goal test"),
+}
+
+INTRO = ("Each obligation below is a property of the specification's kernels, stated once and checked "
+         "in two semantics: `real` (the paper's abstraction: no rounding) and `fp32` (bit-precise IEEE-754 "
+         "binary32/binary64 as the compiled C++ computes). `proved` means the solver showed the negation "
+         "unsatisfiable; `refuted` means it found a counterexample, which was replayed on the concrete "
+         "specification (*bounded* when a bound found by search still proves it below); `unknown` means no "
+         "solver decided in time (never counted as proved); `not run` means the report has no verdict for it. "
+         "The whole-planner properties of `navfn-smt check` are decided for every map of a size (a "
+         "*bounded-size proof*), in fp32 only, and for every size when an induction carries them.")
+
+
+# ------------------------------------------------------------------------------ reading
+def default_check_reports(reports_dir: Path = REPORTS_DIR) -> list[Path]:
+    """The committed ``check`` reports: every ``check*.json`` of the reports directory, by name."""
+    return sorted(Path(reports_dir).glob(CHECK_REPORT_GLOB)) if Path(reports_dir).is_dir() else []
+
+
+def _read_json(path, what: str) -> dict:
+    p = Path(path)
+    if not p.is_file():
+        raise NavfnInputError(f"{path}: no such {what} report" + (" (it is a directory)" if p.is_dir() else ""))
+    try:
+        doc = json.loads(p.read_text(encoding="utf-8"))
+    except UnicodeDecodeError:
+        raise NavfnInputError(f"{path}: not a JSON {what} report (not UTF-8 text)") from None
+    except json.JSONDecodeError as e:
+        raise NavfnInputError(f"{path}: not a JSON {what} report ({e.msg} at line {e.lineno})") from None
+    except OSError as e:
+        raise NavfnInputError(f"{path}: cannot read ({e.strerror})") from None
+    if not isinstance(doc, dict):
+        raise NavfnInputError(f"{path}: not a {what} report (a JSON object expected)")
+    return doc
+
+
+OBLIGATION_KEYS = ("name", "property", "semantics", "status", "expected", "seconds", "solver")
+
+
+def read_prove_report(path) -> dict:
+    """A ``navfn-smt prove --report`` document, checked to have what the page reads."""
+    doc = _read_json(path, "prove")
+    obs = doc.get("obligations")
+    if not isinstance(obs, list) or not all(isinstance(o, dict) and all(k in o for k in OBLIGATION_KEYS)
+                                            for o in obs):
+        raise NavfnInputError(f"{path}: not a prove report (no list of obligations with "
+                              f"{', '.join(OBLIGATION_KEYS)}; write one with `navfn-smt prove --report`)")
+    return doc
+
+
+CHECK_KEYS = ("property", "size", "status", "enumerated", "solved", "seconds")
+
+
+def read_check_report(path) -> dict:
+    """A ``navfn-smt check --json`` document, checked to have what the page reads."""
+    doc = _read_json(path, "check")
+    res = doc.get("results")
+    if doc.get("command") != "check" or not isinstance(res, list) or not all(
+            isinstance(r, dict) and all(k in r for k in CHECK_KEYS) for r in res):
+        raise NavfnInputError(f"{path}: not a check report (no \"command\": \"check\" with a list of results; "
+                              f"write one with `navfn-smt check ... --json`)")
+    return doc
+
+
+def outcomes_of(prove_doc: dict) -> list:
+    """The prove report's rows as the run's outcomes (what the predicates' summary derives from)."""
+    from ..smt.checking import Outcome
+
+    return [Outcome(name=r["name"], predicate=r["property"], semantics=r["semantics"], status=r["status"],
+                    expected=r["expected"], seconds=float(r["seconds"]), solver=r["solver"],
+                    scope=r.get("scope", ""), statement=r.get("statement", ""),
+                    assumptions=list(r.get("assumptions") or []), bound=r.get("bound"),
+                    witness=r.get("witness_values"), detail=r.get("detail", ""))
+            for r in prove_doc["obligations"]]
+
+
+def declared_obligations() -> list:
+    """The obligations shipped in the package, as declared now."""
+    from ..smt.obligation import load_obligations
+    from ..smt.runner import default_proof_files
+
+    return load_obligations(default_proof_files())
+
+
+# ------------------------------------------------------------------ obligations' texts
+def statement_parts(doc: str) -> tuple[str, list[str], list[str]]:
+    """An obligation's docstring as (English statement, notes, formula lines): the first
+    paragraph, the paragraphs between, the last paragraph (the formula)."""
+    paras = [p for p in inspect.cleandoc(doc or "").split("\n\n") if p.strip()]
+    if not paras:
+        return "", [], []
+    english = " ".join(ln.strip() for ln in paras[0].splitlines())
+    if len(paras) == 1:
+        return english, [], []
+    notes = [" ".join(ln.strip() for ln in p.splitlines()) for p in paras[1:-1]]
+    return english, notes, [ln.rstrip() for ln in paras[-1].splitlines()]
+
+
+def kernels_used(build) -> list[str]:
+    """The spec kernels an obligation's ``build`` calls (``K.name``), following the helper
+    functions of its proof file, in order of first use."""
+    scope = getattr(build, "__globals__", {})  # the proof file's names (it is not in sys.modules)
+    seen_fns, found = set(), []
+
+    def visit(fn) -> None:
+        if fn in seen_fns:
+            return
+        seen_fns.add(fn)
+        try:
+            tree = ast.parse(textwrap.dedent(inspect.getsource(fn)))
+        except (OSError, TypeError, SyntaxError):
+            return
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == "K"
+                    and node.attr not in found):
+                found.append(node.attr)
+            elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+                helper = scope.get(node.func.id)
+                if inspect.isfunction(helper) and helper.__globals__ is scope:
+                    visit(helper)
+
+    visit(build)
+    return found
+
+
+def planner_code(build) -> str:
+    """Where in the C++ an obligation applies, from the kernels it runs."""
+    ks = kernels_used(build)
+    if not ks:
+        return ""
+    return "; ".join(f"{KERNEL_CODE.get(k, 'spec kernel')} (spec `kernels.{k}`)" for k in ks)
+
+
+# ---------------------------------------------------------------------------- helpers
+def report_label(path) -> str:
+    """A report as the page names it: ``reports/NAME`` (a link from docs/) or its file name."""
+    p = Path(path)
+    return f"reports/{p.name}" if p.parent.name == "reports" else p.name
+
+
+def _fmt_seconds(s) -> str:
+    s = float(s)
+    return f"{s:.2f} s" if s < 60 else f"{s:.0f} s ({int(s // 60)} min {s % 60:.0f} s)"
+
+
+def _verdict_text(r) -> str:
+    text = r.status
+    if r.bound and r.bound.get("holds_below") is not None:
+        text = f"bounded (refuted; holds for `{r.bound['var']} < {r.bound['holds_below']!r}`)"
+    if not r.as_expected:
+        text += f" (expected {r.expected})"
+    return text
+
+
+def _witness_text(r) -> str:
+    vals = ", ".join(f"{k} = {v['value']!r}" for k, v in r.witness["values"].items())
+    text = f"counterexample: {vals}"
+    if r.witness.get("replayed_on_spec"):
+        text += " (replayed on the concrete spec)"
+    return text
+
+
+def _obligation_lines(ob, rows: dict, sems: list) -> list[str]:
+    """One obligation's subsection: statement, formula, where it applies, verdict per semantics."""
+    english, notes, formula = statement_parts(ob.doc)
+    out = [f"### `{ob.name}`", "", english or ob.name, ""]
+    if notes:
+        out += [*notes, ""]
+    if formula:
+        out += ["    " + ln for ln in formula] + [""]
+    where = planner_code(ob.build)
+    out.append(f"*Planner code:* {where}." if where else
+               f"*Planner code:* written out in the obligation, no spec kernel: {ob.predicate}'s part of the "
+               f"planner (*Applies to* above).")
+    out += ["", f"*Scope:* {ob.scope}."]
+    notes_lib = sorted({n for r in rows.values() for n in r.assumptions})
+    if notes_lib:
+        out += ["", "*Library models assumed:* " + "; ".join(notes_lib) + "."]
+    out.append("")
+    for s in sems:
+        r = rows.get(s)
+        if r is None:
+            out.append(f"- **{s}**: not run" + (f" (expected {ob.expect[s]})" if s in ob.expect else ""))
+            continue
+        line = f"- **{s}**: {r.status} in {r.seconds:.2f} s ({r.solver})"
+        if r.bound and r.bound.get("holds_below") is not None:
+            line += (f"; bounded: holds for `{r.bound['var']} < {r.bound['holds_below']!r}`, found by search "
+                     f"(refuted below {r.bound.get('refuted_below')!r})")
+        if r.witness:
+            line += "; " + _witness_text(r)
+        if r.detail:
+            line += f"; {r.detail}"
+        if not r.as_expected:
+            line += f"; **expected {r.expected}**"
+        out.append(line)
+    out.append("")
+    return out
+
+
+# ------------------------------------------------------------------ the check section
+def _size(s) -> str:
+    return f"{s[0]}x{s[1]}"
+
+
+def _check_command(doc: dict) -> str:
+    a = doc.get("arguments") or {}
+    parts = ["navfn-smt check", str(a.get("property", "?"))]
+    if a.get("max_size"):
+        parts.append("--max-size " + " ".join(map(str, a["max_size"])))
+    elif a.get("size"):
+        parts.append("--size " + " ".join(map(str, a["size"])))
+    for opt in ("mode", "costs", "ends", "timeout", "jobs"):
+        if a.get(opt) is not None:
+            parts.append(f"--{opt} {a[opt]}")
+    return " ".join(parts)
+
+
+def _merge_checks(checks: list) -> tuple[dict, dict, dict]:
+    """Per property: its rows by size (a later report replaces an earlier one's row), its
+    induction result and the reason it is not inductive, with the report each came from."""
+    rows: dict = {}
+    induction: dict = {}
+    not_inductive: dict = {}
+    for label, doc in checks:
+        for r in doc["results"]:
+            rows.setdefault(r["property"], {})[tuple(r["size"])] = (r, label)
+        for n, ind in (doc.get("every_size_by_induction") or {}).items():
+            if ind:
+                induction[n] = ind
+        not_inductive.update(doc.get("not_inductive") or {})
+    return rows, induction, not_inductive
+
+
+def _sorted_sizes(by_size: dict) -> list:
+    return sorted(by_size, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))
+
+
+def _picture(images: Optional[Path], prop: str, cx: dict) -> Optional[str]:
+    if images is None or not cx or "size" not in cx and "costs" not in cx:
+        return None
+    if "costs" in cx:
+        h, w = len(cx["costs"]), len(cx["costs"][0])
+    else:
+        w, h = cx["size"]
+    name = f"check-{prop}-{cx.get('mode', '')}-{w}x{h}.png"
+    return f"images/{name}" if (images / name).is_file() else None
+
+
+def _cx_text(cx: dict) -> str:
+    return (f"{cx.get('mode', '?')}, start {tuple(cx.get('start', ()))}, goal {tuple(cx.get('goal', ()))}: "
+            f"{cx.get('reason', '')}")
+
+
+def check_status(prop: str, by_size: dict, induction: dict) -> str:
+    """One line: the fp32 status of a whole-planner property from the reports."""
+    if not by_size:
+        return "not run"
+    sizes = _sorted_sizes(by_size)
+    refuted = [s for s in sizes if by_size[s][0]["status"] == "refuted"]
+    proved = [s for s in sizes if by_size[s][0]["status"] == "proved"]
+    unknown = [s for s in sizes if by_size[s][0]["status"] not in ("proved", "refuted")]
+    parts = []
+    ind = induction.get(prop)
+    if ind and ind.get("status") == "proved":
+        parts.append("proved for every size (induction)")
+    if refuted:
+        parts.append(f"refuted at {_size(refuted[0])}")
+    if proved:
+        parts.append("bounded-size proof: " + ", ".join(_size(s) for s in proved))
+    if unknown:
+        parts.append("unknown at " + ", ".join(_size(s) for s in unknown))
+    return "; ".join(parts)
+
+
+def check_section(checks: list, images: Optional[Path]) -> list[str]:
+    """The whole-planner properties: a summary table, then one subsection per property."""
+    from ..check.properties import PROPERTIES
+    from ..check.runner import CHECKABLE, INDUCTION, NOT_INDUCTIVE
+
+    rows, induction, not_inductive = _merge_checks(checks)
+    out = ["## Whole-planner properties (`navfn-smt check`)", "",
+           "Each property below is about the whole planner (setup, propagation with its bounded buffers, "
+           "cycle limit, then `calcPath` with every exit) and is decided for every map of a size: lethal "
+           "layouts, start and goal enumerated, costs symbolic, float32 control paths explored (see "
+           "[check.md](check.md)). The real semantics does not apply (the exploration follows float32 "
+           "control paths). A size without a row here has no committed report.", ""]
+    if checks:
+        out += ["Reports read:", ""]
+        for label, doc in checks:
+            out.append(f"- [{label}]({label}): `{_check_command(doc)}`; costs "
+                       f"{'..'.join(map(str, doc.get('costs', []))) or '?'}, ends {doc.get('ends', '?')}, "
+                       f"{doc.get('semantics', '?')}; {_fmt_seconds(doc.get('seconds', 0))} in all")
+        out.append("")
+    else:
+        out += ["No check report was given: every property is *not run*.", ""]
+    out += ["| property | fp32 status (from the reports) | every size |", "|---|---|---|"]
+    for n in CHECKABLE:
+        if n in INDUCTION:
+            ind = induction.get(n)
+            every = (f"by induction: {ind['status']}" if ind else "inductive (" + ", ".join(INDUCTION[n])
+                     + "); not run")
+        else:
+            every = "not inductive"
+        out.append(f"| `{n}` | {check_status(n, rows.get(n, {}), induction)} | {every} |")
+    out.append("")
+    for n in CHECKABLE:
+        formula, applies = CHECK_DOCS.get(n, ("", ""))
+        out += [f"### `{n}`", "", PROPERTIES[n].statement[0].upper() + PROPERTIES[n].statement[1:] + ".", ""]
+        if formula:
+            out += ["    " + formula, ""]
+        if applies:
+            out += [f"*Planner code:* {applies}.", ""]
+        out += [f"*Judge:* `check/properties.py`, `{PROPERTIES[n].judge.__name__}`.", ""]
+        ind = induction.get(n)
+        if ind:
+            obs = ", ".join(f"`{k}` {v}" for k, v in ind.get("obligations", {}).items())
+            out += [f"*Every size:* by induction over {', '.join(ind.get('predicates', []))}: **{ind['status']}** "
+                    f"(fp32: {obs}).", ""]
+        elif n in INDUCTION:
+            out += [f"*Every size:* carried by {', '.join(INDUCTION[n])}; no report of the induction.", ""]
+        else:
+            out += [f"*Every size:* not inductive: {not_inductive.get(n, NOT_INDUCTIVE.get(n, ''))}.", ""]
+        by_size = rows.get(n, {})
+        if not by_size:
+            out += ["*Bounded sizes:* not run (no report).", ""]
+            continue
+        out += ["| size | interior cells | verdict | cases | control paths | solver queries | time (the size, every property) | report |",
+                "|---|---|---|---|---|---|---|---|"]
+        for s in _sorted_sizes(by_size):
+            r, label = by_size[s]
+            out.append(f"| {_size(s)} | {r.get('interior_cells', (s[0] - 2) * (s[1] - 2))} | {r['status']} | "
+                       f"{r['enumerated'].get('cases', '?')} | {r['solved'].get('control_paths', '?')} | "
+                       f"{r['solved'].get('solver_queries', '?')} | {_fmt_seconds(r['seconds'])} | {label} |")
+        out.append("")
+        out += [f"*Status:* fp32 **{check_status(n, by_size, induction)}**.", ""]
+        refuted = [s for s in _sorted_sizes(by_size) if by_size[s][0]["status"] == "refuted"]
+        if refuted:
+            cx = by_size[refuted[0]][0].get("counterexample") or {}
+            out += [f"*Counterexample* ({_size(refuted[0])}, replayed on the spec): {_cx_text(cx)}.", ""]
+            pic = _picture(images, n, cx)
+            if pic:
+                out += [f"![{n}, {cx.get('mode', '')}, {_size(refuted[0])}]({pic})", ""]
+            elif cx.get("costs"):
+                out += ["Its costs (rows, lethal border included):", ""]
+                out += ["    " + " ".join(f"{c:3d}" for c in row) for row in cx["costs"]] + [""]
+        unknown = [s for s in _sorted_sizes(by_size) if by_size[s][0]["status"] not in ("proved", "refuted")]
+        for s in unknown:
+            r = by_size[s][0]
+            out += [f"*Unknown at {_size(s)}:* {r.get('cases_unknown', '?')} cases undecided.", ""]
+    return out
+
+
+# --------------------------------------------------------------------------- the page
+def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Path] = None,
+           declared: Optional[list] = None) -> str:
+    """The page from a prove report (``prove_label`` names it), the ``(label, doc)`` check
+    reports, and the directory where check counterexample pictures are looked up;
+    ``declared``: the obligations to list (default: those shipped in the package)."""
+    outcomes = outcomes_of(prove_doc)
+    sems = list(prove_doc.get("semantics") or predicates.run_semantics(outcomes)) or ["real", "fp32"]
+    declared = declared_obligations() if declared is None else declared
+    by_name: dict = {}
+    for o in outcomes:
+        by_name.setdefault(o.name, {})[o.semantics] = o
+    order = [p.name for p in predicates.registry()]
+    props: dict = {}
+    for ob in sorted(declared, key=lambda ob: order.index(ob.predicate) if ob.predicate in order else len(order)):
+        props.setdefault(ob.predicate, []).append(ob)
+    stale = sorted(set(by_name) - {ob.name for ob in declared})
+    out = ["# NavFn invariants", "",
+           "<!-- generated by `navfn-smt docs` from the proof obligations (src/navfn_smt/proofs/), the paper's "
+           "predicates (proofs/__init__.py) and the reports under docs/reports/; do not edit by hand: "
+           "`navfn-smt docs --check` fails when this page differs -->", "",
+           INTRO, ""]
+    prove_link = f"[{prove_label}]({prove_label})" if prove_label.endswith(".json") else prove_label
+    out += [f"Proofs: {prove_link}, a `navfn-smt prove` run of {prove_doc.get('when', '?')}; "
+           f"timeout {prove_doc.get('timeout', '?')} s per query; solvers: "
+           f"{', '.join(prove_doc.get('solvers', [])) or '?'}; semantics: {', '.join(sems)}.", ""]
+    if stale:
+        out += ["Verdicts of obligations no longer declared (the report is older than the proofs): "
+                + ", ".join(f"`{n}`" for n in stale) + ".", ""]
+    out += predicates.markdown_summary(outcomes)
+    out += ["## Obligations", "", "| property | obligation | " + " | ".join(sems) + " |",
+            "|---" * (len(sems) + 2) + "|"]
+    for prop, obs in props.items():
+        for ob in obs:
+            st = []
+            for s in sems:
+                r = by_name.get(ob.name, {}).get(s)
+                st.append("not run" if r is None else r.status + ("" if r.as_expected else f" (expected {r.expected})"))
+            out.append(f"| {prop} | `{ob.name}` | " + " | ".join(st) + " |")
+    out.append("")
+    for prop, obs in props.items():
+        out += [f"## {prop}", "", *predicates.markdown_chain(prop, outcomes)]
+        for ob in obs:
+            out += _obligation_lines(ob, by_name.get(ob.name, {}), sems)
+    out += check_section(checks, images)
+    while out and out[-1] == "":
+        out.pop()
+    return "\n".join(out) + "\n"
+
+
+def images_dir(check_paths) -> Optional[Path]:
+    """Where check counterexample pictures are looked up: ``images/`` beside the first
+    check report's directory (``docs/images`` for ``docs/reports``)."""
+    first = next(iter(check_paths), None)
+    return None if first is None else Path(first).resolve().parent.parent / "images"
+
+
+def generate(prove_report, check_reports) -> str:
+    """Read the reports (one-line errors on a missing or malformed one) and render the page."""
+    prove_doc = read_prove_report(prove_report)
+    checks = [(report_label(p), read_check_report(p)) for p in check_reports]
+    return render(prove_doc, report_label(prove_report), checks, images_dir(check_reports))
+
+
+def first_difference(committed: str, generated: str) -> Optional[tuple[int, str, str]]:
+    """The first line (1-based) where two pages differ, with both lines (``<end of file>``
+    past the end of one of them); None when they are equal."""
+    a, b = committed.splitlines(), generated.splitlines()
+    for i in range(max(len(a), len(b))):
+        x = a[i] if i < len(a) else "<end of file>"
+        y = b[i] if i < len(b) else "<end of file>"
+        if x != y:
+            return i + 1, x, y
+    if committed != generated:  # only the final newline differs
+        return max(len(a), 1), "(final newline)", "(final newline)"
+    return None
