@@ -1,0 +1,179 @@
+"""``navfn-smt docs``: the committed invariants page is what the generator makes of the
+obligations, the predicates' chains and the committed reports; ``--check`` names the first
+differing line; bad inputs are one line with exit 2."""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+PAGE = REPO / "docs" / "invariants.md"
+REPORTS = REPO / "docs" / "reports"
+
+
+def run(*args, cwd=REPO):
+    p = subprocess.run([sys.executable, "-m", "navfn_smt", "docs", *map(str, args)], capture_output=True,
+                       text=True, cwd=cwd, env={**os.environ, "COLUMNS": "200"})
+    return p.returncode, p.stdout, p.stderr
+
+
+def test_committed_page_is_up_to_date_and_fast():
+    t0 = time.perf_counter()
+    rc, out, err = run("--check")
+    assert rc == 0, out + err
+    assert time.perf_counter() - t0 < 10
+    assert "up to date" in out
+
+
+def test_generated_page_is_the_committed_one_byte_for_byte(tmp_path):
+    rc, out, err = run("--out", tmp_path / "inv.md")
+    assert rc == 0, err
+    assert (tmp_path / "inv.md").read_bytes() == PAGE.read_bytes()
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary file left
+
+
+def test_an_edited_line_fails_the_check_naming_it(tmp_path):
+    lines = PAGE.read_text().splitlines(keepends=True)
+    n = next(i for i, ln in enumerate(lines) if "`update_keeps_a_lower_neighbour` |" in ln)
+    lines[n] = lines[n].replace("refuted", "proved")
+    copy = tmp_path / "invariants.md"
+    copy.write_text("".join(lines))
+    rc, out, err = run("--check", "--out", copy)
+    assert rc == 1, out + err
+    assert len(out.strip().splitlines()) == 1 and f"{copy}:{n + 1}:" in out, out
+    assert copy.read_text() == "".join(lines)  # --check writes nothing
+
+
+def test_a_missing_or_extra_line_fails_the_check(tmp_path):
+    text = PAGE.read_text()
+    copy = tmp_path / "invariants.md"
+    copy.write_text(text + "one more line\n")
+    rc, out, _ = run("--check", "--out", copy)
+    n = len(text.splitlines()) + 1
+    assert rc == 1 and f":{n}:" in out and "<end of file>" in out, out
+    copy.write_text(text.rstrip("\n"))
+    rc, out, _ = run("--check", "--out", copy)
+    assert rc == 1 and "final newline" in out, out
+
+
+def test_the_page_lists_every_obligation_predicate_and_check_property():
+    from navfn_smt.check.runner import CHECKABLE
+    from navfn_smt.proofs import PREDICATES
+    from navfn_smt.smt.obligation import load_obligations
+    from navfn_smt.smt.runner import default_proof_files
+
+    text = PAGE.read_text()
+    for o in load_obligations(default_proof_files()):
+        assert f"### `{o.name}`" in text and f"| {o.predicate} | `{o.name}` |" in text, o.name
+    for p in PREDICATES:
+        assert f"\n## {p.name}\n" in text and f"\n| {p.name} | " in text, p.name
+    for name in CHECKABLE:
+        assert f"### `{name}`" in text and f"| `{name}` | " in text, name
+
+
+def test_every_kernel_names_its_cpp_code():
+    """Where an obligation applies comes from the kernels it runs: each needs its C++ place."""
+    import inspect
+
+    from navfn_smt.report.invariants_page import KERNEL_CODE, kernels_used
+    from navfn_smt.smt.obligation import load_obligations
+    from navfn_smt.smt.runner import default_proof_files
+    from navfn_smt.spec import kernels
+
+    public = {n for n, f in vars(kernels).items() if inspect.isfunction(f) and f.__module__ == kernels.__name__
+              and not n.startswith("_")}
+    assert public <= set(KERNEL_CODE), public - set(KERNEL_CODE)
+    used = {o.name: kernels_used(o.build) for o in load_obligations(default_proof_files())}
+    assert used["update_keeps_a_lower_neighbour"] == ["cell_update"]
+    assert "step_offsets" in used["step_keeps_offset_in_unit_box"]  # through the proof file's helper
+    assert set(KERNEL_CODE) >= {k for ks in used.values() for k in ks}
+
+
+def test_statuses_come_from_the_reports():
+    """Refuted with a witness, bounded with its bound, check sizes with their verdicts; the
+    committed check reports are what the page's check rows say."""
+    text = PAGE.read_text()
+    assert "holds for `l < 1073741824.0`" in text
+    assert "counterexample: dx = 1.401298464324817e-45" in text
+    for f in sorted(REPORTS.glob("check*.json")):
+        for r in json.loads(f.read_text())["results"]:
+            assert f"| {r['size'][0]}x{r['size'][1]} | {r['interior_cells']} | {r['status']} |" in text
+
+
+def test_not_run_without_a_report(tmp_path):
+    """An obligation missing from the prove report and a property no check report covers are
+    listed as not run; the report's own time is the only one on the page (deterministic)."""
+    doc = json.loads((REPORTS / "prove.json").read_text())
+    doc["obligations"] = [o for o in doc["obligations"] if o["name"] != "goal_stays_zero"]
+    (tmp_path / "prove.json").write_text(json.dumps(doc))
+    check = json.loads(sorted(REPORTS.glob("check*.json"))[0].read_text())
+    check["results"] = [r for r in check["results"] if r["property"] != "complete"]
+    (tmp_path / "check-a.json").write_text(json.dumps(check))
+    rc, out, err = run("--prove-report", tmp_path / "prove.json", "--out", tmp_path / "a.md")
+    assert rc == 0, err
+    text = (tmp_path / "a.md").read_text()
+    assert "| Monotone | `goal_stays_zero` | not run | not run |" in text
+    assert "| `complete` | not run |" in text
+    rc, _, _ = run("--prove-report", tmp_path / "prove.json", "--out", tmp_path / "b.md")
+    assert (tmp_path / "b.md").read_text() == text
+
+
+def test_prove_markdown_is_the_same_generator():
+    """`prove --markdown` renders through the docs generator: from the same verdicts it gives
+    the same page but for the line naming the report."""
+    from navfn_smt.report import invariants_page as page
+    from navfn_smt.report.proofs import markdown
+
+    doc = json.loads((REPORTS / "prove.json").read_text())
+    checks = sorted(REPORTS.glob("check*.json"))
+    meta = {k: v for k, v in doc.items() if k in ("when", "timeout", "solvers", "semantics")}
+    a = markdown(page.outcomes_of(doc), meta, check_reports=checks).splitlines()
+    b = page.generate(REPORTS / "prove.json", checks).splitlines()
+    assert len(a) == len(b)
+    differ = [(x, y) for x, y in zip(a, b) if x != y]
+    assert len(differ) == 1 and differ[0][1].startswith("Proofs: [reports/prove.json]"), differ
+
+
+@pytest.mark.parametrize("what", ["missing", "malformed", "not-a-report", "check-missing", "check-malformed",
+                                  "check-not-a-report", "out-dir-missing", "check-page-missing"])
+def test_bad_inputs_are_one_line_with_exit_2(tmp_path, what):
+    prove = REPORTS / "prove.json"
+    args = ["--out", tmp_path / "inv.md"]
+    bad = tmp_path / "bad.json"
+    if what == "missing":
+        args += ["--prove-report", tmp_path / "nope.json"]
+    elif what == "malformed":
+        bad.write_text('{"obligations": [')
+        args += ["--prove-report", bad]
+    elif what == "not-a-report":
+        bad.write_text('{"results": []}')
+        args += ["--prove-report", bad]
+    elif what == "check-missing":
+        args += ["--check-report", tmp_path / "nope.json"]
+    elif what == "check-malformed":
+        bad.write_text("not json")
+        args += ["--check-report", bad]
+    elif what == "check-not-a-report":
+        shutil.copy(prove, bad)
+        args += ["--check-report", bad]
+    elif what == "out-dir-missing":
+        args = ["--out", tmp_path / "no" / "inv.md"]
+    elif what == "check-page-missing":
+        args = ["--check", "--out", tmp_path / "inv.md"]
+    rc, out, err = run(*args)
+    assert rc == 2, out + err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1 and err.startswith("navfn-smt: error:"), err
+    assert not (tmp_path / "inv.md").exists()
+
+
+def test_help_lists_every_option():
+    rc, out, _ = run("--help")
+    assert rc == 0
+    for opt in ("--out", "--check", "--prove-report", "--check-report"):
+        assert opt in out
