@@ -57,9 +57,10 @@ def test_plan_raw_map_with_size_and_dijkstra(tmp_path):
 
 
 def test_plan_text_output_reports_no_path():
+    """No path exits 1 (as --world and diagnose do) and says why."""
     rc, out, err = run("plan", EXAMPLE_SUITE / "split" / "3x3_wall_h", "--start", 1, 1, "--goal", 1, 3)
-    assert rc == 0, err
-    assert "no path" in out
+    assert rc == 1, err
+    assert "no path" in out and "lethal cells separate it from the goal" in out
 
 
 def test_difftest_default_example_and_json(tmp_path):
@@ -200,7 +201,7 @@ def test_version():
 
 
 def test_every_option_has_help_and_shows_its_default():
-    from navfn_smt.cli import build_parser
+    from navfn_smt.cli import build_parser, shown_default
 
     def parsers(p):
         yield p
@@ -212,10 +213,12 @@ def test_every_option_has_help_and_shows_its_default():
     for p in parsers(build_parser()):
         for a in p._actions:
             assert a.help or isinstance(a, argparse._SubParsersAction), f"{p.prog} {a.dest}: no help"
-        text = p.format_help()
+        text = "".join(p.format_help().split())  # no whitespace: wrapping may split at hyphens
         for a in p._actions:
             if a.option_strings and a.default not in (None, False, argparse.SUPPRESS):
-                assert f"(default: {a.default})" in " ".join(text.split()), f"{p.prog} {a.dest}"
+                shown = " ".join(p._get_formatter()._expand_help(a).split())
+                assert "default" in shown and shown_default(a.default) in shown, f"{p.prog} {a.dest}: {shown}"
+                assert "".join(shown.split()) in text, f"{p.prog} {a.dest}"
 
 
 @pytest.mark.parametrize("argv", [

@@ -88,8 +88,8 @@ def cmd_plan(args) -> int:
     start, goal = _cell("start", args.start), _cell("goal", args.goal)
     costs = load_costs(args.map, args.size, args.allow_outside, args.distro)
     res = get_backend(args.backend).prepare(costs).run(start, goal, astar=not args.dijkstra, trace=False)
-    report.cell_plan(res, mode, args.backend, start, goal, args.json)
-    return 0
+    report.cell_plan(res, mode, args.backend, start, goal, args.json, costs)
+    return 0 if len(res.path) else 1
 
 
 # ------------------------------------------------------------------------------- difftest
@@ -187,6 +187,8 @@ def cmd_coverage(args) -> int:
     suites = [Path(s) for s in args.suite] if args.suite else [EXAMPLE_SUITE]
     modes = modes_of(args.mode)
     _check_max_cases(args.max_cases)
+    if args.min_branch is not None and not 0 <= args.min_branch <= 100:
+        raise NavfnInputError(f"--min-branch {args.min_branch:g}: a percentage from 0 to 100")
     _check_files(args.json)
     total = sum(min(len(load_map(d).cases), args.max_cases or 10**12) for s in suites for d in discover(s))
     with progress_bar(total * len(modes), "coverage") as advance:
@@ -196,10 +198,38 @@ def cmd_coverage(args) -> int:
     if args.json:
         report.write_json(args.json, suites, modes, r)
     report.closing_line(r)
-    return 1 if args.min_branch is not None and r["branch_percent"] < args.min_branch else 0
+    if args.min_branch is not None and r["branch_percent"] < args.min_branch:
+        print(f"navfn-smt: branch coverage {r['branch_percent']:.1f}% is below --min-branch {args.min_branch:g}%",
+              file=sys.stderr)
+        return 1
+    return 0
 
 
 # ---------------------------------------------------------------------------------- prove
+def _proof_files(names) -> list[Path]:
+    """The proof files the command line names: Python files, or folders of them (every
+    ``*.py`` not starting with ``_``, as in the package's own ``proofs/``)."""
+    from .smt.runner import default_proof_files
+
+    files: list[Path] = []
+    for name in names:
+        p = Path(name)
+        if p.is_dir():
+            try:
+                files += default_proof_files(p)
+            except NavfnInputError:
+                raise NavfnInputError(f"{name}: no proof files in this folder (prove reads Python files "
+                                      "declaring obligations, *.py not starting with _)") from None
+        elif not p.exists():
+            raise NavfnInputError(f"{name}: no such proof file or folder")
+        elif p.suffix != ".py":
+            raise NavfnInputError(f"{name}: not a proof file (prove reads Python files declaring obligations, "
+                                  "or a folder of them)")
+        else:
+            files.append(p)
+    return files
+
+
 def cmd_prove(args) -> int:
     """Check the proof obligations; exit 1 when a verdict differs from the expected one."""
     from .report import proof_run
@@ -209,7 +239,7 @@ def cmd_prove(args) -> int:
     from .smt.solvers import SOLVERS
     from .smt.runner import SEMANTICS, default_proof_files, run, write_smt2
 
-    files = [Path(f) for f in args.files] if args.files else default_proof_files()
+    files = _proof_files(args.files) if args.files else default_proof_files()
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
     if args.timeout <= 0:
         raise NavfnInputError("--timeout must be positive")
@@ -427,13 +457,26 @@ def vars_of(args) -> dict:
 
 
 # ---------------------------------------------------------------------------------- main
-class _HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
-    """Shows an option's default in its help, unless the default is nothing (None, False)."""
+def shown_default(value) -> str:
+    """An option's default as its help shows it: ``30`` for 30.0, ``1e+07``, ``0 0`` for a pair."""
+    if isinstance(value, (list, tuple)):
+        return " ".join(shown_default(v) for v in value)
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Shows an option's default at the end of its help, unless the default is nothing (None,
+    False) or the help already says what the default is."""
 
     def _get_help_string(self, action) -> str:
-        if action.default is None or action.default is False:
-            return action.help or ""
-        return super()._get_help_string(action)
+        text = action.help or ""
+        if action.default in (None, False, argparse.SUPPRESS) or not action.option_strings:
+            return text
+        if "default" in text.lower():
+            return text
+        return f"{text} (default: {shown_default(action.default).replace('%', '%%')})"
 
 
 class Parser(argparse.ArgumentParser):
@@ -516,7 +559,7 @@ def build_parser() -> argparse.ArgumentParser:
     dt.add_argument("suite", nargs="?", help="suite directory (default: the example suite shipped with the package)")
     dt.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
     dt.add_argument("--backend", choices=BACKENDS, default="jit", help=backend_help)
-    dt.add_argument("--jobs", type=int, default=1, help="worker processes")
+    dt.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes")
     dt.add_argument("--json", metavar="FILE", help="write per-map counts and every disagreement as JSON")
     dt.add_argument("--quiet", action="store_true", help="no progress bar")
     dt.set_defaults(func=cmd_difftest)
@@ -525,7 +568,7 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("map", help="a suite map directory or a map_server YAML")
     rd.add_argument("--allow-outside", action="store_true",
                     help="let a map_server YAML name an image outside its own folder")
-    rd.add_argument("--case", type=int, default=0, help="case index in test.txt")
+    rd.add_argument("--case", type=int, default=0, metavar="I", help="case index in test.txt")
     rd.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="plan this start cell instead of a case")
     rd.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"), help="plan this goal cell instead of a case")
     rd.add_argument("--dijkstra", action="store_true", help="Dijkstra propagation (default: A*)")
@@ -543,18 +586,19 @@ def build_parser() -> argparse.ArgumentParser:
                     help="check only this relation (repeatable; default: all)")
     mm.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
     mm.add_argument("--backend", choices=BACKENDS, default="jit", help=backend_help)
-    mm.add_argument("--max-cases", type=int, help="at most this many cases per map (default: all)")
+    mm.add_argument("--max-cases", type=int, metavar="N", help="at most this many cases per map (default: all)")
     mm.add_argument("--save", metavar="DIR",
                     help="save counterexamples under DIR as suite map directories (default: not saved)")
-    mm.add_argument("--save-max", type=int, default=3, help="counterexamples saved per relation and mode")
+    mm.add_argument("--save-max", type=int, default=3, metavar="N", help="counterexamples saved per relation and mode")
     mm.add_argument("--json", metavar="FILE", help="write the counts and counterexamples as JSON")
     mm.set_defaults(func=cmd_metamorphic)
 
     cv = sub.add_parser("coverage", help="line, branch and kernel-decision coverage of the reference spec under a suite")
     cv.add_argument("suite", nargs="*", help="suite directories, measured together (default: the example suite)")
     cv.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
-    cv.add_argument("--max-cases", type=int, help="at most this many cases per map (the spec runs traced: slow)")
-    cv.add_argument("--min-branch", type=float, help="exit 1 when branch coverage is below this percentage")
+    cv.add_argument("--max-cases", type=int, metavar="N", help="at most this many cases per map (the spec runs traced: slow)")
+    cv.add_argument("--min-branch", type=float, metavar="PERCENT",
+                    help="exit 1, saying so, when branch coverage is below this percentage (0 to 100)")
     cv.add_argument("--json", metavar="FILE", help="write the figures and every uncovered branch as JSON")
     cv.set_defaults(func=cmd_coverage)
 
@@ -564,11 +608,13 @@ def build_parser() -> argparse.ArgumentParser:
     register_record(suite_sub)
 
     pr = sub.add_parser("prove", help="check the proof obligations shipped in the package (or the given files)")
-    pr.add_argument("files", nargs="*", help="proof files (default: every proof file of navfn_smt/proofs)")
+    pr.add_argument("files", nargs="*", metavar="FILE|DIR",
+                    help="proof files (Python files declaring obligations) or folders of them "
+                    "(default: every proof file of the package's navfn_smt/proofs)")
     pr.add_argument("--semantics", choices=(*SEMANTICS, "both"), default="both",
                     help="real (no rounding), fp32 (bit-precise IEEE-754) or both")
-    pr.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query")
-    pr.add_argument("--jobs", type=int, default=1, help="obligations checked in parallel")
+    pr.add_argument("--timeout", type=float, default=30.0, metavar="S", help="seconds per solver query")
+    pr.add_argument("--jobs", type=int, default=1, metavar="N", help="obligations checked in parallel")
     pr.add_argument("--solver", action="append", choices=SOLVERS,
                     help="solvers of the portfolio (repeatable; default: all)")
     pr.add_argument("--report", metavar="FILE.json", help="machine-readable report")
@@ -585,8 +631,8 @@ def build_parser() -> argparse.ArgumentParser:
     mu = sub.add_parser("mutate", help="seed bugs in the kernels and domains; report which checks catch them")
     mu.add_argument("--mutant", action="append", metavar="NAME", help="run only this mutant (repeatable)")
     mu.add_argument("--suite", help="suite for the difftest detector (default: the example suite)")
-    mu.add_argument("--timeout", type=float, default=30.0, help="seconds per solver query")
-    mu.add_argument("--jobs", type=int, default=2, help="mutants checked at the same time")
+    mu.add_argument("--timeout", type=float, default=30.0, metavar="S", help="seconds per solver query")
+    mu.add_argument("--jobs", type=int, default=2, metavar="N", help="mutants checked at the same time")
     mu.add_argument("--json", metavar="FILE", help="write every mutant's result as JSON")
     mu.set_defaults(func=cmd_mutate)
 
@@ -596,7 +642,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="instead of a suite, plan on generated NxN open and random-cost maps")
     be.add_argument("--backend", choices=(*BACKENDS, "all"), default="all", help="planner implementations timed")
     be.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
-    be.add_argument("--repeat", type=int, default=3, help="plans per map and mode with --size (best is kept)")
+    be.add_argument("--repeat", type=int, default=3, metavar="K", help="plans per map and mode with --size (best is kept)")
     be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
     be.add_argument("--sweep", nargs="?", type=int, const=400, metavar="N",
                     help="instead, time the whole-map sweep (every free cell a goal of one robot pose) on a "
@@ -621,15 +667,15 @@ def build_parser() -> argparse.ArgumentParser:
                     "NavFn's raw API); lethal cells are enumerated")
     ck.add_argument("--semantics", choices=("fp32", "real"), default="fp32",
                     help="fp32: bit-precise float32 and float64, as the C++ computes (real: not available for check)")
-    ck.add_argument("--timeout", type=float, default=60.0,
+    ck.add_argument("--timeout", type=float, default=60.0, metavar="S",
                     help="seconds per solver query; a query bitwuzla and cvc5 leave undecided is split (its cost box "
                     "cut in four, twice) or evaluated at every point of its box (--exhaustive); what stays "
                     "undecided is unknown")
     ck.add_argument("--exhaustive", type=float, default=1e7, metavar="POINTS",
                     help="evaluate an undecided query at every point of its cost box when the box has at most this "
                     "many points (numpy, about 5 million points a second)")
-    ck.add_argument("--budget", type=float, help="with --max-size: stop starting new sizes after this many seconds")
-    ck.add_argument("--jobs", type=int, default=1, help="worker processes exploring cases")
+    ck.add_argument("--budget", type=float, metavar="S", help="with --max-size: stop starting new sizes after this many seconds")
+    ck.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes exploring cases")
     ck.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="fix the start cell (default: every one)")
     ck.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"), help="fix the goal cell (default: every one)")
     ck.add_argument("--ends", choices=("any", "passable"), default="any",
@@ -651,8 +697,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="grow the size from 3x3 to W x H (smallest interior first); report the first size "
                     "with a counterexample")
     se.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
-    se.add_argument("--timeout", type=float, default=60.0, help="seconds for the whole search, split between modes")
-    se.add_argument("--seed", type=int, default=0, help="random seed (same seed and budget: same hunt)")
+    se.add_argument("--timeout", type=float, default=60.0, metavar="S", help="seconds for the whole search, split between modes")
+    se.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (same seed and budget: same hunt)")
     se.add_argument("--costs", metavar="LO..HI", help="passable costs of the maps (default 50..253, what "
                     "setCostmap produces); lethal 254 is always allowed")
     se.add_argument("--out", metavar="DIR", help="save each counterexample as a suite map directory under DIR "

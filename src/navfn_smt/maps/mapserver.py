@@ -256,7 +256,7 @@ def read_map_yaml(yaml_path, allow_outside: bool = False) -> _YamlParams:
         real_image = Path(os.path.realpath(image_path))
         if not real_image.is_relative_to(real_folder):
             raise NavfnInputError(f"{path}: image {image!r} resolves to {real_image}, outside the YAML's folder "
-                                  f"{real_folder} (pass allow_outside=True to permit it)")
+                                  f"{real_folder} (--allow-outside permits it)")
     return _YamlParams(image, image_path, resolution, (ox, oy, oyaw), bool(negate), occupied, free, mode)
 
 

@@ -25,6 +25,53 @@ def print_path(path: list, unit: str, res) -> None:
         print(f"no path (calcPath returned 0: {_exit_name(res)})")
 
 
+EXIT_WHY = {
+    "out_of_bounds": "calcPath stops when its cell is in the first or last row of the map (its bounds check)",
+    "high_potential": "path extraction stepped onto a cell propagation never reached (potential 1e10)",
+    "zero_gradient": "the interpolated gradient at the path's point was exactly (0, 0), so the path cannot move",
+    "exhausted": "calcPath used its whole step budget (4 x the map width) without coming near the goal "
+                 "(the path cycles)",
+}
+
+
+def why_no_path(costs, res, start, goal) -> list[str]:
+    """Why NavFn returned no path between two cells: the start's cost and place, whether
+    propagation reached it, and how calcPath ended (lines for a person to read)."""
+    from ..spec.constants import COST_OBS, POT_HIGH
+    from ..spec.propagation import cycle_limit
+
+    ny, nx = costs.shape
+    why = []
+
+    def border(c) -> bool:
+        return c[0] in (0, nx - 1) or c[1] in (0, ny - 1)
+
+    sx, sy = start
+    unreached = float(res.start_potential) >= POT_HIGH
+    if border(start):
+        why.append(f"the start cell {tuple(start)} is on the map's border: NavFn's setupNavFn makes the outermost "
+                   f"rows and columns lethal (cost {COST_OBS}) even where the map is free, so no path can begin there")
+    elif int(costs[sy, sx]) >= COST_OBS:
+        why.append(f"the start cell {tuple(start)} has cost {int(costs[sy, sx])} (lethal, COST_OBS {COST_OBS}): "
+                   "propagation never enters a lethal cell")
+    if border(goal):
+        why.append(f"the goal cell {tuple(goal)} is on the map's lethal border (propagation begins there but "
+                   "spreads only into passable cells)")
+    elif int(costs[goal[1], goal[0]]) >= COST_OBS:
+        why.append(f"the goal cell {tuple(goal)} has cost {int(costs[goal[1], goal[0]])} (lethal): propagation "
+                   "begins there but spreads only into passable cells")
+    if unreached:
+        line = "propagation never reached the start cell: its potential stayed 1e10 (POT_HIGH)"
+        if not why:
+            limit = cycle_limit(nx, ny)
+            line += (f" after the cycle limit of {limit}" if res.cycles >= limit else
+                     ": lethal cells separate it from the goal")
+        why.append(line)
+    exit_ = _exit_name(res)
+    why.append(f"calcPath returned 0 ({exit_}): " + EXIT_WHY.get(exit_, "no path"))
+    return why
+
+
 def cell_plan_doc(res, mode: str, backend: str, start, goal) -> dict:
     """The JSON object of a plan between two cells."""
     return {
@@ -42,15 +89,22 @@ def cell_plan_doc(res, mode: str, backend: str, start, goal) -> dict:
     }
 
 
-def cell_plan(res, mode: str, backend: str, start, goal, as_json: bool) -> None:
-    """Print a plan between two cells: its JSON object, or a summary and the path's points."""
+def cell_plan(res, mode: str, backend: str, start, goal, as_json: bool, costs=None) -> None:
+    """Print a plan between two cells: its JSON object (with ``why`` when there is no path),
+    or a summary and the path's points, or no path and why (from the map's ``costs``)."""
+    why = why_no_path(costs, res, start, goal) if costs is not None and not len(res.path) else None
     if as_json:
-        print(json.dumps(cell_plan_doc(res, mode, backend, start, goal)))
+        doc = cell_plan_doc(res, mode, backend, start, goal)
+        if why:
+            doc["why"] = why
+        print(json.dumps(doc))
         return
     print(f"mode {mode}, start {start}, goal {goal}")
     print(f"start reached: {res.start_reached}; start potential: {float(res.start_potential):.9g}; "
           f"cycles: {res.cycles}; updates: {res.updates}; dropped pushes: {res.dropped}")
     print_path(_points(res.path), "points", res)
+    for line in why or ():
+        print(f"  why: {line}")
 
 
 def world_plan_doc(wp, mode: str, backend: str, start, goal) -> dict:
