@@ -141,7 +141,7 @@ def cmd_render(args) -> int:
     _check_files(args.output)
     res = get_backend(args.backend).prepare(m.costs).run(start, goal, astar=not args.dijkstra, trace=False)
     render_case(m.costs, res, start, goal, args.output, title=f"{m.name} ({'Dijkstra' if args.dijkstra else 'A*'})",
-                highlight=hl, arrows=None if args.arrows == "auto" else args.arrows == "on")
+                highlight=hl, arrows=None if args.arrows == "auto" else args.arrows == "on", zoom=args.zoom)
     print(f"wrote {args.output}")
     return 0
 
@@ -576,7 +576,10 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--highlight", nargs="+", type=float, metavar="V",
                     help="mark a cell (X Y) or a segment (X1 Y1 X2 Y2), e.g. a counterexample")
     rd.add_argument("--arrows", choices=("auto", "on", "off"), default="auto",
-                    help="gradient arrows (auto: on maps up to 60 cells a side)")
+                    help="gradient arrows (auto: when the picture shows up to 60 cells a side)")
+    rd.add_argument("--zoom", choices=("auto", "full"), default="auto",
+                    help="auto: on a map over 80 cells a side, show only the neighbourhood of the start, goal and "
+                    "path when they fill less than half of it; full: always the whole map")
     rd.add_argument("-o", "--output", required=True, metavar="FILE", help="a .png or .svg file")
     rd.set_defaults(func=cmd_render)
 
