@@ -15,8 +15,11 @@ from ..fileio import atomic_write_text, check_writable
 from . import invariants_page as page
 
 
-def _short(line: str, width: int = 70) -> str:
-    return repr(line if len(line) <= width else line[:width] + "...")
+def _excerpt(line: str, col: int, width: int = 60) -> str:
+    """``line`` around column ``col`` (0-based), at most ``width`` characters, quoted."""
+    lo = max(0, col - 20)
+    text = line[lo:lo + width]
+    return repr(("..." if lo else "") + text + ("..." if lo + width < len(line) else ""))
 
 
 def cmd_docs(args) -> int:
@@ -42,8 +45,9 @@ def cmd_docs(args) -> int:
         print(f"{out} is up to date")
         return 0
     line, was, want = diff
-    print(f"{out}:{line}: differs from the generated page: has {_short(was)}, generated {_short(want)} "
-          f"(regenerate with `navfn-smt docs`)")
+    col = next((i for i, (a, b) in enumerate(zip(was, want)) if a != b), min(len(was), len(want)))
+    print(f"{out}:{line}: differs from the generated page at column {col + 1}: has {_excerpt(was, col)}, "
+          f"generated {_excerpt(want, col)} (regenerate with `navfn-smt docs`)")
     return 1
 
 

@@ -94,7 +94,9 @@ INTRO = ("Each obligation below is a property of the specification's kernels, st
          "specification (*bounded* when a bound found by search still proves it below); `unknown` means no "
          "solver decided in time (never counted as proved); `not run` means the report has no verdict for it. "
          "The whole-planner properties of `navfn-smt check` are decided for every map of a size (a "
-         "*bounded-size proof*), in fp32 only, and for every size when an induction carries them.")
+         "*bounded-size proof*), in fp32 only, and for every size when an induction carries them. An obligation's counterexample is a set of kernel "
+         "inputs (a cell's and its neighbours' values), not a map, so it is given as values; a whole-planner "
+         "counterexample is a map, drawn when its picture is committed under `images/`.")
 
 
 # ------------------------------------------------------------------------------ reading
