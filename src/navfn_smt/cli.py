@@ -118,8 +118,11 @@ def cmd_render(args) -> int:
     """Draw one planning case of a map into a picture file."""
     from .backends import get_backend
     from .maps.loading import is_yaml, load_case_map
-    from .maps.pictures import render_case
+    from .maps.pictures import FORMATS, render_case
 
+    if Path(args.output).suffix.lower() not in FORMATS:
+        raise NavfnInputError(f"{args.output}: the picture must be .png or .svg")
+    _check_files(args.output)
     path = Path(args.map)
     m = load_case_map(path, args.allow_outside)
     if is_yaml(path) and not (args.start and args.goal):
@@ -140,9 +143,16 @@ def cmd_render(args) -> int:
         hl = [tuple(args.highlight[i:i + 2]) for i in range(0, len(args.highlight), 2)]
     _check_files(args.output)
     res = get_backend(args.backend).prepare(m.costs).run(start, goal, astar=not args.dijkstra, trace=False)
-    render_case(m.costs, res, start, goal, args.output, title=f"{m.name} ({'Dijkstra' if args.dijkstra else 'A*'})",
-                highlight=hl, arrows=None if args.arrows == "auto" else args.arrows == "on", zoom=args.zoom)
-    print(f"wrote {args.output}")
+    window = render_case(m.costs, res, start, goal, args.output,
+                         title=f"{m.name} ({'Dijkstra' if args.dijkstra else 'A*'})", highlight=hl,
+                         arrows=None if args.arrows == "auto" else args.arrows == "on", zoom=args.zoom)
+    if window:
+        x0, x1, y0, y1 = window
+        ny, nx = m.costs.shape
+        print(f"wrote {args.output} (showing x {x0}..{x1}, y {y0}..{y1} of the {nx}x{ny} map; "
+              "--zoom full draws the whole map)")
+    else:
+        print(f"wrote {args.output}")
     return 0
 
 

@@ -79,8 +79,9 @@ def render_case(
     highlight: Optional[Sequence[tuple[float, float]]] = None,
     arrows: Optional[bool] = None,
     zoom: str = "auto",
-) -> None:
-    """Draw the case and write ``out`` (.png or .svg) whole or not at all.
+) -> Optional[tuple[int, int, int, int]]:
+    """Draw the case and write ``out`` (.png or .svg) whole or not at all; the window of
+    cells shown ``(x0, x1, y0, y1)``, or None when the whole map is.
 
     ``zoom``: ``auto`` draws only the neighbourhood of the case on a large map when the case
     is small against it (:func:`view_window`), ``full`` the whole map; ``arrows`` None draws
@@ -175,3 +176,4 @@ def render_case(
             fig.savefig(tmp, dpi=110)
     finally:
         plt.close(fig)
+    return window

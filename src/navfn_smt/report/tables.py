@@ -48,7 +48,8 @@ def heartbeat(total: int, description: str, every: float = HEARTBEAT, stream=Non
     """``advance(n)`` that prints ``description: done/total (p%), elapsed, about T left`` to
     ``stream`` (stderr) at most every ``every`` seconds, and a last line when the run ends
     after having printed any (a run shorter than ``every`` stays silent)."""
-    state = {"done": 0, "t0": clock(), "last": clock(), "printed": False}
+    t0 = clock()
+    state = {"done": 0, "t0": t0, "last": t0, "printed": False}
 
     def line(now: float) -> str:
         done, elapsed = state["done"], now - state["t0"]
