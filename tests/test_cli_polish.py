@@ -279,3 +279,19 @@ def test_render_zooms_on_a_short_case_of_a_large_map(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "showing x" in out and "of the 400x400 map" in out and "--zoom full" in out
     assert (tmp_path / "z.png").stat().st_size > 0
+
+
+def test_check_heartbeat_does_not_wait_for_a_case(capsys):
+    import time
+
+    from navfn_smt.report import check as report
+
+    tick = report.progress("4x4", every=0.05)
+    time.sleep(0.3)  # no case finished yet: the heartbeat still prints
+    tick(1, 2, None)
+    tick(2, 2, None)
+    report.stop_progress()
+    lines = capsys.readouterr().err.splitlines()
+    assert lines[0].startswith("check 4x4: 0/? cases") and lines[-1].startswith("check 4x4: 2/2 cases")
+    time.sleep(0.15)
+    assert capsys.readouterr().err == ""  # stopped

@@ -368,21 +368,10 @@ def cmd_check(args) -> int:
     else:
         sizes = [tuple(args.size or (4, 4))]
     t0 = time.perf_counter()
-    results, skipped = [], []
-    open_names = list(names)
-    for nx, ny in sizes:
-        if args.budget and time.perf_counter() - t0 > args.budget:
-            skipped.append([nx, ny])
-            continue
-        if not open_names:
-            break
-        got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, args.jobs,
-                                args.start, args.goal, args.ends, int(args.exhaustive),
-                                progress=report.progress(f"{nx}x{ny}"))
-        for n in list(open_names):
-            results.append(got[n])
-            if got[n].status == "refuted" and args.max_size:
-                open_names.remove(n)  # the smallest counterexample of this property is found
+    try:
+        results, skipped = _check_sizes(args, names, sizes, modes, lo, hi, t0)
+    finally:
+        report.stop_progress()
     report.table(results)
     saved = {}
     if args.out:
@@ -416,6 +405,31 @@ def cmd_check(args) -> int:
     for n, path in saved.items():
         print(f"{n}: counterexample saved in {path}")
     return 0 if all(r.status == "proved" for r in results) else 1
+
+
+def _check_sizes(args, names, sizes, modes, lo, hi, t0):
+    """Check each size in turn until --budget runs out; the results and the sizes skipped."""
+    import time
+
+    from .check import runner as CR
+    from .report import check as report
+
+    results, skipped = [], []
+    open_names = list(names)
+    for nx, ny in sizes:
+        if args.budget and time.perf_counter() - t0 > args.budget:
+            skipped.append([nx, ny])
+            continue
+        if not open_names:
+            break
+        got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, args.jobs,
+                                args.start, args.goal, args.ends, int(args.exhaustive),
+                                progress=report.progress(f"{nx}x{ny}"))
+        for n in list(open_names):
+            results.append(got[n])
+            if got[n].status == "refuted" and args.max_size:
+                open_names.remove(n)  # the smallest counterexample of this property is found
+    return results, skipped
 
 
 def _proved_sizes(results, name) -> list:

@@ -11,17 +11,42 @@ from ..fileio import atomic_write_text
 from .tables import console as _console
 
 
+_running: list = []  # the heartbeat of the size being checked (at most one)
+
+
+def stop_progress() -> None:
+    """Stop the heartbeat of the size being checked, if any (when the run ends or fails)."""
+    while _running:
+        _running.pop().set()
+
+
 def progress(label: str, every: float = 20.0):
-    """``(done, total, case_result)`` callback: a line on stderr every ``every`` seconds and at the end."""
+    """``(done, total, case_result)`` callback for one size: a line on stderr every ``every``
+    seconds, whether or not a case finished in between (a hard case can take minutes), and one
+    at the end, terminal or not.  The heartbeat of the previous size stops."""
+    import threading
     import time
 
-    state = {"t": time.perf_counter(), "t0": time.perf_counter()}
+    stop_progress()
+    stop = threading.Event()
+    _running.append(stop)
+    state = {"done": 0, "total": None, "t0": time.perf_counter()}
+
+    def line() -> str:
+        total = "?" if state["total"] is None else state["total"]
+        return f"check {label}: {state['done']}/{total} cases, {time.perf_counter() - state['t0']:.0f} s"
+
+    def beat() -> None:
+        while not stop.wait(every):
+            print(line(), file=sys.stderr, flush=True)
+
+    threading.Thread(target=beat, daemon=True, name=f"check {label} heartbeat").start()
 
     def tick(done: int, total: int, cr) -> None:
-        now = time.perf_counter()
-        if done == total or now - state["t"] >= every:
-            state["t"] = now
-            print(f"check {label}: {done}/{total} cases, {now - state['t0']:.0f} s", file=sys.stderr, flush=True)
+        state["done"], state["total"] = done, total
+        if done == total:
+            stop.set()
+            print(line(), file=sys.stderr, flush=True)
 
     return tick
 
