@@ -25,3 +25,17 @@ def check_inputs(costs: np.ndarray, start, goal) -> np.ndarray:
         if not (0 <= x < nx and 0 <= y < ny):
             raise NavfnInputError(f"{name} ({x}, {y}) is off the {nx}x{ny} map")
     return arr
+
+
+# The largest map any loader accepts, in cells: refused with one line before anything of that
+# size is allocated (a header or a test.txt claiming 100000x100000 is refused from its numbers).
+# NavFn itself keeps about 30 bytes a cell (costs, potentials, queues, the gradient), and the
+# loaders a few arrays more, so 100 M cells is some gigabytes: larger maps are not planned here.
+MAX_CELLS = 100_000_000
+
+
+def check_cells(width: int, height: int, where: str) -> None:
+    """Refuse a map of more than :data:`MAX_CELLS` cells (``where`` names the input)."""
+    if width * height > MAX_CELLS:
+        raise NavfnInputError(f"{where}: a {width}x{height} map has {width * height} cells; the limit is "
+                              f"{MAX_CELLS} cells (100 M)")

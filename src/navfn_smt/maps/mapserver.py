@@ -68,6 +68,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
@@ -288,12 +289,21 @@ def read_image_quanta(image_path) -> ImageQuanta:
         raise NavfnInputError(f"{p}: image file does not exist")
     if p.is_dir():
         raise NavfnInputError(f"{p}: image is a directory, not an image file")
+    from ..inputs import check_cells
+
     try:
-        with Image.open(p) as im:
-            im.load()
-            return _quanta(im, p)
+        with warnings.catch_warnings():
+            # the size is checked against MAX_CELLS below; Pillow's own bomb warning would be a second line
+            warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+            with Image.open(p) as im:
+                check_cells(im.size[0], im.size[1], f"{p}: image")  # from the header, before any pixel
+                im.load()
+                return _quanta(im, p)
     except NavfnInputError:
         raise
+    except Image.DecompressionBombError:
+        raise NavfnInputError(f"{p}: image header claims more than {2 * Image.MAX_IMAGE_PIXELS} pixels; the limit "
+                              f"is 100000000 cells (100 M)") from None
     except MemoryError:
         raise NavfnInputError(f"{p}: image too large to load") from None
     except Exception as e:  # Pillow raises many types for bad bytes (OSError, SyntaxError, ValueError, ...)

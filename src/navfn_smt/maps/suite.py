@@ -19,6 +19,7 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from ..fileio import atomic_write_bytes
+from ..inputs import check_cells
 
 MODES = ("astar", "dijkstra")
 GOLDEN_FIELDS = (
@@ -75,6 +76,7 @@ def parse_test_txt(path: Path) -> tuple[int, int, str, np.ndarray]:
         raise NavfnInputError(f"{path}:1: expected 'W H', got {lines[0]!r}") from None
     if width < 3 or height < 3:
         raise NavfnInputError(f"{path}:1: map size {width}x{height} is below NavFn's 3x3 minimum")
+    check_cells(width, height, f"{path}:1")
     map_file = lines[1].strip()
     if not map_file or os.path.basename(map_file) != map_file:
         raise NavfnInputError(f"{path}:2: expected a map file name in the same directory, got {lines[1]!r}")
@@ -100,12 +102,18 @@ def parse_test_txt(path: Path) -> tuple[int, int, str, np.ndarray]:
 
 def read_map_bytes(path: Path, width: int, height: int) -> np.ndarray:
     """Raw map bytes of exactly ``width * height`` cells, as a (height, width) uint8 array."""
+    check_cells(width, height, str(path))
     try:
+        if Path(path).is_dir():
+            raise NavfnInputError(f"{path}: is a directory, not a map file")
+        size = Path(path).stat().st_size  # a wrong size is refused before anything is read
+        if size != width * height:
+            raise NavfnInputError(f"{path}: map has {size} bytes, expected {width}x{height} = {width * height}")
         data = Path(path).read_bytes()
     except FileNotFoundError:
         raise NavfnInputError(f"{path}: no such map file") from None
     except OSError as e:
-        raise NavfnInputError(f"{path}: unreadable map file ({e.strerror})") from None
+        raise NavfnInputError(f"{path}: unreadable map file ({e.strerror or e.__class__.__name__})") from None
     if len(data) != width * height:
         raise NavfnInputError(
             f"{path}: map has {len(data)} bytes, expected {width}x{height} = {width * height}"
@@ -140,17 +148,21 @@ def discover(root) -> list[Path]:
 
 
 def load_golden(path: Path, smap: Optional[SuiteMap] = None) -> dict:
-    """All fields of a golden npz, loaded eagerly; checked against the map if given."""
+    """All fields of a golden npz, loaded eagerly; checked for shape and type, and against the map if given."""
     try:
-        with np.load(path, allow_pickle=False) as z:
+        with open(path, "rb") as f, np.load(f, allow_pickle=False) as z:
             missing = [f for f in GOLDEN_FIELDS if f not in z.files]
             if missing:
                 raise NavfnInputError(f"{path}: golden file lacks {', '.join(missing)}")
             g = {f: z[f] for f in GOLDEN_FIELDS}
     except FileNotFoundError:
         raise NavfnInputError(f"{path}: no such golden file") from None
-    except (OSError, ValueError, zipfile.BadZipFile, EOFError) as e:
-        raise NavfnInputError(f"{path}: unreadable golden file ({e})") from None
+    except IsADirectoryError:
+        raise NavfnInputError(f"{path}: is a directory, not a golden file") from None
+    except (OSError, ValueError, zipfile.BadZipFile, EOFError, KeyError, RuntimeError) as e:
+        # (np.load raises many types on bad bytes; zipfile also KeyError and RuntimeError)
+        raise NavfnInputError(f"{path}: unreadable golden file ({' '.join(str(e).split()) or type(e).__name__})") from None
+    _check_golden(path, g)
     if smap is not None:
         if int(g["width"]) != smap.width or int(g["height"]) != smap.height:
             raise NavfnInputError(
@@ -160,6 +172,40 @@ def load_golden(path: Path, smap: Optional[SuiteMap] = None) -> dict:
         if not np.array_equal(g["cases"], smap.cases):
             raise NavfnInputError(f"{path}: golden cases differ from test.txt")
     return g
+
+
+def _check_golden(path, g: dict) -> None:
+    """Every field of a golden file with the shape and type the difftest reads, or NavfnInputError."""
+    def bad(field: str, why: str):
+        a = g[field]
+        return NavfnInputError(f"{path}: golden field {field!r} {why} (got {a.dtype} {a.shape})")
+
+    for f in GOLDEN_FIELDS:
+        kind = g[f].dtype.kind
+        if kind not in "biuf" or (kind == "f") != (f in ("start_potential", "path", "full_potential")):
+            raise bad(f, "has the wrong type")
+    for f in ("width", "height"):
+        if g[f].shape != ():
+            raise bad(f, "must be one number")
+    w, h = int(g["width"]), int(g["height"])
+    n = g["cases"].shape[0] if g["cases"].ndim == 2 else -1
+    k = g["full_index"].shape[0] if g["full_index"].ndim == 1 else -1
+    shapes = {"cases": (n, 4), "start_reached": (n,), "start_potential": (n,), "path_offsets": (n + 1,),
+              "potential_sha256": (n, 32), "trace_sha256": (n, 32), "cycles": (n,), "updates": (n,),
+              "full_index": (k,), "full_potential": (k, h, w), "full_trace_offsets": (k + 1,)}
+    for f, want in shapes.items():
+        if n < 0 or k < 0 or g[f].shape != want:
+            raise bad(f, f"must have shape {want if n >= 0 and k >= 0 else '(N, 4)' if n < 0 else '(K,)'}")
+    if g["path"].ndim != 2 or g["path"].shape[1:] != (2,):
+        raise bad("path", "must have shape (P, 2)")
+    if g["full_trace"].ndim != 1:
+        raise bad("full_trace", "must be one-dimensional")
+    for off, data in (("path_offsets", "path"), ("full_trace_offsets", "full_trace")):
+        o = g[off]
+        if o[0] != 0 or o[-1] != len(g[data]) or np.any(np.diff(o) < 0):
+            raise bad(off, f"must rise from 0 to the length of {data!r} ({len(g[data])})")
+    if k and (g["full_index"].min() < 0 or g["full_index"].max() >= n):
+        raise bad("full_index", f"must hold case numbers 0..{n - 1}")
 
 
 def golden_path_of(g: dict, i: int) -> np.ndarray:

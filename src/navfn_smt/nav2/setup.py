@@ -53,12 +53,7 @@ def load_costmap_file(path, resolution: Optional[float], origin=(0.0, 0.0), dist
     if not all(np.isfinite(v) for v in origin):
         raise NavfnInputError(f"--origin must be finite, got {origin!r}")
     if p.suffix.lower() == ".npy":
-        try:
-            a = np.load(p, allow_pickle=False)
-        except FileNotFoundError:
-            raise NavfnInputError(f"{p}: no such costmap file") from None
-        except (OSError, ValueError) as e:
-            raise NavfnInputError(f"{p}: not a readable .npy array ({' '.join(str(e).split())})") from None
+        a = _read_npy(p)
         if a.ndim != 2 or not (np.issubdtype(a.dtype, np.integer) and a.size and 0 <= a.min() and a.max() <= 255):
             raise NavfnInputError(f"{p}: a costmap must be a 2-D array of integers 0..255, got {a.dtype} {a.shape}")
         costs = np.ascontiguousarray(a, dtype=np.uint8)
@@ -73,6 +68,35 @@ def load_costmap_file(path, resolution: Optional[float], origin=(0.0, 0.0), dist
     return MapServerMap(p, p, float(resolution), float(np.float32(resolution)), (float(origin[0]), float(origin[1]), 0.0),
                         w, h, "costmap", False, distro, 0.0, 0.0, np.zeros((h, w), np.int8), costs,
                         set_costmap(costs, is_ros=True))
+
+
+def _read_npy(p: Path) -> np.ndarray:
+    """A ``.npy`` array, its header checked (2-D, at most ``MAX_CELLS`` cells) before the data is read."""
+    from ..inputs import check_cells
+
+    try:
+        with open(p, "rb") as f:
+            version = np.lib.format.read_magic(f)
+            if version == (1, 0):
+                shape, _, dtype = np.lib.format.read_array_header_1_0(f)
+            elif version in ((2, 0), (3, 0)):
+                shape, _, dtype = np.lib.format.read_array_header_2_0(f)
+            else:
+                raise ValueError(f"unknown .npy version {version}")
+            if len(shape) != 2:
+                raise NavfnInputError(f"{p}: a costmap must be a 2-D array, got shape {shape}")
+            check_cells(shape[1], shape[0], str(p))
+            f.seek(0)
+            a = np.load(f, allow_pickle=False)
+    except FileNotFoundError:
+        raise NavfnInputError(f"{p}: no such costmap file") from None
+    except NavfnInputError:
+        raise
+    except (OSError, ValueError, EOFError, TypeError, SyntaxError) as e:
+        raise NavfnInputError(f"{p}: not a readable .npy array ({' '.join(str(e).split()) or type(e).__name__})") from None
+    if not isinstance(a, np.ndarray):
+        raise NavfnInputError(f"{p}: not a .npy array")
+    return a
 
 
 def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
