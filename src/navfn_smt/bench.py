@@ -19,6 +19,7 @@ import numpy as np
 from .backends import BACKENDS, get_backend
 from .difftest.runner import modes_of
 from .errors import NavfnInputError
+from .inputs import check_cells
 from .maps.suite import discover, load_map
 from .report.tables import progress_bar, progress_counts
 
@@ -75,6 +76,7 @@ def check_sizes(sizes, repeat: int) -> None:
     for n in sizes:
         if n < 12:
             raise NavfnInputError(f"--size {n}: benchmark maps must be at least 12 cells a side")
+        check_cells(n, n, f"--size {n}")
     if repeat < 1:
         raise NavfnInputError("--repeat must be at least 1")
 
@@ -143,6 +145,7 @@ def bench_sweep(n: int = SWEEP_SIZE, modes: str = "both", astar_goals=SWEEP_ASTA
 
     if n < 30:
         raise NavfnInputError(f"--sweep {n}: the sweep map must be at least 30 cells a side")
+    check_cells(n, n, f"--sweep {n}")
     cm = rooms_costmap(n, seed=seed)
     res = cm.resolution
     start = Pose(cm.origin_x + 20.3 * res, cm.origin_y + 20.7 * res)

@@ -12,6 +12,8 @@ predicate that carries the induction are checked (:data:`INDUCTION`).
 
 from __future__ import annotations
 
+import math
+
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
@@ -85,6 +87,10 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     """Every case of the size; returns ``{property: SizeResult}``."""
     check_size(nx, ny)
     _domain(semantics)
+    if not (timeout > 0 and math.isfinite(timeout)):
+        raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
+    if not exhaustive_limit >= 0:
+        raise NavfnInputError(f"--exhaustive {exhaustive_limit!r}: must be a non-negative number of points")
     for what, cell in (("start", start), ("goal", goal)):
         if cell is not None and not (1 <= cell[0] <= nx - 2 and 1 <= cell[1] <= ny - 2):
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
@@ -137,7 +143,11 @@ def _case_json(case: Case) -> dict:
 
 
 def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> list[tuple[int, int]]:
-    """Sizes from ``min`` up to ``max``, smallest interior first (ties: wider first)."""
+    """Sizes from ``min`` up to ``max``, smallest interior first (ties: wider first).
+
+    A side is cut at 15 cells: any longer side gives more interior cells than :func:`check_size`
+    accepts (so ``--max-size 100000 100000`` lists some hundred sizes, not 10**10)."""
+    max_nx, max_ny = min(max_nx, 15), min(max_ny, 15)
     out = [(w, h) for w in range(min_nx, max_nx + 1) for h in range(min_ny, max_ny + 1)]
     return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), -s[0], s[1]))
 

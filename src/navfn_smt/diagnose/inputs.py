@@ -58,7 +58,11 @@ def parse_goals(path) -> list[Pose]:
             if not isinstance(it, (list, tuple)) or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
                                                              for v in it):
                 raise NavfnInputError(f"{path}: goal {n} must be [x, y] or [x, y, yaw], got {it!r}")
-            goals.append(_goal(f"{path}: goal {n}", [float(v) for v in it]))
+            try:
+                vals = [float(v) for v in it]
+            except OverflowError:
+                raise NavfnInputError(f"{path}: goal {n} has a number too large for a double: {it!r}"[:300]) from None
+            goals.append(_goal(f"{path}: goal {n}", vals))
     if not goals:
         raise NavfnInputError(f"{path}: no goals")
     return goals
@@ -80,8 +84,9 @@ def _structured(p: Path, text: str) -> Optional[list]:
             import yaml
 
             doc = yaml.safe_load(text)
-    except Exception as e:  # yaml's errors are many classes
-        raise NavfnInputError(f"{p}: malformed goals file ({str(e).splitlines()[0]})") from None
+    except Exception as e:  # yaml's errors are many classes (and RecursionError on deep nesting)
+        first = (str(e).splitlines() or [type(e).__name__])[0]
+        raise NavfnInputError(f"{p}: malformed goals file ({first})") from None
     if isinstance(doc, dict) and "goals" in doc:
         doc = doc["goals"]
     if not isinstance(doc, list):

@@ -144,6 +144,8 @@ def _typed(where: str, key: str, value, kind):
                               f"(Nav2 refuses a parameter of another type)")
     if kind is float and not math.isfinite(value):
         raise NavfnInputError(f"{where}: '{key}' must be finite, got {value!r}")
+    if kind is int and not -2**63 <= value < 2**63:
+        raise NavfnInputError(f"{where}: '{key}' {value} does not fit the int64 of a ROS parameter")
     return value
 
 

@@ -80,6 +80,8 @@ def _typed(path, name: str, key: str, value, kind):
                               f"(Nav2 refuses a parameter of another type)")
     if kind is float and value != value:
         raise NavfnInputError(f"{path}: '{name}.{key}' is not a number")
+    if kind is int and not -2**63 <= value < 2**63:
+        raise NavfnInputError(f"{path}: '{name}.{key}' {value} does not fit the int64 of a ROS parameter")
     return value
 
 
@@ -114,6 +116,11 @@ def planner_params(path, plugin: Optional[str] = None) -> PlannerParams:
     else:
         raise NavfnInputError(f"{path}: no planner plugin of type nav2_navfn_planner::NavfnPlanner "
                               f"(planner_plugins: {names})")
-    sect = params.get(name) or {}
+    sect = params.get(name)
+    if sect is None:
+        sect = {}
+    if not isinstance(sect, dict):
+        raise NavfnInputError(f"{path}: 'planner_server.{name}' must be a mapping of the plugin's parameters, "
+                              f"got {sect!r}")
     values = {key: _typed(path, name, key, sect[key], kind) for key, kind in _TYPES.items() if key in sect}
     return PlannerParams(plugin=name, **values)

@@ -35,7 +35,7 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
     tried with ``max_size`` (``[]`` otherwise)."""
     if kind not in SEARCH_KINDS:
         raise NavfnInputError(f"unknown search kind {kind!r} (choose from {', '.join(SEARCH_KINDS)})")
-    if timeout <= 0:
+    if not (timeout > 0 and timeout < float("inf")):
         raise NavfnInputError("--timeout must be positive")
     if size is not None and max_size is not None:
         raise NavfnInputError("--size and --max-size exclude each other")

@@ -83,7 +83,7 @@ def load_obligations(paths) -> list[Obligation]:
         mod = importlib.util.module_from_spec(spec)
         try:
             spec.loader.exec_module(mod)
-        except Exception as e:  # a broken proof file is the user's input
+        except (Exception, SystemExit) as e:  # a broken proof file is the user's input
             raise NavfnInputError(f"{p}: cannot load ({type(e).__name__}: {e})") from None
         obs = [v for v in vars(mod).values() if isinstance(v, Obligation)]
         if not obs:

@@ -51,6 +51,8 @@ def _job(path: str, name: str, semantics: str, timeout: float, solvers: tuple, b
 
 def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: int = 1, solvers=("z3",),
         progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True) -> list[Outcome]:
+    if not (timeout > 0 and timeout < float("inf")):
+        raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
     obligations = load_obligations(paths)
     work = [(o.source, o.name, s) for o in obligations for s in semantics if s in o.expect]
     if not work:
