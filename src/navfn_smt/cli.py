@@ -490,7 +490,7 @@ def shown_default(value) -> str:
     return str(value)
 
 
-class _HelpFormatter(argparse.RawDescriptionHelpFormatter):
+class _HelpFormatter(argparse.HelpFormatter):
     """Shows an option's default at the end of its help, unless the default is nothing (None,
     False) or the help already says what the default is."""
 
