@@ -179,24 +179,42 @@ def run_suite(
     """Run the difftest; ``progress`` is called after each finished task."""
     tasks = plan_tasks(root, modes, backend) if tasks is None else tasks
     outcomes: list[TaskOutcome] = []
-    if jobs <= 1:
-        for t in tasks:
-            o = run_task(t)
-            outcomes.append(o)
-            if progress:
-                progress(o)
-    else:
-        # largest tasks first keeps both workers busy until the end
-        order = sorted(tasks, key=lambda t: -(t.hi - t.lo) * _map_cells(t.map_dir))
-        with ProcessPoolExecutor(max_workers=jobs, initializer=_warm, initargs=(backend,)) as ex:
-            futs = [ex.submit(run_task, t) for t in order]
-            for f in as_completed(futs):
-                o = f.result()
+    try:
+        if jobs <= 1:
+            for t in tasks:
+                o = run_task(t)
                 outcomes.append(o)
                 if progress:
                     progress(o)
+        else:
+            # largest tasks first keeps both workers busy until the end
+            order = sorted(tasks, key=lambda t: -(t.hi - t.lo) * _map_cells(t.map_dir))
+            ex = ProcessPoolExecutor(max_workers=jobs, initializer=_warm, initargs=(backend,))
+            try:
+                futs = [ex.submit(run_task, t) for t in order]
+                for f in as_completed(futs):
+                    o = f.result()
+                    outcomes.append(o)
+                    if progress:
+                        progress(o)
+            finally:  # on Ctrl-C: drop the queued tasks instead of running them all first
+                ex.shutdown(wait=True, cancel_futures=True)
+    except KeyboardInterrupt:
+        _partial_note(outcomes, sum(t.hi - t.lo for t in tasks))
+        raise
     outcomes.sort(key=lambda o: (o.category, o.map, o.mode))
     return outcomes
+
+
+def _partial_note(outcomes: list[TaskOutcome], total: int) -> None:
+    """What an interrupted run had compared, on stdout (no report file is written for it)."""
+    done = sum(o.cases for o in outcomes)
+    agreeing = sum(o.agreeing for o in outcomes)
+    try:
+        print(f"interrupted after {done} of {total} cases: {agreeing} agreed, {done - agreeing} disagreed "
+              f"(no report written; rerun to compare everything)", flush=True)
+    except (OSError, ValueError):
+        pass
 
 
 def _map_cells(map_dir: str) -> int:

@@ -36,6 +36,7 @@ def main() -> None:
     """Entry point of a solver process: request on stdin, answer on stdout (pickles)."""
     req = pickle.load(sys.stdin.buffer)
     _tie_to_caller(req["parent"], req["timeout"])
+    _limit_memory()
     out = _answer_channel()
     out.write(_pickled(_run(req)))
     out.flush()
@@ -58,6 +59,37 @@ def _tie_to_caller(parent: int, timeout: float) -> None:
         signal.setitimer(signal.ITIMER_REAL, timeout + KILL_GRACE + 5.0)
 
 
+# A solver process may take this much address space (NAVFN_SOLVER_MEMORY_MB overrides it):
+# half the machine's memory, at most 8 GiB.  A solver that needs more fails to allocate and
+# its answer is "unknown" (out of memory) or, if it dies of it, "error": the portfolio then
+# reports the query as unknown, never as a crash of the caller.
+def memory_limit_bytes() -> int:
+    env = os.environ.get("NAVFN_SOLVER_MEMORY_MB")
+    if env:
+        try:
+            return max(1, int(env)) * 2**20
+        except ValueError:
+            pass
+    try:
+        phys = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):
+        phys = 16 * 2**30
+    return min(8 * 2**30, phys // 2)
+
+
+def _limit_memory() -> None:
+    try:
+        import resource
+
+        limit = memory_limit_bytes()
+        soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+        if hard != resource.RLIM_INFINITY:
+            limit = min(limit, hard)
+        resource.setrlimit(resource.RLIMIT_AS, (limit, hard))
+    except (ImportError, ValueError, OSError):
+        pass
+
+
 def _answer_channel():
     """The original stdout, for the answer only; file descriptor 1 goes to /dev/null."""
     out = os.fdopen(os.dup(1), "wb")
@@ -72,6 +104,9 @@ def _run(req: dict) -> dict:
     try:
         return RUNNERS[req["solver"]](req["text"], req["timeout"], req["names"], req["logic"],
                                       **req.get("options", {}))
+    except MemoryError:
+        return {"status": "unknown", "detail": f"out of memory (solver limit {memory_limit_bytes() // 2**20} MiB; "
+                                                 f"NAVFN_SOLVER_MEMORY_MB)"}
     except BaseException as exc:  # report, never hang the caller
         return {"status": "error", "detail": f"{type(exc).__name__}: {exc}".strip()}
 
