@@ -10,7 +10,9 @@ category is the first directory below the suite root.
 from __future__ import annotations
 
 import os
+import struct
 import zipfile
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
@@ -159,7 +161,8 @@ def load_golden(path: Path, smap: Optional[SuiteMap] = None) -> dict:
         raise NavfnInputError(f"{path}: no such golden file") from None
     except IsADirectoryError:
         raise NavfnInputError(f"{path}: is a directory, not a golden file") from None
-    except (OSError, ValueError, zipfile.BadZipFile, EOFError, KeyError, RuntimeError) as e:
+    except (OSError, ValueError, zipfile.BadZipFile, EOFError, KeyError, RuntimeError, zlib.error, struct.error,
+            NotImplementedError, OverflowError, MemoryError) as e:
         # (np.load raises many types on bad bytes; zipfile also KeyError and RuntimeError)
         raise NavfnInputError(f"{path}: unreadable golden file ({' '.join(str(e).split()) or type(e).__name__})") from None
     _check_golden(path, g)
