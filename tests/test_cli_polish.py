@@ -210,8 +210,13 @@ def test_heartbeat_lines_when_not_a_terminal(capsys):
     advance = heartbeat(4, "work", every=10, clock=lambda: next(t))  # 5 s per step
     for _ in range(4):
         advance(1)
+    advance(0)  # a caller reporting the end twice: one last line
     lines = capsys.readouterr().err.splitlines()
     assert lines == ["work: 2/4 (50%), 10 s, about 10 s left", "work: 4/4 (100%), 20 s"]
+    t = iter(range(0, 1000, 20))
+    advance = heartbeat(1000, "many", every=10, clock=lambda: next(t))
+    advance(999)
+    assert capsys.readouterr().err.strip() == "many: 999/1000 (99%), 20 s, about 0 s left"  # never 100% early
     with progress_bar(3, "quick") as advance:  # stderr is not a terminal here; a short run stays silent
         advance(3)
     assert capsys.readouterr().err == ""

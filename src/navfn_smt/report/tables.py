@@ -53,16 +53,18 @@ def heartbeat(total: int, description: str, every: float = HEARTBEAT, stream=Non
 
     def line(now: float) -> str:
         done, elapsed = state["done"], now - state["t0"]
-        pct = f" ({100 * done / total:.0f}%)" if total else ""
+        pct = f" ({100 * done // total}%)" if total else ""
         left = ""
         if 0 < done < total:
             left = f", about {_duration(elapsed * (total - done) / done)} left"
         return f"{description}: {done}/{total}{pct}, {_duration(elapsed)}{left}"
 
     def advance(n: int) -> None:
+        if state.get("finished"):
+            return
         state["done"] += n
         now = clock()
-        finished = total and state["done"] >= total
+        state["finished"] = finished = bool(total) and state["done"] >= total
         if now - state["last"] >= every or (finished and state["printed"]):
             state["last"] = now
             state["printed"] = True
