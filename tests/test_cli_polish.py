@@ -302,3 +302,18 @@ def test_check_heartbeat_does_not_wait_for_a_case(capsys):
     assert lines[0].startswith("check 4x4: 0/? cases") and lines[-1].startswith("check 4x4: 2/2 cases")
     time.sleep(0.15)
     assert capsys.readouterr().err == ""  # stopped
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["check", "valid-path", "--exhaustive", "nan"], "--exhaustive nan"),
+    (["check", "valid-path", "--budget", "-1"], "--budget -1"),
+    (["check", "valid-path", "--timeout", "nan"], "--timeout nan"),
+    (["bench", "--sweep", "40", "--sweep-astar-goals", "many"], "--sweep-astar-goals many"),
+    (["prove", "--timeout", "inf"], "--timeout inf"),
+    (["search", "cost", "--timeout", "-1"], "--timeout -1"),
+    (["mutate", "--timeout", "0"], "--timeout 0"),
+])
+def test_bad_numbers_are_one_line_errors(argv, words, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("navfn-smt: error: ") and words in err and len(err.splitlines()) == 1

@@ -34,6 +34,15 @@ def _check_max_cases(n) -> None:
         raise NavfnInputError("--max-cases must be at least 1")
 
 
+def _check_positive(option: str, value, allow_zero: bool = False) -> None:
+    """Reject a number option that is not a positive finite number (NaN included)."""
+    import math
+
+    ok = value is None or (math.isfinite(value) and (value >= 0 if allow_zero else value > 0))
+    if not ok:
+        raise NavfnInputError(f"{option} {value:g}: must be a {'non-negative' if allow_zero else 'positive'} number")
+
+
 def _check_files(*paths) -> None:
     """Fail early, before the run, on any output file that could not be written."""
     for p in paths:
@@ -251,8 +260,7 @@ def cmd_prove(args) -> int:
 
     files = _proof_files(args.files) if args.files else default_proof_files()
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
-    if args.timeout <= 0:
-        raise NavfnInputError("--timeout must be positive")
+    _check_positive("--timeout", args.timeout)
     if args.jobs < 1:
         raise NavfnInputError("--jobs must be at least 1")
     _check_files(args.report, args.junit, args.markdown)
@@ -295,6 +303,7 @@ def cmd_mutate(args) -> int:
         raise NavfnInputError(f"unknown mutant(s): {', '.join(sorted(unknown))}")
     if args.jobs < 1:
         raise NavfnInputError("--jobs must be at least 1")
+    _check_positive("--timeout", args.timeout)
     _check_files(args.json)
     chosen = [m for m in MUTANTS if not args.mutant or m.name in args.mutant]
     files = default_proof_files()
@@ -318,8 +327,16 @@ def cmd_bench(args) -> int:
     if args.sweep is not None:  # whole-map sweep benchmark
         from .bench import bench_sweep
 
+        goals = args.sweep_astar_goals
+        if goals != "all":
+            try:
+                goals = int(goals)
+            except ValueError:
+                goals = 0
+            if goals < 1:
+                raise NavfnInputError(f"--sweep-astar-goals {args.sweep_astar_goals}: a number of goals "
+                                      "(at least 1) or 'all'")
         _check_files(args.json)
-        goals = args.sweep_astar_goals if args.sweep_astar_goals == "all" else int(args.sweep_astar_goals)
         rows = bench_sweep(args.sweep, args.mode, goals)
         report.sweep_table(rows)
         if args.json:
@@ -355,8 +372,9 @@ def cmd_check(args) -> int:
     from .search.hunt import parse_costs
 
     lo, hi = parse_costs(args.costs)
-    if args.timeout <= 0:
-        raise NavfnInputError("--timeout must be positive")
+    _check_positive("--timeout", args.timeout)
+    _check_positive("--exhaustive", args.exhaustive, allow_zero=True)
+    _check_positive("--budget", args.budget, allow_zero=True)
     if args.jobs < 1:
         raise NavfnInputError("--jobs must be at least 1")
     _check_files(args.json)
@@ -463,6 +481,7 @@ def cmd_search(args) -> int:
     from .search.hunt import parse_costs
 
     costs_range = parse_costs(args.costs)
+    _check_positive("--timeout", args.timeout)
     if args.out:
         check_writable_dir(args.out)
     findings, tried = run_search(args.kind, args.mode, args.size, args.max_size, args.timeout, args.seed,
