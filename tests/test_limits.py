@@ -78,7 +78,10 @@ def test_sigint_in_difftest(tmp_path, jobs):
     suite = tmp_path / "suite"
     import shutil
 
-    shutil.copytree(EXAMPLE, suite)
+    for k in range(6):  # six copies of every category: the run lasts far longer than the wait below
+        for cat in EXAMPLE.iterdir():
+            if cat.is_dir():
+                shutil.copytree(cat, suite / f"{cat.name}{k}")
     code = ("import signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
             "from navfn_smt.cli import main; sys.exit(main())")
     p = subprocess.Popen([sys.executable, "-c", code, "difftest", str(suite), "--json", "r.json", "--quiet",
