@@ -108,7 +108,17 @@ def _sweep(args, start) -> int:
     setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
                         tuple(args.origin))
     cm = setup.costmap
-    res = sweep(cm, start, setup.params, goals=n, seed=args.seed)
+    from ..report.tables import progress_bar
+    from .sweep import select_goals
+
+    goals = select_goals(cm, n, args.seed)
+    seen = [0]
+    with progress_bar(len(goals), "sweep", enabled=not args.quiet) as advance:
+        def progress(done: int, total: int) -> None:  # sweep reports how many are done; the bar counts steps
+            advance(done - seen[0])
+            seen[0] = done
+
+        res = sweep(cm, start, setup.params, goals=goals, seed=args.seed, progress=progress)
     doc = summary(res)
     print(f"map      {args.map}: {cm.size_x}x{cm.size_y} cells, costmap layers: {', '.join(setup.layers)}")
     print(f"sweep    {doc['goals']} goals from ({start.x:g}, {start.y:g}), {doc['mode']}, {doc['seconds']} s")
