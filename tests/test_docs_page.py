@@ -177,3 +177,10 @@ def test_help_lists_every_option():
     assert rc == 0
     for opt in ("--out", "--check", "--prove-report", "--check-report"):
         assert opt in out
+
+
+def test_docs_without_out_prints_the_page_and_writes_nothing(tmp_path):
+    rc, out, err = run("--prove-report", REPORTS / "prove.json", cwd=tmp_path)
+    assert rc == 0, err
+    assert out == PAGE.read_text(encoding="utf-8")
+    assert list(tmp_path.iterdir()) == []

@@ -1,6 +1,6 @@
 """``navfn-smt docs``: the command (arguments and handler); wired by ``register(subparsers)``.
 
-Writes the invariants page (:mod:`navfn_smt.report.invariants_page`) from the obligations,
+Prints (or with ``--out`` writes) the invariants page (:mod:`navfn_smt.report.invariants_page`) from the obligations,
 the paper's predicates and the committed reports, or with ``--check`` compares it with the
 committed page and fails (exit 1, one line naming the first differing line) when they
 differ.  No solver runs: the command only reads.
@@ -23,7 +23,12 @@ def _excerpt(line: str, col: int, width: int = 60) -> str:
 
 
 def cmd_docs(args) -> int:
-    out = Path(args.out)
+    if args.out is None and not args.check:  # nothing named: the page goes to stdout, no file is written
+        check_reports = (args.check_report if args.check_report is not None
+                         else page.default_check_reports(Path(args.prove_report).parent))
+        print(page.generate(args.prove_report, check_reports), end="")
+        return 0
+    out = Path(args.out if args.out is not None else page.DEFAULT_OUT)
     check_reports = (args.check_report if args.check_report is not None
                      else page.default_check_reports(Path(args.prove_report).parent))
     if args.check:
@@ -47,7 +52,7 @@ def cmd_docs(args) -> int:
     line, was, want = diff
     col = next((i for i, (a, b) in enumerate(zip(was, want)) if a != b), min(len(was), len(want)))
     print(f"{out}:{line}: differs from the generated page at column {col + 1}: has {_excerpt(was, col)}, "
-          f"generated {_excerpt(want, col)} (regenerate with `navfn-smt docs`)")
+          f"generated {_excerpt(want, col)} (regenerate with `navfn-smt docs --out {out}`)")
     return 1
 
 
@@ -58,8 +63,9 @@ def register(sub) -> None:
         description="Generate the invariants page from the proof obligations, the paper's predicates and the "
                     "committed reports of `prove` and `check` (no solver runs). Paths are relative to the "
                     "working directory: run it from the repository's root.")
-    d.add_argument("--out", default=str(page.DEFAULT_OUT), metavar="FILE",
-                   help="the page to write, or with --check to compare (default: %(default)s)")
+    d.add_argument("--out", metavar="FILE",
+                   help=f"the page to write (default: print it on stdout, write nothing), or with --check the page "
+                        f"to compare (default with --check: {page.DEFAULT_OUT})")
     d.add_argument("--check", action="store_true",
                    help="write nothing; exit 1 with one line naming the first differing line when FILE differs "
                         "from the generated page")
