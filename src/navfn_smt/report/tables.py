@@ -73,6 +73,12 @@ def heartbeat(total: int, description: str, every: float = HEARTBEAT, stream=Non
     return advance
 
 
+def _rich_progress() -> Progress:
+    """The terminal's bar: description, bar, done/total, elapsed, remaining (on stderr, cleared at the end)."""
+    return Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                    TimeRemainingColumn(), console=err_console, transient=True)
+
+
 @contextlib.contextmanager
 def progress_bar(total: int, description: str, enabled: bool = True, every: float = HEARTBEAT):
     """Yields ``advance(n)``: a rich bar on stderr when it is a terminal, else a heartbeat
@@ -83,15 +89,7 @@ def progress_bar(total: int, description: str, enabled: bool = True, every: floa
     if not sys.stderr.isatty():
         yield heartbeat(total, description, every)
         return
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        console=err_console,
-        transient=True,
-    ) as prog:
+    with _rich_progress() as prog:
         task = prog.add_task(description, total=total)
         yield lambda n: prog.advance(task, n)
 
@@ -114,14 +112,6 @@ def progress_counts(description: str, enabled: bool = True, every: float = HEART
 
         yield beat
         return
-    with Progress(
-        TextColumn("{task.description}"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        console=err_console,
-        transient=True,
-    ) as prog:
+    with _rich_progress() as prog:
         task = prog.add_task(description, total=None)
         yield lambda done, total: prog.update(task, completed=done, total=total)
