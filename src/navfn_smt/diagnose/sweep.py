@@ -30,7 +30,6 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..nav2.params import PlannerParams
 from ..nav2.plugin import (
-    INT_MAX,
     LETHAL_OBSTACLE,
     Costmap,
     PluginRun,
@@ -38,6 +37,7 @@ from ..nav2.plugin import (
     _rounded_cells,
     costmap_world_to_map,
     create_plan,
+    max_cycles,
     plugin_map_to_world,
     plugin_world_to_map,
     tolerance_steps,
@@ -225,8 +225,8 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
     planned = []  # goals for the compiled loops
     fallback = []  # goals create_plan plans alone
     robot_ok, robot = plugin_world_to_map(cm, start.x, start.y)
-    max_cycles = max(nx, ny) * params.max_cycles_factor
-    exotic = not robot_ok or not 0 <= max_cycles <= INT_MAX
+    n_cycles = max_cycles(cm, params)  # None: the int product overflows
+    exotic = not robot_ok or n_cycles is None or n_cycles < 0
     for k, ((x, y), (wx, wy)) in enumerate(zip(cells.tolist(), gxy.tolist())):
         gc = costmap_world_to_map(cm, wx, wy)
         if gc is None:
@@ -261,13 +261,13 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         out_i[:, S.ST] = -1  # not for the compiled loops
         out_i[planned, S.ST] = S.S_PENDING
         wx, wy = np.ascontiguousarray(gxy[:, 0]), np.ascontiguousarray(gxy[:, 1])
-        buf = np.empty((max(max_cycles, 0) + 1, 2), np.float32)
-        touched = np.empty(4 * max(max_cycles, 0) + 4, np.int64)
+        buf = np.empty((max(n_cycles, 0) + 1, 2), np.float32)
+        touched = np.empty(4 * max(n_cycles, 0) + 4, np.int64)
         if params.use_astar:
             for lo in range(0, len(planned), ASTAR_GOALS_PER_CALL):
                 chunk = planned[lo:lo + ASTAR_GOALS_PER_CALL]
                 pts = S._sweep_astar(costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.pot, planner.pending,
-                                     planner.pb, planner.memo, tcell, max_cycles, planner.gradx, planner.grady, buf,
+                                     planner.pb, planner.memo, tcell, n_cycles, planner.gradx, planner.grady, buf,
                                      touched, out_i, out_f, pts, st, keep_paths, col_of, row_of, xs, xcells, xlen,
                                      ys, ycells, ylen, wx, wy)
                 report(done + lo + len(chunk), G)
@@ -282,7 +282,7 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
             while not st[S.DONE]:
                 pts = S._sweep_dijkstra(costs, nx, ny, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL,
                                         planner.pot, planner.pending, planner.pb, fill, st, curt, goal_of, newly,
-                                        tcell, max_cycles, planner.gradx, planner.grady, buf, touched, out_i, out_f,
+                                        tcell, n_cycles, planner.gradx, planner.grady, buf, touched, out_i, out_f,
                                         pts, keep_paths, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy,
                                         memo_cell)
                 report(done + int(np.count_nonzero(out_i[planned, S.ST] != S.S_PENDING)), G)

@@ -33,7 +33,7 @@ from typing import Optional
 
 import numpy as np
 
-from .plugin import Costmap, Pose, PluginRun, create_plan
+from .plugin import Costmap, Pose, PluginRun, costmap_axis_cell, create_plan, plugin_axis_cell
 
 # --------------------------------------------------------------------------- doubles in order
 MASK63 = (1 << 63) - 1
@@ -65,16 +65,12 @@ def hexf(x: float) -> str:
 # --------------------------------------------------------------------------- the two worldToMap
 def passes_truncating(w: float, origin: float, res: float, size: int) -> bool:
     """``Costmap2D::worldToMap`` on one axis (the quotient below 2^32, where the cast is defined)."""
-    if not w >= origin:
-        return False
-    return math.trunc((w - origin) / res) < size
+    return costmap_axis_cell(w, origin, res, size) is not None
 
 
 def rounds_off(w: float, origin: float, res: float, size: int) -> bool:
     """``NavfnPlanner::worldToMap`` fails on this axis although ``w >= origin`` (std::round = half away)."""
-    q = (w - origin) / res
-    f = math.floor(q)
-    return int(f) + (1 if q - f >= 0.5 else 0) >= size
+    return plugin_axis_cell(w, origin, res) >= size
 
 
 def offmap(w: float, origin: float, res: float, size: int) -> bool:
@@ -229,13 +225,7 @@ def centre_cells(origin: float, res: float, size: int) -> np.ndarray:
     """For each cell ``i``, the cell ``NavfnPlanner::worldToMap`` gives its centre
     ``origin + (i + 0.5) * res`` (computed in double): ``i + 1`` when the quotient comes out at
     ``i + 0.5`` or above, ``i`` when rounding made it fall below."""
-    out = np.empty(size, dtype=np.int64)
-    for i in range(size):
-        w = origin + (i + 0.5) * res
-        q = (w - origin) / res
-        f = math.floor(q)
-        out[i] = int(f) + (1 if q - f >= 0.5 else 0)
-    return out
+    return np.array([plugin_axis_cell(origin + (i + 0.5) * res, origin, res) for i in range(size)], dtype=np.int64)
 
 
 # --------------------------------------------------------------------------- the tolerance loop
@@ -278,12 +268,7 @@ def loop_cells(g: float, tolerance: float, origin: float, res: float) -> list:
     """The cells (one axis, std::round, off-map ones included) the tolerance loop's points round to."""
     from .plugin import tolerance_steps
 
-    out = []
-    for p in tolerance_steps(g - tolerance, g + tolerance, res).tolist():
-        q = (p - origin) / res
-        f = math.floor(q)
-        out.append(int(f) + (1 if q - f >= 0.5 else 0))
-    return out
+    return [plugin_axis_cell(p, origin, res) for p in tolerance_steps(g - tolerance, g + tolerance, res).tolist()]
 
 
 def tolerance_gap(origin: float, res: float, tolerance: float, lo: float, hi: float,

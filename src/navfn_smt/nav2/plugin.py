@@ -112,14 +112,20 @@ class Costmap:
         return int(self.costs.shape[0])
 
 
+def costmap_axis_cell(w: float, origin: float, res: float, size: int) -> Optional[int]:
+    """One axis of ``Costmap2D::worldToMap``: below the origin -> None; ``(w - o) / res``
+    truncated; not below ``size`` -> None."""
+    if w < origin:
+        return None
+    f = (w - origin) / res
+    return int(f) if f < size else None  # the truncated value is below the size exactly when f is
+
+
 def costmap_world_to_map(cm: Costmap, wx: float, wy: float) -> Optional[tuple[int, int]]:
-    """``Costmap2D::worldToMap``: below the origin -> None; ``(w - o) / res`` truncated; off -> None."""
-    if wx < cm.origin_x or wy < cm.origin_y:
-        return None
-    fx, fy = (wx - cm.origin_x) / cm.resolution, (wy - cm.origin_y) / cm.resolution
-    if fx >= cm.size_x or fy >= cm.size_y:  # the truncated value is below the size exactly when this fails
-        return None
-    return int(fx), int(fy)
+    """``Costmap2D::worldToMap``: the cell containing (wx, wy), or None off the map."""
+    mx = costmap_axis_cell(wx, cm.origin_x, cm.resolution, cm.size_x)
+    my = costmap_axis_cell(wy, cm.origin_y, cm.resolution, cm.size_y)
+    return None if mx is None or my is None else (mx, my)
 
 
 def _cast_overflows(cm: Costmap, pose: Pose) -> bool:
@@ -137,14 +143,27 @@ def _round(v: float) -> int:
     return int(f) + (1 if v - f >= 0.5 else 0)
 
 
+def plugin_axis_cell(w: float, origin: float, res: float) -> int:
+    """One axis of ``NavfnPlanner::worldToMap`` for ``w >= origin``: ``std::round((w - o) / res)``,
+    whatever the map's size (the value written before the bounds test)."""
+    return _round((w - origin) / res)
+
+
+def max_cycles(cm: Costmap, params: PlannerParams) -> Optional[int]:
+    """``getPlanFromPotential``'s ``max(size_x, size_y) * max_cycles_factor`` (int); None when the
+    product overflows int (undefined behaviour)."""
+    n = max(cm.size_x, cm.size_y) * params.max_cycles_factor
+    return n if -2**31 <= n <= INT_MAX else None
+
+
 def plugin_world_to_map(cm: Costmap, wx: float, wy: float) -> tuple[bool, Optional[tuple[int, int]]]:
     """``NavfnPlanner::worldToMap``: (ok, cell).  Below the origin the cell is never written
     (None); otherwise ``round((w - o) / res)`` is written *before* the bounds test, so a failed
     call still leaves a cell one past the map's edge in ``mx``/``my``."""
     if wx < cm.origin_x or wy < cm.origin_y:
         return False, None
-    mx = _round((wx - cm.origin_x) / cm.resolution)
-    my = _round((wy - cm.origin_y) / cm.resolution)
+    mx = plugin_axis_cell(wx, cm.origin_x, cm.resolution)
+    my = plugin_axis_cell(wy, cm.origin_y, cm.resolution)
     return (mx < cm.size_x and my < cm.size_y), (mx, my)
 
 
@@ -346,15 +365,15 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
 
     _, cell = plugin_world_to_map(cm, pose.x, pose.y)  # legal, so on the map
     run.best_cell = cell
-    max_cycles = max(cm.size_x, cm.size_y) * params.max_cycles_factor
-    if not -2**31 <= max_cycles <= INT_MAX:
+    n = max_cycles(cm, params)
+    if n is None:
         _fail(run, "UndefinedBehaviour", f"max_cycles = {max(cm.size_x, cm.size_y)} * {params.max_cycles_factor} "
                                          f"overflows int")
         return []
-    run.max_cycles = max_cycles
+    run.max_cycles = n
     try:
         runner = get_backend(backend).prepare(run.costs)
-        run.extraction, path = runner.extract(run.potential, cell, run.robot_cell, max_cycles)
+        run.extraction, path = runner.extract(run.potential, cell, run.robot_cell, n)
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
         return []
