@@ -4,8 +4,10 @@
 (height, width) uint8 array) and returns a :class:`Runner` for it, whose priority buffers
 hold ``capacity`` cells each (PRIORITYBUFSIZE, as in C++, when None; pass
 :func:`~navfn_smt.spec.propagation.unbounded_capacity` of the map for buffers that never drop); ``runner.run(start, goal, astar,
-trace=True)`` returns a :class:`~navfn_smt.spec.planner.PlanResult` that owns its arrays
-(nothing in it changes when the runner plans again); ``runner.run_batch(cases, astar)``
+trace=True, path_cycles=None, cycles=None)`` returns a :class:`~navfn_smt.spec.planner.PlanResult` that owns
+its arrays (nothing in it changes when the runner plans again; ``path_cycles`` and ``cycles``
+replace NavFn's budgets ``4 * nx`` and ``max(nx * ny / 20, nx + ny)``); ``runner.extract(potential,
+start, goal, path_cycles)`` runs calcPath alone; ``runner.run_batch(cases, astar)``
 plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
 """
 
@@ -29,7 +31,8 @@ class Runner(Protocol):
 
     capacity: int
 
-    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None) -> PlanResult: ...
+    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
+            cycles: Optional[int] = None) -> PlanResult: ...
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]: ...
 
@@ -51,9 +54,10 @@ class ReferenceRunner:
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
 
-    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None) -> PlanResult:
+    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
+            cycles: Optional[int] = None) -> PlanResult:
         return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
-                    path_cycles=path_cycles)
+                    path_cycles=path_cycles, cycles=cycles)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential: (exit, path; empty unless NEAR_GOAL)."""
@@ -99,7 +103,8 @@ class JitRunner:
         self.cycles = cycle_limit(self.nx, self.ny)
         self.path_cycles = path_cycle_limit(self.nx)
 
-    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None) -> PlanResult:
+    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
+            cycles: Optional[int] = None) -> PlanResult:
         from .jit import EXIT_UB, EXITS
 
         check_inputs(self.costs, start, goal)
@@ -107,7 +112,7 @@ class JitRunner:
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
         n = self.path_cycles if path_cycles is None else int(path_cycles)
-        reached, code, npath = p.run(start, goal, astar, self.cycles, n, trace)
+        reached, code, npath = p.run(start, goal, astar, self.cycles if cycles is None else int(cycles), n, trace)
         if code == EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         pot = p.pot.reshape(self.ny, self.nx).copy()

@@ -22,7 +22,6 @@ with the planner's own pieces:
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 from dataclasses import dataclass, field
 from typing import Optional
@@ -32,7 +31,6 @@ import numpy as np
 from ..nav2.params import PlannerParams
 from ..nav2.plugin import (
     INT_MAX,
-    LEGAL_BUT_NO_PLAN,
     POT_HIGH,
     Costmap,
     Pose,
@@ -294,15 +292,9 @@ def _repropagate(run: PluginRun, astar: bool, backend: str) -> dict:
 
 def _propagate(costs, start, goal, astar, backend, cycles, capacity) -> np.ndarray:
     from ..backends import get_backend
-    from ..spec.planner import plan
 
-    if backend == "reference":
-        return plan(costs, start, goal, astar=astar, cycles=cycles, capacity=capacity, record_trace=False,
-                    path_cycles=0).potential
     runner = get_backend(backend).prepare(costs, capacity)
-    if cycles is not None:
-        runner.cycles = cycles
-    return runner.run(start, goal, astar, trace=False, path_cycles=0).potential
+    return runner.run(start, goal, astar, trace=False, path_cycles=0, cycles=cycles).potential
 
 
 # ---------------------------------------------------------------------------- extraction

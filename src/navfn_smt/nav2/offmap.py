@@ -33,7 +33,7 @@ from typing import Optional
 
 import numpy as np
 
-from .plugin import Costmap, Pose, PluginRun, costmap_axis_cell, create_plan, plugin_axis_cell
+from .plugin import Costmap, Pose, costmap_axis_cell, create_plan, plugin_axis_cell
 
 # --------------------------------------------------------------------------- doubles in order
 MASK63 = (1 << 63) - 1
