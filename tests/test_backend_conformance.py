@@ -127,9 +127,11 @@ def test_extraction_alone_agrees_with_reference(backend, case, data):
     assert _extract(backend, costs, ref.potential, other, goal, n) == \
         _extract("reference", costs, ref.potential, other, goal, n)
 
+    cycles = data.draw(st.one_of(st.none(), st.integers(0, 2 * w * h)), label="propagation cycles")
+
     def budgeted(b):
         try:
-            return get_backend(b).prepare(costs).run(start, goal, astar, trace=True, path_cycles=n)
+            return get_backend(b).prepare(costs).run(start, goal, astar, trace=True, path_cycles=n, cycles=cycles)
         except UndefinedBehaviour:
             return "undefined"
 
