@@ -1,0 +1,185 @@
+"""Where the work of a long run goes: this process, local worker processes, or a Dask cluster.
+
+``difftest``, ``prove``, ``check`` and ``search`` cut their work into independent tasks (a
+chunk of a suite's cases, one obligation or part of one, one case of a size, one seed) and
+hand them to :func:`stream`, which yields each result once, as it arrives:
+
+- ``Engine(jobs=1)``: in this process, in order (no worker, no start-up cost);
+- ``Engine(jobs=N)``: a Dask ``LocalCluster`` of N single-threaded worker processes on loopback;
+- ``Engine(scheduler="tcp://host:8786")``: the Dask cluster at that address.  Its workers need
+  this package installed (the same version) and the files the tasks name (suites, proof files)
+  at the same paths.
+
+Scheduling is Dask's: a worker that dies takes no task with it, the scheduler gives its tasks to
+another worker (``distributed.scheduler.allowed-failures`` times at most, then the run fails
+naming the task).  At most ``window`` tasks are in flight, and a task's result is dropped once
+the caller has folded it in, so the driver's memory does not grow with the number of tasks.
+Results are keyed by the task's position, so a result reaches the caller exactly once.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import uuid
+from dataclasses import dataclass
+from typing import Callable, Iterable, Iterator, Optional, TypeVar
+
+from .errors import NavfnInputError
+
+T = TypeVar("T")
+R = TypeVar("R")
+
+CONNECT_TIMEOUT = 10.0  # seconds to reach a scheduler before giving up with an error
+
+
+@dataclass(frozen=True)
+class Engine:
+    """Where tasks run: ``jobs`` local worker processes, or the cluster at ``scheduler``.
+
+    ``jobs=None`` is ``--jobs auto``: one worker per CPU when the run is large enough to pay
+    for starting them (about 3 s), in this process otherwise (:meth:`for_work`)."""
+
+    jobs: Optional[int] = 1
+    scheduler: Optional[str] = None
+
+    @property
+    def serial(self) -> bool:
+        return self.scheduler is None and (self.jobs or 1) <= 1
+
+    def for_work(self, units: int, enough: int) -> "Engine":
+        """The engine to use for ``units`` of work: ``auto`` becomes local workers when
+        ``units >= enough`` and this process otherwise; an explicit choice stays."""
+        if self.jobs is not None or self.scheduler:
+            return self
+        return Engine(default_jobs() if units >= enough else 1)
+
+    def describe(self) -> str:
+        if self.scheduler:
+            return f"Dask cluster at {self.scheduler}"
+        return "this process" if self.jobs <= 1 else f"{self.jobs} local worker processes"
+
+
+def engine(jobs: Optional[int] = 1, scheduler: Optional[str] = None) -> Engine:
+    """The engine of ``--jobs N|auto`` / ``--scheduler ADDRESS``, checked (a one-line error otherwise)."""
+    if jobs == "auto":
+        jobs = None
+    if jobs is not None and (not isinstance(jobs, int) or jobs < 1):
+        raise NavfnInputError(f"--jobs {jobs!r}: must be a whole number of worker processes, at least 1")
+    if jobs is not None and jobs > 256:
+        raise NavfnInputError(f"--jobs {jobs}: at most 256 local worker processes (use --scheduler for a cluster)")
+    if scheduler is not None:
+        scheduler = scheduler.strip()
+        host = scheduler.split("://", 1)[-1]
+        if not host or ":" not in host or not host.rsplit(":", 1)[1].isdigit():
+            raise NavfnInputError(f"--scheduler {scheduler!r}: expected a Dask scheduler address HOST:PORT "
+                                  f"(for example tcp://127.0.0.1:8786)")
+    return Engine(jobs, scheduler or None)
+
+
+def _jobs(text: str):
+    if text == "auto":
+        return None
+    try:
+        return int(text)
+    except ValueError:
+        import argparse
+
+        raise argparse.ArgumentTypeError(f"expected a number of worker processes or 'auto', not {text!r}") from None
+
+
+def add_arguments(parser, what: str = "tasks") -> None:
+    """``--jobs N|auto`` and ``--scheduler ADDRESS`` on a subcommand's parser."""
+    parser.add_argument("--jobs", type=_jobs, default=None, metavar="N",
+                        help=f"{what} run on N local worker processes (a Dask LocalCluster); 1 runs in this "
+                             f"process; auto: one per CPU when the run is large enough to pay their start-up")
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="run on the Dask cluster whose scheduler is at ADDRESS (e.g. tcp://10.0.0.5:8786) "
+                             "instead of local processes; its workers need navfn-smt installed and the same files")
+
+
+@contextlib.contextmanager
+def client(eng: Engine):
+    """A ``distributed.Client`` for ``eng`` (a fresh LocalCluster for ``jobs``), closed at the end."""
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError:  # pragma: no cover - a declared dependency
+        raise NavfnInputError("Dask distributed is not installed (pip install distributed)") from None
+    if eng.scheduler:
+        try:
+            c = Client(eng.scheduler, timeout=CONNECT_TIMEOUT, set_as_default=False)
+        except (OSError, TimeoutError) as e:
+            raise NavfnInputError(f"--scheduler {eng.scheduler}: cannot reach a Dask scheduler "
+                                  f"({type(e).__name__}: {str(e).splitlines()[0] if str(e) else 'no answer'})") from None
+        with c:
+            yield c
+        return
+    if eng.jobs is None:
+        eng = Engine(default_jobs())
+    # one thread per worker: the tasks are CPU-bound Python, numba and solver code
+    cluster = LocalCluster(n_workers=eng.jobs, threads_per_worker=1, processes=True, dashboard_address=None,
+                           silence_logs=logging.ERROR, memory_limit=0, host="127.0.0.1")
+    try:
+        with Client(cluster, set_as_default=False) as c:
+            yield c
+    finally:
+        cluster.close()
+
+
+def stream(fn: Callable[[T], R], tasks: Iterable[T], eng: Engine, window: Optional[int] = None,
+           on_client: Optional[Callable] = None) -> Iterator[tuple[int, R]]:
+    """``(i, fn(task_i))`` for every task, each exactly once, in the order they finish.
+
+    ``tasks`` may be a generator: it is read only as far as ``window`` tasks ahead of the
+    results taken (default: four per worker).  ``on_client(client)`` is called once the
+    cluster is up (the worker-loss test uses it)."""
+    if eng.serial:
+        for i, t in enumerate(tasks):
+            yield i, fn(t)
+        return
+    from distributed import as_completed
+
+    with client(eng) as c:
+        if on_client is not None:
+            on_client(c)
+        workers = max(1, len(c.scheduler_info().get("workers", {})) or eng.jobs or 1)
+        window = window or 4 * workers
+        run = uuid.uuid4().hex[:12]
+        it = iter(enumerate(tasks))
+        pending = as_completed(loop=c.loop)
+        index = {}
+
+        def submit_next() -> bool:
+            for i, t in it:
+                f = c.submit(fn, t, key=f"navfn-{run}-{i}", pure=False)
+                index[f.key] = i
+                pending.add(f)
+                return True
+            return False
+
+        for _ in range(window):
+            if not submit_next():
+                break
+        seen: set[int] = set()
+        try:
+            for f in pending:
+                i = index.pop(f.key)
+                result = f.result()  # a task's own exception is raised here, as in the serial run
+                f.release()
+                if i in seen:  # pragma: no cover - as_completed yields each future once
+                    raise RuntimeError(f"task {i} returned twice")
+                seen.add(i)
+                submit_next()
+                yield i, result
+        finally:
+            for f in list(pending.futures):
+                f.cancel()
+
+
+def default_jobs() -> int:
+    """The number of CPUs this process may use (the default of ``--jobs`` where parallel runs pay)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
