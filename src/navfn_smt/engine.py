@@ -134,47 +134,58 @@ def stream(fn: Callable[[T], R], tasks: Iterable[T], eng: Engine, window: Option
     ``tasks`` may be a generator: it is read only as far as ``window`` tasks ahead of the
     results taken (default: four per worker).  ``on_client(client)`` is called once the
     cluster is up (the worker-loss test uses it)."""
-    if eng.serial:
-        for i, t in enumerate(tasks):
-            yield i, fn(t)
-        return
-    from distributed import as_completed
+    with session(eng, on_client) as run:
+        yield from run(fn, tasks, window)
 
+
+@contextlib.contextmanager
+def session(eng: Engine, on_client: Optional[Callable] = None):
+    """Yields ``run(fn, tasks, window=None)``, a :func:`stream` that keeps one cluster (or this
+    process) for several batches: work whose later tasks depend on earlier results (a split's
+    refinement rounds) starts its workers once."""
+    if eng.serial:
+        yield lambda fn, tasks, window=None: ((i, fn(t)) for i, t in enumerate(tasks))
+        return
     with client(eng) as c:
         if on_client is not None:
             on_client(c)
         workers = max(1, len(c.scheduler_info().get("workers", {})) or eng.jobs or 1)
-        window = window or 4 * workers
-        run = uuid.uuid4().hex[:12]
-        it = iter(enumerate(tasks))
-        pending = as_completed(loop=c.loop)
-        index = {}
+        yield lambda fn, tasks, window=None: _on_cluster(c, fn, tasks, window or 4 * workers)
 
-        def submit_next() -> bool:
-            for i, t in it:
-                f = c.submit(fn, t, key=f"navfn-{run}-{i}", pure=False)
-                index[f.key] = i
-                pending.add(f)
-                return True
-            return False
 
-        for _ in range(window):
-            if not submit_next():
-                break
-        seen: set[int] = set()
-        try:
-            for f in pending:
-                i = index.pop(f.key)
-                result = f.result()  # a task's own exception is raised here, as in the serial run
-                f.release()
-                if i in seen:  # pragma: no cover - as_completed yields each future once
-                    raise RuntimeError(f"task {i} returned twice")
-                seen.add(i)
-                submit_next()
-                yield i, result
-        finally:
-            for f in list(pending.futures):
-                f.cancel()
+def _on_cluster(c, fn, tasks, window: int):
+    from distributed import as_completed
+
+    run = uuid.uuid4().hex[:12]
+    it = iter(enumerate(tasks))
+    pending = as_completed(loop=c.loop)
+    index = {}
+
+    def submit_next() -> bool:
+        for i, t in it:
+            f = c.submit(fn, t, key=f"navfn-{run}-{i}", pure=False)
+            index[f.key] = i
+            pending.add(f)
+            return True
+        return False
+
+    for _ in range(window):
+        if not submit_next():
+            break
+    seen: set[int] = set()
+    try:
+        for f in pending:
+            i = index.pop(f.key)
+            result = f.result()  # a task's own exception is raised here, as in the serial run
+            f.release()
+            if i in seen:  # pragma: no cover - as_completed yields each future once
+                raise RuntimeError(f"task {i} returned twice")
+            seen.add(i)
+            submit_next()
+            yield i, result
+    finally:
+        for f in list(pending.futures):
+            f.cancel()
 
 
 def default_jobs() -> int:
