@@ -118,7 +118,7 @@ def client(eng: Engine):
     if eng.jobs is None:
         eng = Engine(default_jobs())
     # one thread per worker: the tasks are CPU-bound Python, numba and solver code
-    cluster = LocalCluster(n_workers=eng.jobs, threads_per_worker=1, processes=True, dashboard_address=None,
+    cluster = LocalCluster(n_workers=eng.jobs, threads_per_worker=1, processes=True, dashboard_address=":0",
                            silence_logs=logging.ERROR, memory_limit=0, host="127.0.0.1")
     try:
         with Client(cluster, set_as_default=False) as c:
