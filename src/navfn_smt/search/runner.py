@@ -24,18 +24,19 @@ def modes_list(mode: str) -> tuple[str, ...]:
     return ("astar", "dijkstra") if mode == "both" else (mode,)
 
 
-def _overflow_module():
+def _overflow_search():
+    """The overflow search and its modes (imported only when asked for)."""
     try:
-        from . import overflow
+        from .overflow import _modes, search_overflow
     except ImportError as e:
         raise NavfnInputError(f"the overflow search is not available in this installation "
                               f"(navfn_smt.search.overflow: {e})") from None
-    return overflow
+    return _modes, search_overflow
 
 
 def _overflow(mode, size, max_size, timeout, seed, progress) -> list:
-    return list(_overflow_module().search_overflow(mode, size=size, max_size=max_size, timeout=timeout, seed=seed,
-                                                   progress=progress))
+    search_overflow = _overflow_search()[1]
+    return list(search_overflow(mode, size=size, max_size=max_size, timeout=timeout, seed=seed, progress=progress))
 
 
 def _hunt_mode(task) -> tuple[list, Optional[dict]]:
@@ -65,7 +66,7 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
         check_size(*size)
     if max_size is not None:
         check_size(*max_size, what="--max-size")
-    modes = _overflow_module()._modes(mode) if kind == "overflow" else modes_list(mode)
+    modes = _overflow_search()[0](mode) if kind == "overflow" else modes_list(mode)
     share = timeout / len(modes)
     tasks = [(kind, m, size, max_size, share, seed, costs_range, progress) for m in modes]
     eng = eng.for_work(len(modes) if share >= PARALLEL_SHARE else 1, 2)
