@@ -251,6 +251,7 @@ def _proof_files(names) -> list[Path]:
 
 def cmd_prove(args) -> int:
     """Check the proof obligations; exit 1 when a verdict differs from the expected one."""
+    from .engine import engine
     from .report import proof_run
     from .report import proofs as report
     from .report.tables import progress_bar
@@ -261,8 +262,7 @@ def cmd_prove(args) -> int:
     files = _proof_files(args.files) if args.files else default_proof_files()
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
     _check_positive("--timeout", args.timeout)
-    if args.jobs < 1:
-        raise NavfnInputError("--jobs must be at least 1")
+    eng = engine(args.jobs, args.scheduler)
     _check_files(args.report, args.junit, args.markdown)
     witnesses = proof_run.witness_dir(args.witness_dir, (args.report, args.junit, args.markdown))
     for d in (args.smt2, witnesses):
@@ -271,7 +271,7 @@ def cmd_prove(args) -> int:
     solvers = tuple(args.solver) if args.solver else SOLVERS
     n = sum(len([s for s in semantics if s in o.expect]) for o in load_obligations(files))
     with progress_bar(n, "prove") as advance:
-        outcomes = run(files, semantics, args.timeout, args.jobs, solvers, progress=lambda o: advance(1),
+        outcomes = run(files, semantics, args.timeout, eng, solvers, progress=lambda o: advance(1),
                        bounds=not args.no_bound_search)
     witness_files = proof_run.write_witnesses(outcomes, witnesses)
     if args.smt2:
@@ -365,6 +365,7 @@ def cmd_check(args) -> int:
     import time
 
     from .check import runner as CR
+    from .engine import engine
     from .report import check as report
     from .search.runner import modes_list
 
@@ -375,8 +376,7 @@ def cmd_check(args) -> int:
     _check_positive("--timeout", args.timeout)
     _check_positive("--exhaustive", args.exhaustive, allow_zero=True)
     _check_positive("--budget", args.budget, allow_zero=True)
-    if args.jobs < 1:
-        raise NavfnInputError("--jobs must be at least 1")
+    eng = engine(args.jobs, args.scheduler)
     _check_files(args.json)
     if args.out:
         check_writable_dir(args.out)
@@ -387,7 +387,7 @@ def cmd_check(args) -> int:
         sizes = [tuple(args.size or (4, 4))]
     t0 = time.perf_counter()
     try:
-        results, skipped = _check_sizes(args, names, sizes, modes, lo, hi, t0)
+        results, skipped = _check_sizes(args, names, sizes, modes, lo, hi, t0, eng)
     finally:
         report.stop_progress()
     report.table(results)
@@ -425,8 +425,8 @@ def cmd_check(args) -> int:
     return 0 if all(r.status == "proved" for r in results) else 1
 
 
-def _check_sizes(args, names, sizes, modes, lo, hi, t0):
-    """Check each size in turn until --budget runs out; the results and the sizes skipped."""
+def _check_sizes(args, names, sizes, modes, lo, hi, t0, eng):
+    """Check each size in turn on ``eng`` until --budget runs out; the results and the sizes skipped."""
     import time
 
     from .check import runner as CR
@@ -440,7 +440,7 @@ def _check_sizes(args, names, sizes, modes, lo, hi, t0):
             continue
         if not open_names:
             break
-        got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, args.jobs,
+        got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, eng,
                                 args.start, args.goal, args.ends, int(args.exhaustive),
                                 progress=report.progress(f"{nx}x{ny}"))
         for n in list(open_names):
@@ -462,16 +462,18 @@ def _largest(results, name):
 # --------------------------------------------------------------------------------- search
 def cmd_search(args) -> int:
     """Hunt counterexamples of one kind (``--summary SUITE``: count every kind on a suite)."""
+    from .engine import engine
     from .report import search as report
     from .search.runner import modes_list, run_search
 
+    eng = engine(args.jobs, args.scheduler)
     _check_files(args.json)
     if args.summary:
         if args.kind:
             raise NavfnInputError("give either a KIND or --summary SUITE, not both")
         from .search.summary import summarize
 
-        s = summarize(Path(args.summary), modes_list(args.mode), progress=report.progress_line)
+        s = summarize(Path(args.summary), modes_list(args.mode), progress=report.progress_line, eng=eng)
         report.summary_table(s)
         if args.json:
             report.write_summary_json(args.json, s)
@@ -485,7 +487,7 @@ def cmd_search(args) -> int:
     if args.out:
         check_writable_dir(args.out)
     findings, tried = run_search(args.kind, args.mode, args.size, args.max_size, args.timeout, args.seed,
-                                 costs_range, progress=report.progress_line)
+                                 costs_range, progress=report.progress_line, eng=eng)
     rows = [report.finding_row(f, s) for f, s in zip(findings, report.save_findings(findings, args.out))]
     report.table(args.kind, rows, modes_list(args.mode))
     if args.json:
@@ -546,6 +548,7 @@ def build_parser() -> argparse.ArgumentParser:
     from .report.docs_command import register as register_docs
     from .difftest.record_cli import register as register_record
     from .difftest.runner import MODE_CHOICES
+    from .engine import add_arguments as add_engine_arguments
     from .maps.mapserver import DEFAULT_DISTRO, DISTROS
     from .maps.suite_cli import register as register_generate
     from .check.bounded import CHECKABLE as CHECK_PROPERTIES
@@ -660,7 +663,7 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--semantics", choices=(*SEMANTICS, "both"), default="both",
                     help="real (no rounding), fp32 (bit-precise IEEE-754) or both")
     pr.add_argument("--timeout", type=float, default=30.0, metavar="S", help="seconds per solver query")
-    pr.add_argument("--jobs", type=int, default=1, metavar="N", help="obligations checked in parallel")
+    add_engine_arguments(pr, "obligations (each in each semantics)")
     pr.add_argument("--solver", action="append", choices=SOLVERS,
                     help="solvers of the portfolio (repeatable; default: all)")
     pr.add_argument("--report", metavar="FILE.json", help="machine-readable report")
@@ -721,7 +724,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="evaluate an undecided query at every point of its cost box when the box has at most this "
                     "many points (numpy, about 5 million points a second)")
     ck.add_argument("--budget", type=float, metavar="S", help="with --max-size: stop starting new sizes after this many seconds")
-    ck.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes exploring cases")
+    add_engine_arguments(ck, "cases")
     ck.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="fix the start cell (default: every one)")
     ck.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"), help="fix the goal cell (default: every one)")
     ck.add_argument("--ends", choices=("any", "passable"), default="any",
@@ -752,6 +755,7 @@ def build_parser() -> argparse.ArgumentParser:
     se.add_argument("--json", metavar="FILE", help="write the findings (or the summary) as JSON")
     se.add_argument("--summary", metavar="SUITE",
                     help="instead of hunting, count how often each kind occurs on a suite (JIT backend)")
+    add_engine_arguments(se, "the modes' hunts (the maps of --summary)")
     se.set_defaults(func=cmd_search)
 
     register_diagnose(sub)

@@ -15,10 +15,10 @@ from __future__ import annotations
 import math
 
 import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
+from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from . import properties as P
 from .bounded import CHECKABLE, Case, cases, explore
@@ -28,6 +28,9 @@ INDUCTION = {
     "queues-obstacle-free": ("ObstacleFreeQueue", "PendingMatchesBuffers"),
     "no-path-before-start-potential": ("NoPathWithoutFinitePotential",),
 }
+PARALLEL_FROM = 200  # --jobs auto: local workers from this many cases of a size on
+BATCH = 4  # cases per task: a case of a small size takes milliseconds, a task's round trip about as much
+
 NOT_INDUCTIVE = {
     "valid-path": "its induction (FinitePotentialPath, ValidPath) has links that are open in float32 "
                   "(see `navfn-smt prove`); and a lethal goal cell breaks it at every size",
@@ -70,8 +73,10 @@ def _domain(semantics: str):
 
 
 def _explore_job(args):
-    case, names, lo, hi, semantics, timeout, limit = args
-    return explore(case, names, lo, hi, _domain(semantics), timeout=timeout, exhaustive_limit=limit)
+    """The exploration of each case of a batch (a task: run by a worker, or in this process)."""
+    batch, names, lo, hi, semantics, timeout, limit = args
+    return [explore(case, names, lo, hi, _domain(semantics), timeout=timeout, exhaustive_limit=limit)
+            for case in batch]
 
 
 def replay(case: Case, costs: dict, name: str):
@@ -82,9 +87,11 @@ def replay(case: Case, costs: dict, name: str):
 
 
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
-                   timeout: float = 60.0, jobs: int = 1, start=None, goal=None, ends: str = "any",
+                   timeout: float = 60.0, jobs=1, start=None, goal=None, ends: str = "any",
                    exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None) -> dict:
-    """Every case of the size; returns ``{property: SizeResult}``."""
+    """Every case of the size; returns ``{property: SizeResult}``, the same wherever the cases
+    run.  ``jobs``: an :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number
+    of cases), or a number of local workers."""
     check_size(nx, ny)
     _domain(semantics)
     if not (timeout > 0 and math.isfinite(timeout)):
@@ -98,13 +105,10 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     todo = list(cases(nx, ny, modes, start, goal, ends))
     out = {n: SizeResult((nx, ny), n, "proved", cases=len(todo)) for n in names}
     t0 = time.perf_counter()
-    work = [(c, tuple(names), lo, hi, semantics, timeout, exhaustive_limit) for c in todo]
-    if jobs > 1:
-        with ProcessPoolExecutor(max_workers=jobs) as ex:
-            results = ex.map(_explore_job, work, chunksize=4)
-            _collect(results, out, len(work), progress)
-    else:
-        _collect(map(_explore_job, work), out, len(work), progress)
+    eng = jobs if isinstance(jobs, Engine) else Engine(max(1, int(jobs)))
+    work = [(tuple(todo[k:k + BATCH]), tuple(names), lo, hi, semantics, timeout, exhaustive_limit)
+            for k in range(0, len(todo), BATCH)]
+    _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), out, len(todo), progress)
     for r in out.values():
         r.seconds = time.perf_counter() - t0
         if r.counterexample is None and r.cases_unknown:
@@ -112,29 +116,45 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     return out
 
 
-def _collect(results, out: dict, total: int, progress) -> None:
-    for i, cr in enumerate(results, 1):
-        case = cr.case
-        for name, pr in cr.results.items():
-            r = out[name]
-            r.paths += cr.paths
-            r.queries += pr.queries + cr.flip_queries
-            r.decided_by_intervals += cr.decided_by_intervals
-            if pr.status == "holds":
-                r.cases_holding += 1
-            elif pr.status == "unknown":
-                r.cases_unknown += 1
-                r.unknown_cases.append(_case_json(case) | {"reason": pr.reason})
-            elif pr.status == "refuted" and r.counterexample is None:
-                arr, run, why = replay(case, pr.counterexample, name)
-                if why is None:  # the spec does not confirm it: the encoding is wrong, never report it
-                    raise RuntimeError(f"{name}: the solver's counterexample {_case_json(case)} costs "
-                                       f"{pr.counterexample} does not replay on the spec")
-                r.status = "refuted"
-                r.counterexample = _case_json(case) | {"costs": arr.tolist(), "reason": why, "exit": run.exit,
-                                                       "start_potential": float(run.start_potential)}
-        if progress:
-            progress(i, total, cr)
+def _collect(batches, out: dict, total: int, progress) -> None:
+    """Fold ``(index, [case result, ...])`` batches, arriving in any order, into ``out`` in
+    index order: counts, unknown cases and the counterexample (that of the first case refuting
+    a property) are those of a run in order.  ``progress`` hears of every case as it arrives."""
+    waiting: dict = {}
+    done = nxt = 0
+    for i, results in batches:
+        waiting[i] = results
+        for cr in results:
+            done += 1
+            if progress:
+                progress(done, total, cr)
+        while nxt in waiting:
+            for cr in waiting.pop(nxt):
+                _fold(cr, out)
+            nxt += 1
+
+
+def _fold(cr, out: dict) -> None:
+    """One case's results added to ``out`` (the counterexample replayed on the spec first)."""
+    case = cr.case
+    for name, pr in cr.results.items():
+        r = out[name]
+        r.paths += cr.paths
+        r.queries += pr.queries + cr.flip_queries
+        r.decided_by_intervals += cr.decided_by_intervals
+        if pr.status == "holds":
+            r.cases_holding += 1
+        elif pr.status == "unknown":
+            r.cases_unknown += 1
+            r.unknown_cases.append(_case_json(case) | {"reason": pr.reason})
+        elif pr.status == "refuted" and r.counterexample is None:
+            arr, run, why = replay(case, pr.counterexample, name)
+            if why is None:  # the spec does not confirm it: the encoding is wrong, never report it
+                raise RuntimeError(f"{name}: the solver's counterexample {_case_json(case)} costs "
+                                   f"{pr.counterexample} does not replay on the spec")
+            r.status = "refuted"
+            r.counterexample = _case_json(case) | {"costs": arr.tolist(), "reason": why, "exit": run.exit,
+                                                   "start_potential": float(run.start_potential)}
 
 
 def _case_json(case: Case) -> dict:

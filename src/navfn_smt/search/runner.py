@@ -1,38 +1,61 @@
 """``navfn-smt search KIND``: one hunt per mode, at one size or growing up to a maximum.
 
 The kind ``overflow`` is hunted by :mod:`navfn_smt.search.overflow` (imported only when
-asked for); every other kind by :mod:`.hunt`.
+asked for); every other kind by :mod:`.hunt`.  Each mode's hunt is one task of the
+:mod:`~navfn_smt.engine` with its share of the time budget: the modes run side by side when
+there are workers, one after the other in this process otherwise; findings come in mode order.
 """
 
 from __future__ import annotations
 
 from typing import Optional
 
+from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_growing
 from .kinds import KINDS, SEARCH_KINDS
 
 DEFAULT_SIZE = {"cost": (5, 7)}
 DEFAULT_HUNT_SIZE = (8, 8)  # the other kinds: hunted here, then shrunk
+PARALLEL_SHARE = 10.0  # --jobs auto: modes side by side when each has this many seconds (workers start in ~3 s)
 
 
 def modes_list(mode: str) -> tuple[str, ...]:
     return ("astar", "dijkstra") if mode == "both" else (mode,)
 
 
-def _overflow(mode, size, max_size, timeout, seed, progress) -> list:
+def _overflow_search():
+    """The overflow search and its modes (imported only when asked for)."""
     try:
-        from .overflow import search_overflow
+        from .overflow import _modes, search_overflow
     except ImportError as e:
         raise NavfnInputError(f"the overflow search is not available in this installation "
                               f"(navfn_smt.search.overflow: {e})") from None
+    return _modes, search_overflow
+
+
+def _overflow(mode, size, max_size, timeout, seed, progress) -> list:
+    search_overflow = _overflow_search()[1]
     return list(search_overflow(mode, size=size, max_size=max_size, timeout=timeout, seed=seed, progress=progress))
 
 
+def _hunt_mode(task) -> tuple[list, Optional[dict]]:
+    """One mode's hunt (a task): its findings (none or one) and, with ``max_size``, the sizes tried."""
+    kind, m, size, max_size, share, seed, costs_range, progress = task
+    if kind == "overflow":
+        return _overflow(m, size, max_size, share, seed, progress), None
+    if max_size is not None:
+        f, t = hunt_growing(kind, m, max_size, share, seed, costs_range, progress)
+        return [f] if f is not None else [], {"mode": m, "sizes": t}
+    f = hunt(kind, m, tuple(size or DEFAULT_SIZE.get(kind, DEFAULT_HUNT_SIZE)), share, seed, costs_range, progress)
+    return [f] if f is not None else [], None
+
+
 def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout: float = 60.0, seed: int = 0,
-               costs_range=DEFAULT_COSTS, progress=None) -> tuple[list, list]:
+               costs_range=DEFAULT_COSTS, progress=None, eng: Engine = Engine(1)) -> tuple[list, list]:
     """The findings of one search (per mode, at most one each), and per mode what sizes were
-    tried with ``max_size`` (``[]`` otherwise)."""
+    tried with ``max_size`` (``[]`` otherwise, and for ``overflow``).  Each mode hunts for its
+    share of ``timeout`` on ``eng`` (``auto``: side by side when the share pays for workers)."""
     if kind not in SEARCH_KINDS:
         raise NavfnInputError(f"unknown search kind {kind!r} (choose from {', '.join(SEARCH_KINDS)})")
     if not (timeout > 0 and timeout < float("inf")):
@@ -43,20 +66,13 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
         check_size(*size)
     if max_size is not None:
         check_size(*max_size, what="--max-size")
-    if kind == "overflow":
-        return _overflow(mode, size, max_size, timeout, seed, progress), []
-    modes = modes_list(mode)
+    modes = _overflow_search()[0](mode) if kind == "overflow" else modes_list(mode)
     share = timeout / len(modes)
-    findings, tried = [], []
-    for m in modes:
-        if max_size is not None:
-            f, t = hunt_growing(kind, m, max_size, share, seed, costs_range, progress)
-            tried.append({"mode": m, "sizes": t})
-        else:
-            f = hunt(kind, m, tuple(size or DEFAULT_SIZE.get(kind, DEFAULT_HUNT_SIZE)), share, seed, costs_range,
-                     progress)
-        if f is not None:
-            findings.append(f)
+    tasks = [(kind, m, size, max_size, share, seed, costs_range, progress) for m in modes]
+    eng = eng.for_work(len(modes) if share >= PARALLEL_SHARE else 1, 2)
+    got = dict(stream(_hunt_mode, tasks, eng))
+    findings = [f for i in range(len(modes)) for f in got[i][0]]
+    tried = [got[i][1] for i in range(len(modes)) if got[i][1] is not None]
     return findings, tried
 
 

@@ -13,6 +13,9 @@ screens in :mod:`.fast`):
 * int-conversion: calcPath's fallback converts an unreached potential to int (exit
   high_potential), with the start unreached or mid-path;
 * cost: the gap of every returned path (properties.cost_gap), its ratio path/optimum.
+
+Each map is one task of the :mod:`~navfn_smt.engine`; the maps' counts are merged in suite
+order whatever order they arrive in, so the summary is the same wherever they ran.
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from ..engine import Engine, stream
 from ..maps.suite import discover, load_map
 from ..spec.extraction import ExtractionExit
 from . import fast
@@ -31,6 +35,7 @@ from .kinds import EXITS, plan_batch
 PAPER = {"turn_per_step_percent": 1.91, "oscillation_per_step_percent": 0.13}
 _NEAR = EXITS.index(ExtractionExit.NEAR_GOAL)
 _HIGH = EXITS.index(ExtractionExit.HIGH_POTENTIAL)
+PARALLEL_FROM = 40  # --jobs auto: local workers from this many maps on
 
 
 def _zero() -> dict:
@@ -117,21 +122,38 @@ def finish(acc: dict) -> dict:
     return r
 
 
-def summarize(suite: Path, modes, progress: Optional[Callable[[str], None]] = None) -> dict:
-    """Per mode and per category, and over the whole suite per mode."""
+def _map_counts(task) -> tuple[str, dict]:
+    """One map's category and counts per mode (a task: run by a worker, or in this process)."""
+    directory, root, modes = task
+    smap = load_map(directory, root)
+    per_mode = {}
+    for m in modes:
+        per_mode[m] = _zero()
+        _measure(smap, m, per_mode[m])
+    return smap.category, per_mode
+
+
+def summarize(suite: Path, modes, progress: Optional[Callable[[str], None]] = None,
+              eng: Engine = Engine(1)) -> dict:
+    """Per mode and per category, and over the whole suite per mode; the maps measured on
+    ``eng`` (``auto``: local workers for a large suite)."""
     root = Path(suite)
     dirs = discover(root)
     t0 = time.perf_counter()
     per_mode = {m: _zero() for m in modes}
     per_cat: dict = {}
     last = t0
-    for k, d in enumerate(dirs):
-        smap = load_map(d, root)
-        for m in modes:
-            one = _zero()
-            _measure(smap, m, one)
-            _merge(per_mode[m], one)
-            _merge(per_cat.setdefault((smap.category, m), _zero()), one)
+    waiting: dict = {}
+    nxt = 0
+    tasks = [(d, root, tuple(modes)) for d in dirs]
+    for k, (i, got) in enumerate(stream(_map_counts, tasks, eng.for_work(len(dirs), PARALLEL_FROM))):
+        waiting[i] = got
+        while nxt in waiting:  # merged in suite order: ties (the largest gap's case) as in order
+            category, counts = waiting.pop(nxt)
+            for m in modes:
+                _merge(per_mode[m], counts[m])
+                _merge(per_cat.setdefault((category, m), _zero()), counts[m])
+            nxt += 1
         if progress and (time.perf_counter() - last > 5.0 or k + 1 == len(dirs)):
             progress(f"[search --summary] {k + 1}/{len(dirs)} maps, {time.perf_counter() - t0:.1f} s")
             last = time.perf_counter()

@@ -85,14 +85,39 @@ def load_obligations(paths) -> list[Obligation]:
             spec.loader.exec_module(mod)
         except (Exception, SystemExit) as e:  # a broken proof file is the user's input
             raise NavfnInputError(f"{p}: cannot load ({type(e).__name__}: {e})") from None
-        obs = [v for v in vars(mod).values() if isinstance(v, Obligation)]
-        if not obs:
-            raise NavfnInputError(f"{p}: defines no obligations")
-        for o in obs:
-            o.source = str(p)
-        found.extend(obs)
+        found.extend(_module_obligations(p, mod))
     names = [o.name for o in found]
     dup = {n for n in names if names.count(n) > 1}
     if dup:
         raise NavfnInputError(f"obligations defined twice: {', '.join(sorted(dup))}")
     return found
+
+
+def load_obligations_from(path, source: bytes) -> list[Obligation]:
+    """The obligations of the proof file ``path`` whose contents are ``source``: read from the
+    file when it is there with those contents, run from ``source`` otherwise (a worker of a
+    remote cluster, where the driver's file does not exist).  Either way their ``source`` is
+    ``path``, the driver's name for the file."""
+    p = Path(path)
+    try:
+        if p.is_file() and p.read_bytes() == source:
+            return load_obligations([p])
+    except OSError:
+        pass
+    mod = importlib.util.module_from_spec(importlib.util.spec_from_loader(f"navfn_proofs.{p.stem}", loader=None))
+    mod.__file__ = str(p)
+    try:
+        exec(compile(source, str(p), "exec"), vars(mod))
+    except (Exception, SystemExit) as e:  # as for a file: a broken proof file is the user's input
+        raise NavfnInputError(f"{p}: cannot load ({type(e).__name__}: {e})") from None
+    return _module_obligations(p, mod)
+
+
+def _module_obligations(p: Path, mod) -> list[Obligation]:
+    """The obligations defined at module level by ``mod``, the proof file ``p`` run."""
+    obs = [v for v in vars(mod).values() if isinstance(v, Obligation)]
+    if not obs:
+        raise NavfnInputError(f"{p}: defines no obligations")
+    for o in obs:
+        o.source = str(p)
+    return obs

@@ -1,23 +1,27 @@
 """Run proof obligations: every obligation of the given files in every requested semantics.
 
-Each (obligation, semantics) pair is one job; ``jobs`` worker processes take them, each
-loading the proof file itself (obligations hold functions, which do not travel between
-processes).  Solving goes through :func:`solve_query`: the solver portfolio when it is
-available, Z3 alone otherwise.
+Each (obligation, semantics) pair is one task of the :mod:`~navfn_smt.engine` (this process,
+local workers or a Dask cluster).  A task carries its proof file's path and contents, and the
+worker loads the obligation itself (obligations hold functions, which do not travel between
+processes): from the file, or from the contents where the file is not (a remote worker).
+Solving goes through :func:`solve_query`: the solver portfolio when it is available, Z3 alone
+otherwise.
 """
 
 from __future__ import annotations
 
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Callable, Optional, Union
 
+from ..engine import Engine, default_jobs, stream
 from ..errors import NavfnInputError
 from . import codec
 from .checking import Outcome, check, solve_z3
-from .obligation import load_obligations
+from .obligation import load_obligations, load_obligations_from
 
 SEMANTICS = ("real", "fp32")
+PARALLEL_FROM = 4  # --jobs auto: local workers from this many (obligation, semantics) tasks on, if the CPUs allow
 
 
 def solve_query(solvers: tuple):
@@ -44,37 +48,67 @@ def solve_query(solvers: tuple):
     return solve
 
 
-def _job(path: str, name: str, semantics: str, timeout: float, solvers: tuple, bounds: bool = True) -> Outcome:
-    ob = next(o for o in load_obligations([path]) if o.name == name)
-    return check(ob, semantics, timeout, solve_query(solvers), bounds=bounds)
+@dataclass(frozen=True)
+class Task:
+    """One obligation in one semantics, with what a worker needs to check it: the proof
+    file's path and contents, the time limit, the solvers and whether to search bounds."""
+
+    path: str
+    source: bytes
+    name: str
+    semantics: str
+    timeout: float
+    solvers: tuple
+    bounds: bool = True
 
 
-def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: int = 1, solvers=("z3",),
+def _job(task: Task) -> Outcome:
+    """The verdict of one task (run by a worker, or in this process)."""
+    ob = next(o for o in load_obligations_from(task.path, task.source) if o.name == task.name)
+    return check(ob, task.semantics, task.timeout, solve_query(task.solvers), bounds=task.bounds)
+
+
+def tasks(paths, semantics=SEMANTICS, timeout: float = 30.0, solvers=("z3",), bounds: bool = True) -> list[Task]:
+    """Every (obligation, semantics) of the proof files that has an expected verdict, in
+    file, obligation and semantics order (the order of the results)."""
+    sources = {}
+    out = []
+    for o in load_obligations(paths):
+        if o.source not in sources:
+            sources[o.source] = Path(o.source).read_bytes()
+        out.extend(Task(o.source, sources[o.source], o.name, s, timeout, tuple(solvers), bounds)
+                   for s in semantics if s in o.expect)
+    return out
+
+
+def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: Union[Engine, int] = 1, solvers=("z3",),
         progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True) -> list[Outcome]:
+    """The outcome of every obligation of ``paths`` in every semantics it expects a verdict in,
+    in the order of :func:`tasks` whatever the order they finish in.  ``jobs``: an
+    :class:`~navfn_smt.engine.Engine` (``auto`` resolved here), or a number of local workers."""
     if not (timeout > 0 and timeout < float("inf")):
         raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
-    obligations = load_obligations(paths)
-    work = [(o.source, o.name, s) for o in obligations for s in semantics if s in o.expect]
+    work = tasks(paths, semantics, timeout, solvers, bounds)
     if not work:
         raise NavfnInputError("no obligation to check in the requested semantics")
-    outcomes = []
-    if jobs <= 1:
-        for w in work:
-            o = _job(*w, timeout, tuple(solvers), bounds)
-            outcomes.append(o)
-            if progress:
-                progress(o)
-    else:
-        with ProcessPoolExecutor(max_workers=jobs) as ex:
-            futs = [ex.submit(_job, *w, timeout, tuple(solvers), bounds) for w in work]
-            for f in as_completed(futs):
-                o = f.result()
-                outcomes.append(o)
-                if progress:
-                    progress(o)
-    order = {(w[1], w[2]): i for i, w in enumerate(work)}
-    outcomes.sort(key=lambda o: order[(o.name, o.semantics)])
-    return outcomes
+    eng = jobs if isinstance(jobs, Engine) else Engine(max(1, int(jobs)))
+    got: dict[int, Outcome] = {}
+    for i, o in stream(_job, work, auto_engine(eng, len(work), solvers)):
+        got[i] = o
+        if progress:
+            progress(o)
+    return [got[i] for i in range(len(work))]
+
+
+def auto_engine(eng: Engine, tasks: int, solvers) -> Engine:
+    """``--jobs auto`` for ``tasks`` queries: local workers only when every worker can have a
+    CPU for each solver of the portfolio (each query already runs one process per solver, and
+    their time limits are wall-clock: workers that share the CPUs with them turn proofs into
+    timeouts), and at least two workers result; this process otherwise (on 2 CPUs, always)."""
+    if eng.jobs is not None or eng.scheduler:
+        return eng
+    workers = default_jobs() // max(1, len(tuple(solvers)))
+    return Engine(workers if workers >= 2 and tasks >= PARALLEL_FROM else 1)
 
 
 def proofs_dir() -> Path:

@@ -1,0 +1,104 @@
+"""``prove``, ``check`` and ``search --summary`` give the same results wherever their tasks run.
+
+Each run in this process (``Engine(jobs=1)``) is held against the same run on a real Dask
+cluster of two worker processes (``--scheduler``), and one run of each against ``--jobs 2``:
+the verdicts, counts and counterexamples must be equal, only the timings may differ.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import subprocess
+import sys
+
+import pytest
+
+from navfn_smt.engine import Engine
+
+QUICK = ("update_never_raises", "unreached_cell_stays_put", "push_admits_only_passable_cells_on_the_map")
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """A Dask cluster of two single-threaded worker processes, closed after the module."""
+    from distributed import LocalCluster
+
+    c = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None, host="127.0.0.1")
+    try:
+        yield c
+    finally:
+        c.close()
+
+
+@pytest.fixture(scope="module")
+def proof_file(tmp_path_factory):
+    """A proof file of three quick obligations of the package (one refuted in real semantics)."""
+    p = tmp_path_factory.mktemp("proofs") / "quick.py"
+    p.write_text("from navfn_smt.proofs.monotonicity import update_never_raises\n"
+                 "from navfn_smt.proofs.no_path import unreached_cell_stays_put\n"
+                 "from navfn_smt.proofs.queues import push_admits_only_passable_cells_on_the_map\n")
+    return p
+
+
+def _outcomes(outcomes) -> list:
+    """What a proof run decides: every outcome without its time."""
+    return [{k: v for k, v in dataclasses.asdict(o).items() if k != "seconds"} for o in outcomes]
+
+
+def _size_results(results: dict) -> dict:
+    """What a check of one size decides: every field but the time."""
+    return {n: {k: v for k, v in dataclasses.asdict(r).items() if k != "seconds"} for n, r in results.items()}
+
+
+def _summary(s: dict) -> dict:
+    return {k: v for k, v in s.items() if k != "seconds"}
+
+
+def test_prove_same_on_a_cluster(cluster, proof_file):
+    from navfn_smt.smt.runner import run
+
+    here = run([proof_file], timeout=30, jobs=Engine(1), solvers=("z3",))
+    assert [(o.name, o.semantics) for o in here] == [(n, s) for n in QUICK for s in ("real", "fp32")]
+    assert all(o.as_expected for o in here)
+    assert any(o.status == "refuted" and o.witness for o in here)
+    there = run([proof_file], timeout=30, jobs=Engine(scheduler=cluster.scheduler_address), solvers=("z3",))
+    assert _outcomes(there) == _outcomes(here)
+    local = run([proof_file], timeout=30, jobs=Engine(jobs=2), solvers=("z3",))
+    assert _outcomes(local) == _outcomes(here)
+
+
+def test_a_worker_without_the_proof_file_loads_it_from_its_contents(proof_file, tmp_path):
+    """A remote worker: the driver's path does not exist there, the contents travel with the task."""
+    from navfn_smt.smt.runner import Task, _job
+
+    gone = tmp_path / "elsewhere" / "quick.py"
+    o = _job(Task(str(gone), proof_file.read_bytes(), "update_never_raises", "real", 30.0, ("z3",)))
+    assert (o.name, o.status) == ("update_never_raises", "proved")
+
+
+def test_check_same_on_a_cluster(cluster):
+    from navfn_smt.check.runner import check_one_size
+
+    args = (("valid-path",), 3, 4, (True, False), 50, 90)
+    here = check_one_size(*args, timeout=60, jobs=Engine(1))
+    assert here["valid-path"].status == "refuted" and here["valid-path"].cases == 32
+    there = check_one_size(*args, timeout=60, jobs=Engine(scheduler=cluster.scheduler_address))
+    assert _size_results(there) == _size_results(here)
+
+
+def test_summary_same_on_a_cluster(cluster):
+    from navfn_smt.cli import EXAMPLE_SUITE
+    from navfn_smt.search.summary import summarize
+
+    here = summarize(EXAMPLE_SUITE, ("astar", "dijkstra"), eng=Engine(1))
+    assert here["maps"] == 13 and here["total"]["astar"]["cases"] > 0
+    there = summarize(EXAMPLE_SUITE, ("astar", "dijkstra"), eng=Engine(scheduler=cluster.scheduler_address))
+    assert _summary(there) == _summary(here)
+
+
+def test_prove_with_no_scheduler_there_is_one_line_and_exit_2(proof_file):
+    r = subprocess.run([sys.executable, "-m", "navfn_smt", "prove", str(proof_file), "--scheduler",
+                        "tcp://127.0.0.1:1"], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("navfn-smt: error: --scheduler tcp://127.0.0.1:1"), r.stderr
