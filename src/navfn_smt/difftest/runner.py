@@ -127,6 +127,7 @@ class Task:
     lo: int
     hi: int
     max_details: int = 20
+    counted: Optional[int] = None  # the map's cases as counted when the task was made
 
 
 def _stamp(map_dir: str) -> tuple:
@@ -149,6 +150,9 @@ def _inputs(map_dir: str, root: str, mode: str, stamp: tuple):
 def run_task(t: Task) -> TaskOutcome:
     """Cases ``lo..hi`` of one map in one mode, compared with the golden file."""
     smap, g, full_pos, rel = _inputs(t.map_dir, t.root, t.mode, _stamp(t.map_dir))
+    if t.hi > len(smap.cases) or t.counted not in (None, len(smap.cases)):
+        raise NavfnInputError(f"{smap.directory / 'test.txt'}: has {len(smap.cases)} cases, not the "
+                              f"{t.counted or t.hi} counted (changed during the run?)")
     runner = get_backend(t.backend).prepare(smap.costs)
     astar = t.mode == "astar"
     out = TaskOutcome(rel, smap.category, t.mode, t.hi - t.lo, 0, 0.0)
@@ -170,13 +174,14 @@ def run_task(t: Task) -> TaskOutcome:
 
 def case_count(map_dir) -> int:
     """The cases of a map, counted in its ``test.txt`` without parsing them (the lines after
-    the first two that are neither blank nor ``-1`` comments, as :func:`parse_test_txt` reads)."""
+    the first two that are neither blank nor ``-1`` comments, as :func:`parse_test_txt` reads);
+    a malformed line is reported by the task that reads it."""
     path = Path(map_dir, "test.txt")
     try:
-        lines = path.read_bytes().split(b"\n")[2:]
-    except OSError as e:
-        raise NavfnInputError(f"{path}: unreadable test file ({e.strerror or type(e).__name__})") from None
-    return sum(1 for line in lines if line.strip() and not line.strip().startswith(b"-1"))
+        with open(path, encoding="ascii") as f:  # line by line: a million cases are not held
+            return sum(1 for no, line in enumerate(f) if no >= 2 and line.strip() and not line.strip().startswith("-1"))
+    except (OSError, UnicodeDecodeError) as e:
+        raise NavfnInputError(f"{path}: unreadable test file ({getattr(e, 'strerror', None) or type(e).__name__})") from None
 
 
 def count_cases(root, modes: Iterable[str]) -> int:
@@ -192,19 +197,24 @@ def count_cases(root, modes: Iterable[str]) -> int:
 
 
 def iter_tasks(root, modes: Iterable[str], backend: str, chunk: int = CHUNK) -> Iterator[Task]:
-    """The difftest's tasks, map by map as they are needed: chunks of ``chunk`` cases per mode."""
+    """The difftest's tasks, map by map as they are needed: chunks of ``chunk`` cases per mode.
+    Only the cases are counted here; each task reads and checks the map it runs."""
     modes = tuple(modes)
     for d in discover(root):
-        smap = load_map(d, Path(root))  # validates test.txt and map bytes before its tasks run
+        n = case_count(d)
+        if n == 0:
+            load_map(d, Path(root))  # no task reads a map without cases: check it here
         for mode in modes:
-            if not smap.golden_path(mode).exists():
-                raise NavfnInputError(f"{smap.golden_path(mode)}: no such golden file")
-            for lo in range(0, len(smap.cases), chunk):
-                yield Task(str(d), str(root), mode, backend, lo, min(lo + chunk, len(smap.cases)))
+            for lo in range(0, n, chunk):
+                yield Task(str(d), str(root), mode, backend, lo, min(lo + chunk, n), counted=n)
 
 
 def plan_tasks(root, modes: Iterable[str], backend: str) -> list[Task]:
-    """Every task of the difftest, built up front (for callers that pick or reorder tasks)."""
+    """Every task of the difftest, built up front with every map checked (for callers that
+    pick or reorder tasks)."""
+    for d in discover(root):
+        load_map(d, Path(root))
+    count_cases(root, modes)
     return list(iter_tasks(root, modes, backend))
 
 
