@@ -13,7 +13,7 @@ import pytest
 
 from navfn_smt.backends import get_backend
 from navfn_smt.cli import EXAMPLE_SUITE
-from navfn_smt.difftest.runner import Task, plan_tasks, run_suite, run_task, summarize
+from navfn_smt.difftest.runner import Summary, Task, plan_tasks, run_suite, run_task, summarize
 from navfn_smt.maps.suite import discover, load_golden, load_map
 
 from conftest import DATA
@@ -21,8 +21,9 @@ from conftest import DATA
 
 def _assert_clean(outcomes):
     s = summarize(outcomes)
+    cases = outcomes.cases if isinstance(outcomes, Summary) else sum(o.cases for o in outcomes)
     assert s["failed"] == 0, s["disagreements"][:3]
-    assert s["passed"] == sum(o.cases for o in outcomes) > 0
+    assert s["passed"] == cases > 0
     return s
 
 

@@ -104,17 +104,18 @@ def cmd_plan(args) -> int:
 # ------------------------------------------------------------------------------- difftest
 def cmd_difftest(args) -> int:
     """Compare every case of a suite with its golden files; exit 1 on any disagreement."""
-    from .difftest.runner import modes_of, plan_tasks, run_suite, summarize
+    from .difftest.runner import count_cases, modes_of, run_suite
+    from .engine import engine
     from .report import difftest as report
     from .report.tables import progress_bar
 
     suite, modes = _suite(args.suite), modes_of(args.mode)
+    eng = engine(args.jobs, args.scheduler)
     _check_files(args.json)
-    tasks = plan_tasks(suite, modes, args.backend)
-    total = sum(t.hi - t.lo for t in tasks)
+    total = count_cases(suite, modes)
     with progress_bar(total, f"difftest {suite} ({args.backend})", enabled=not args.quiet) as advance:
-        outcomes = run_suite(suite, modes, args.backend, args.jobs, progress=lambda o: advance(o.cases), tasks=tasks)
-    summary = summarize(outcomes)
+        summary = run_suite(suite, modes, args.backend, eng=eng, total=total,
+                            progress=lambda o: advance(o.cases)).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
@@ -605,7 +606,7 @@ def build_parser() -> argparse.ArgumentParser:
     dt.add_argument("suite", nargs="?", help="suite directory (default: the example suite shipped with the package)")
     dt.add_argument("--mode", choices=MODE_CHOICES, default="both", help=mode_help)
     dt.add_argument("--backend", choices=BACKENDS, default="jit", help=backend_help)
-    dt.add_argument("--jobs", type=int, default=1, metavar="N", help="worker processes")
+    add_engine_arguments(dt, what="difftest chunks")
     dt.add_argument("--json", metavar="FILE", help="write per-map counts and every disagreement as JSON")
     dt.add_argument("--quiet", action="store_true", help="no progress bar")
     dt.set_defaults(func=cmd_difftest)

@@ -22,6 +22,8 @@ from __future__ import annotations
 import contextlib
 import logging
 import os
+import signal
+import threading
 import uuid
 from dataclasses import dataclass
 from typing import Callable, Iterable, Iterator, Optional, TypeVar
@@ -117,14 +119,39 @@ def client(eng: Engine):
         return
     if eng.jobs is None:
         eng = Engine(default_jobs())
-    # one thread per worker: the tasks are CPU-bound Python, numba and solver code
-    cluster = LocalCluster(n_workers=eng.jobs, threads_per_worker=1, processes=True, dashboard_address=":0",
-                           silence_logs=logging.ERROR, memory_limit=0, host="127.0.0.1")
+    # one thread per worker: the tasks are CPU-bound Python, numba and solver code; the
+    # scheduler's HTTP server on a free port (its default 8787 may be taken: a warning on stderr)
+    cluster = None
     try:
+        with _sigint_blocked():
+            cluster = LocalCluster(n_workers=eng.jobs, threads_per_worker=1, processes=True,
+                                   dashboard_address=None, silence_logs=logging.ERROR, memory_limit=0,
+                                   scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
+                                   host="127.0.0.1")
         with Client(cluster, set_as_default=False) as c:
             yield c
     finally:
-        cluster.close()
+        if cluster is not None:
+            cluster.close()
+
+
+@contextlib.contextmanager
+def _sigint_blocked():
+    """Ctrl-C held back while local worker processes start, and delivered after: the workers
+    (and the cluster's thread) inherit the block, so a Ctrl-C to the terminal's process group
+    stops only the driver, which closes the cluster, instead of every worker printing a
+    traceback."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    from multiprocessing import resource_tracker
+
+    resource_tracker.ensure_running()  # started later, it would unblock Ctrl-C in the spawning thread
+    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
 
 
 def stream(fn: Callable[[T], R], tasks: Iterable[T], eng: Engine, window: Optional[int] = None,

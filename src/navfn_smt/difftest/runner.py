@@ -8,21 +8,25 @@ tolerance.
 
 from __future__ import annotations
 
+import functools
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Callable, Iterable, Optional
+from typing import Callable, Iterable, Iterator, Optional, Union
 
 import numpy as np
 
 from ..backends import get_backend
+from ..engine import Engine, engine, stream
+from ..errors import NavfnInputError
 from ..spec.extraction import UndefinedBehaviour
 from ..spec.planner import PlanResult, sha256_f32, sha256_i32
 from ..maps.suite import MODES, discover, golden_path_of, load_golden, load_map
 
 FIELDS = ("path", "potential", "trace", "start_reached", "cycles", "updates")
 CHUNK = 2000  # cases per task, so that progress moves on large maps
+AUTO_CASES = 50_000  # --jobs auto: local workers from this many case runs on (their start-up is ~3 s)
+MAX_DISAGREEMENTS = 1000  # kept in a summary, the first by map, mode and case (all are counted)
 MODE_CHOICES = (*MODES, "both")  # what a command's --mode accepts
 
 
@@ -123,15 +127,34 @@ class Task:
     lo: int
     hi: int
     max_details: int = 20
+    counted: Optional[int] = None  # the map's cases as counted when the task was made
+
+
+def _stamp(map_dir: str) -> tuple:
+    """What the files of a map directory look like now (name, size, mtime, inode), to notice a change."""
+    return tuple(sorted((p.name, st.st_size, st.st_mtime_ns, st.st_ino)
+                        for p in Path(map_dir).iterdir() for st in (p.stat(),)))
+
+
+@functools.lru_cache(maxsize=2)
+def _inputs(map_dir: str, root: str, mode: str, stamp: tuple):
+    """A task's map, golden file and full-potential positions; consecutive chunks of a map on
+    one worker load them once (``stamp`` keys the cache to the files as they are)."""
+    smap = load_map(map_dir, Path(root))
+    g = load_golden(smap.golden_path(mode), smap)
+    full_pos = {int(k): j for j, k in enumerate(g["full_index"])}
+    rel = str(Path(map_dir).resolve().relative_to(Path(root).resolve()))
+    return smap, g, full_pos, rel
 
 
 def run_task(t: Task) -> TaskOutcome:
-    smap = load_map(t.map_dir, Path(t.root))
-    g = load_golden(smap.golden_path(t.mode), smap)
-    full_pos = {int(k): j for j, k in enumerate(g["full_index"])}
+    """Cases ``lo..hi`` of one map in one mode, compared with the golden file."""
+    smap, g, full_pos, rel = _inputs(t.map_dir, t.root, t.mode, _stamp(t.map_dir))
+    if t.hi > len(smap.cases) or t.counted not in (None, len(smap.cases)):
+        raise NavfnInputError(f"{smap.directory / 'test.txt'}: has {len(smap.cases)} cases, not the "
+                              f"{t.counted or t.hi} counted (changed during the run?)")
     runner = get_backend(t.backend).prepare(smap.costs)
     astar = t.mode == "astar"
-    rel = str(Path(t.map_dir).resolve().relative_to(Path(t.root).resolve()))
     out = TaskOutcome(rel, smap.category, t.mode, t.hi - t.lo, 0, 0.0)
     t0 = time.perf_counter()
     for i in range(t.lo, t.hi):
@@ -149,67 +172,141 @@ def run_task(t: Task) -> TaskOutcome:
     return out
 
 
-def plan_tasks(root, modes: Iterable[str], backend: str) -> list[Task]:
-    tasks = []
+def case_count(map_dir) -> int:
+    """The cases of a map, counted in its ``test.txt`` without parsing them (the lines after
+    the first two that are neither blank nor ``-1`` comments, as :func:`parse_test_txt` reads);
+    a malformed line is reported by the task that reads it."""
+    path = Path(map_dir, "test.txt")
+    try:
+        with open(path, encoding="ascii") as f:  # line by line: a million cases are not held
+            return sum(1 for no, line in enumerate(f) if no >= 2 and line.strip() and not line.strip().startswith("-1"))
+    except (OSError, UnicodeDecodeError) as e:
+        raise NavfnInputError(f"{path}: unreadable test file ({getattr(e, 'strerror', None) or type(e).__name__})") from None
+
+
+def count_cases(root, modes: Iterable[str]) -> int:
+    """Case runs of a difftest of ``root`` in ``modes``, with every golden file it needs checked to exist."""
+    modes = tuple(modes)
+    total = 0
     for d in discover(root):
-        smap = load_map(d, Path(root))  # validates test.txt and map bytes up front
         for mode in modes:
-            if not smap.golden_path(mode).exists():
-                from ..errors import NavfnInputError
-
-                raise NavfnInputError(f"{smap.golden_path(mode)}: no such golden file")
-            for lo in range(0, len(smap.cases), CHUNK):
-                tasks.append(Task(str(d), str(root), mode, backend, lo, min(lo + CHUNK, len(smap.cases))))
-    return tasks
+            if not (d / f"golden_{mode}.npz").exists():
+                raise NavfnInputError(f"{d / f'golden_{mode}.npz'}: no such golden file")
+        total += case_count(d) * len(modes)
+    return total
 
 
-def _warm(backend: str) -> None:
-    if backend == "jit":
-        from ..backends.jit import JitPlanner  # noqa: F401  (import compiles from cache)
+def iter_tasks(root, modes: Iterable[str], backend: str, chunk: int = CHUNK) -> Iterator[Task]:
+    """The difftest's tasks, map by map as they are needed: chunks of ``chunk`` cases per mode.
+    Only the cases are counted here; each task reads and checks the map it runs."""
+    modes = tuple(modes)
+    for d in discover(root):
+        n = case_count(d)
+        if n == 0:
+            load_map(d, Path(root))  # no task reads a map without cases: check it here
+        for mode in modes:
+            for lo in range(0, n, chunk):
+                yield Task(str(d), str(root), mode, backend, lo, min(lo + chunk, n), counted=n)
+
+
+def plan_tasks(root, modes: Iterable[str], backend: str) -> list[Task]:
+    """Every task of the difftest, built up front with every map checked (for callers that
+    pick or reorder tasks)."""
+    for d in discover(root):
+        load_map(d, Path(root))
+    count_cases(root, modes)
+    return list(iter_tasks(root, modes, backend))
+
+
+def _key(d: dict) -> tuple:
+    return d["map"], d["mode"], d["case_index"]
+
+
+class Summary:
+    """A difftest's result, folded in one finished task at a time: counts per (category, mode)
+    and per map, and the first ``MAX_DISAGREEMENTS`` disagreements by map, mode and case.  Its
+    memory grows with the number of maps, not of cases; the order tasks finish in does not
+    change it."""
+
+    def __init__(self, max_disagreements: int = MAX_DISAGREEMENTS):
+        self.cases = 0
+        self.agreeing = 0
+        self.max_disagreements = max_disagreements
+        self._cats: dict = {}
+        self._maps: dict = {}
+        self._kept: list = []
+
+    def add(self, o: TaskOutcome) -> None:
+        """Count one task's outcome."""
+        self.cases += o.cases
+        self.agreeing += o.agreeing
+        c = self._cats.setdefault((o.category, o.mode), {"category": o.category, "mode": o.mode, "cases": 0,
+                                                         "agreeing": 0, "first_disagreement": None})
+        c["cases"] += o.cases
+        c["agreeing"] += o.agreeing
+        m = self._maps.setdefault((o.map, o.mode), {"map": o.map, "category": o.category, "mode": o.mode,
+                                                    "cases": 0, "agreeing": 0, "seconds": 0.0})
+        m["cases"] += o.cases
+        m["agreeing"] += o.agreeing
+        m["seconds"] += o.seconds
+        for d in map(asdict, o.disagreements):
+            first = self._cats[(d["category"], d["mode"])]["first_disagreement"]
+            if first is None or _key(d) < _key(first):
+                self._cats[(d["category"], d["mode"])]["first_disagreement"] = d
+            self._kept.append(d)
+        if len(self._kept) > 2 * self.max_disagreements:
+            self._trim()
+
+    def _trim(self) -> None:
+        self._kept.sort(key=_key)
+        del self._kept[self.max_disagreements:]
+
+    def as_dict(self) -> dict:
+        """Per (category, mode) and per map counts, plus the disagreements kept, JSON-ready."""
+        self._trim()
+        return {
+            "passed": self.agreeing,
+            "failed": self.cases - self.agreeing,
+            "categories": sorted(self._cats.values(), key=lambda c: (c["category"], c["mode"])),
+            "maps": sorted(self._maps.values(), key=lambda m: (m["map"], m["mode"])),
+            "disagreements": list(self._kept),
+        }
 
 
 def run_suite(
     root,
     modes: Iterable[str] = MODES,
     backend: str = "jit",
-    jobs: int = 1,
+    jobs: Union[int, str, None] = 1,
     progress: Optional[Callable[[TaskOutcome], None]] = None,
-    tasks: Optional[list] = None,
-) -> list[TaskOutcome]:
-    """Run the difftest; ``progress`` is called after each finished task."""
-    tasks = plan_tasks(root, modes, backend) if tasks is None else tasks
-    outcomes: list[TaskOutcome] = []
+    *,
+    eng: Optional[Engine] = None,
+    total: Optional[int] = None,
+    chunk: int = CHUNK,
+    on_client: Optional[Callable] = None,
+) -> Summary:
+    """Run the difftest of ``root`` on ``eng`` (else ``engine(jobs)``; ``jobs`` None or
+    ``auto`` takes local workers from ``AUTO_CASES`` case runs on) and fold the outcomes
+    into a :class:`Summary`; ``progress`` is called after each finished task.  ``total``
+    (the case runs, :func:`count_cases`) is counted when not given."""
+    modes = tuple(modes)
+    total = count_cases(root, modes) if total is None else total
+    eng = (eng or engine(jobs)).for_work(total, AUTO_CASES)
+    summary = Summary()
     try:
-        if jobs <= 1:
-            for t in tasks:
-                o = run_task(t)
-                outcomes.append(o)
-                if progress:
-                    progress(o)
-        else:
-            # largest tasks first keeps both workers busy until the end
-            order = sorted(tasks, key=lambda t: -(t.hi - t.lo) * _map_cells(t.map_dir))
-            ex = ProcessPoolExecutor(max_workers=jobs, initializer=_warm, initargs=(backend,))
-            try:
-                futs = [ex.submit(run_task, t) for t in order]
-                for f in as_completed(futs):
-                    o = f.result()
-                    outcomes.append(o)
-                    if progress:
-                        progress(o)
-            finally:  # on Ctrl-C: drop the queued tasks instead of running them all first
-                ex.shutdown(wait=True, cancel_futures=True)
+        for _, o in stream(run_task, iter_tasks(root, modes, backend, chunk), eng, on_client=on_client):
+            summary.add(o)
+            if progress:
+                progress(o)
     except KeyboardInterrupt:
-        _partial_note(outcomes, sum(t.hi - t.lo for t in tasks))
+        _partial_note(summary, total)
         raise
-    outcomes.sort(key=lambda o: (o.category, o.map, o.mode))
-    return outcomes
+    return summary
 
 
-def _partial_note(outcomes: list[TaskOutcome], total: int) -> None:
+def _partial_note(summary: Summary, total: int) -> None:
     """What an interrupted run had compared, on stdout (no report file is written for it)."""
-    done = sum(o.cases for o in outcomes)
-    agreeing = sum(o.agreeing for o in outcomes)
+    done, agreeing = summary.cases, summary.agreeing
     try:
         print(f"interrupted after {done} of {total} cases: {agreeing} agreed, {done - agreeing} disagreed "
               f"(no report written; rerun to compare everything)", flush=True)
@@ -225,34 +322,12 @@ def _map_cells(map_dir: str) -> int:
         return 1
 
 
-def summarize(outcomes: list[TaskOutcome]) -> dict:
-    """Per (category, mode) and per map counts, plus the disagreements, JSON-ready."""
-    per_cat: dict = {}
-    per_map: dict = {}
-    disagreements = []
-    for o in outcomes:
-        c = per_cat.setdefault((o.category, o.mode), {"category": o.category, "mode": o.mode, "cases": 0,
-                                                      "agreeing": 0, "first_disagreement": None})
-        c["cases"] += o.cases
-        c["agreeing"] += o.agreeing
-        m = per_map.setdefault((o.map, o.mode), {"map": o.map, "category": o.category, "mode": o.mode,
-                                                 "cases": 0, "agreeing": 0, "seconds": 0.0})
-        m["cases"] += o.cases
-        m["agreeing"] += o.agreeing
-        m["seconds"] += o.seconds
-        for d in o.disagreements:
-            disagreements.append(asdict(d))
-    disagreements.sort(key=lambda d: (d["map"], d["mode"], d["case_index"]))
-    for d in disagreements:
-        cat = per_cat[(d["category"], d["mode"])]
-        if cat["first_disagreement"] is None:
-            cat["first_disagreement"] = d
-    passed = sum(o.agreeing for o in outcomes)
-    total = sum(o.cases for o in outcomes)
-    return {
-        "passed": passed,
-        "failed": total - passed,
-        "categories": sorted(per_cat.values(), key=lambda c: (c["category"], c["mode"])),
-        "maps": sorted(per_map.values(), key=lambda m: (m["map"], m["mode"])),
-        "disagreements": disagreements,
-    }
+def summarize(outcomes: Union[Summary, Iterable[TaskOutcome]]) -> dict:
+    """Per (category, mode) and per map counts, plus the disagreements, JSON-ready: of a
+    :class:`Summary` (what :func:`run_suite` returns) or of task outcomes."""
+    if not isinstance(outcomes, Summary):
+        summary = Summary()
+        for o in outcomes:
+            summary.add(o)
+        outcomes = summary
+    return outcomes.as_dict()
