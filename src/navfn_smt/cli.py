@@ -547,6 +547,7 @@ def build_parser() -> argparse.ArgumentParser:
     from .backends import BACKENDS
     from .diagnose.command import register as register_diagnose
     from .report.docs_command import register as register_docs
+    from .report.split import register as register_split
     from .difftest.record_cli import register as register_record
     from .difftest.runner import MODE_CHOICES
     from .engine import add_arguments as add_engine_arguments
@@ -761,6 +762,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     register_diagnose(sub)
     register_docs(sub)
+    register_split(sub)
     return p
 
 

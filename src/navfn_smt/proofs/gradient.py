@@ -14,6 +14,7 @@ under that precondition the claim is proved.
 from navfn_smt.proofs import Gradient
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import GradDifference, ValidPotential, all_of
+from navfn_smt.smt.split import f32_interval, product, split
 from navfn_smt.spec import kernels as K
 
 
@@ -80,3 +81,18 @@ def grad_is_unit_or_zero_any_float(D):
     big = D.f32const(2.0**35)
     pre = all_of(D, D.le(dx, big), D.ge(dx, D.neg(big)), D.eq(dy, D.f32const(0.0)))
     return pre, _unit_or_zero_of(D, *K.normalise(D, dx, dy))
+
+
+def _pieces(v):
+    """A gradCell difference (GradDifference): negative, zero or positive, magnitudes 2**-25 to 2**35."""
+    return (f32_interval(v, -(2.0**35), -(2.0**-25)), f32_interval(v, 0.0, 0.0), f32_interval(v, 2.0**-25, 2.0**35))
+
+
+# Decided by splitting: the sign cases of the two differences (nine parts, the cover proved by a
+# solver).  Both zero is decided bit-precisely; every other part in the error model, where each
+# rounding is a relative error of at most half an ulp (sound because every intermediate of the
+# part is zero or normal, which the same query proves).
+grad_is_unit_or_zero_split = split(
+    grad_is_unit_or_zero, product(_pieces("dx"), _pieces("dy")), bisect_along=("dx", "dy"), expect="proved",
+    methods=("errmodel", "smt"), timeouts={"smt": 20.0}, part_timeout=240.0, max_depth=4,
+    note="sign cases of the two differences; every part but (0, 0) in the error model")

@@ -17,13 +17,17 @@ for maps of every size (up to the stated coordinate bounds).
 One precondition is not discharged: the interpolated gradient is either exactly zero
 (calcPath then fails) or has a component of at least 2**-100.  In float32 a nonzero
 gradient below that can make ``pathStep / hypotf(x, y)`` overflow, and the offset becomes
-infinite (``step_keeps_offset_in_unit_box_any_gradient`` is refuted); whether potentials
-NavFn produces can interpolate to such a gradient is open.
+infinite (``step_keeps_offset_in_unit_box_any_gradient`` is refuted).  The precondition
+itself is refuted for one step (``interpolated_gradient_is_zero_or_not_tiny``): a subnormal
+offset next to a cell whose stored gradient is zero interpolates to a gradient of about
+2**-130.  Whether calcPath's own offsets, which start at 0 and move by about half a cell,
+can become that small is open.
 """
 
 from navfn_smt.proofs import FinitePotentialPath, ValidPath
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import GradDifference, InUnitBox, all_of
+from navfn_smt.smt.split import f32_interval, product, split
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import PATH_STEP
 
@@ -85,6 +89,14 @@ def step_keeps_offset_in_unit_box_any_gradient(D):
     |dx|, |dy| <= 1, |x|, |y| <= 20, not both zero  ==>  new |dx|, |dy| <= 1
     """
     return _step(D, None)
+
+
+def _near(D, s, cell_move, offset):
+    """The next point's coordinate, as calcPath computes it (int to float, float add), is within
+    3/2 of cell ``s``: its distance from ``s`` is computed in double, where it is exact."""
+    point = D.add(D.int_to_f32(D.add_int(s, cell_move)), offset)
+    dist = D.sub64(D.widen(point), D.int_to_f64(s))
+    return D.and_(D.le(dist, D.f64const(1.5)), D.ge(dist, D.f64const(-1.5)))
 
 
 @obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
@@ -167,11 +179,105 @@ def next_point_stays_near_the_cell(D):
     step_pre, (ndx, ndy, cdx, cdy) = _gradient_step(D)
     pre = all_of(D, D.ge(sx, 1), D.lt(sx, 2**23), D.ge(sy, 1), D.lt(sy, 2**23), step_pre)
 
-    def near(s, cell_move, offset):
-        # the point's coordinate as calcPath computes it (int to float, float add); its distance
-        # from s is computed in double, where it is exact
-        point = D.add(D.int_to_f32(D.add_int(s, cell_move)), offset)
-        dist = D.sub64(D.widen(point), D.int_to_f64(s))
-        return D.and_(D.le(dist, D.f64const(1.5)), D.ge(dist, D.f64const(-1.5)))
+    return pre, D.and_(_near(D, sx, cdx, ndx), _near(D, sy, cdy, ndy))
 
-    return pre, D.and_(near(sx, cdx, ndx), near(sy, cdy, ndy))
+
+def _unit_or_zero(D, gx, gy):
+    """A stored gradient as the Gradient predicate leaves it: (0, 0) or squared length within 2**-20 of 1."""
+    wx, wy = D.widen(gx), D.widen(gy)
+    err = D.sub64(D.add64(D.mul64(wx, wx), D.mul64(wy, wy)), D.f64const(1.0))
+    tol = D.f64const(2.0**-20)
+    zero = D.f32const(0.0)
+    unit = D.and_(D.le(err, tol), D.ge(err, D.neg(tol)))
+    return D.or_(D.and_(D.eq(gx, zero), D.eq(gy, zero)), unit)
+
+
+# whole, bitwuzla finds a witness in about 2 minutes, z3 times out; the split below refutes it in seconds
+@obligation(FinitePotentialPath, expect={"real": "refuted", "fp32": "unknown"},
+            scope="calcPath's interpolation at any offset in the unit box, of any four stored gradients that are "
+                  "unit or zero: every map size", timeout=10)
+def interpolated_gradient_is_zero_or_not_tiny(D):
+    """The interpolated gradient is exactly zero or has a component of at least 2**-100 (the
+    precondition of step_keeps_offset_in_unit_box and next_point_stays_near_the_cell).
+
+    |dx|, |dy| <= 1, the four stored gradients (gx_k, gy_k) zero or of unit length  ==>
+    (x, y) = (0, 0)  or  max(|x|, |y|) >= 2**-100
+    """
+    dx, dy = D.f32("dx"), D.f32("dy")
+    gx = [D.f32(f"gx{k}") for k in range(4)]
+    gy = [D.f32(f"gy{k}") for k in range(4)]
+    x = K.interpolate_gradient(D, dx, dy, *gx)
+    y = K.interpolate_gradient(D, dx, dy, *gy)
+    zero, least = D.f32const(0.0), D.f32const(LEAST_GRADIENT)
+    big = D.or_(D.or_(D.ge(x, least), D.le(x, D.neg(least))), D.or_(D.ge(y, least), D.le(y, D.neg(least))))
+    pre = all_of(D, InUnitBox(D, dx, dy), *(_unit_or_zero(D, a, b) for a, b in zip(gx, gy)))
+    return pre, D.or_(D.and_(D.eq(x, zero), D.eq(y, zero)), big)
+
+
+_SMALLEST_NORMAL = 2.0**-126
+_LARGEST_SUBNORMAL = _SMALLEST_NORMAL - 2.0**-149
+
+
+def _offset_pieces(v):
+    """An offset in [-1, 1] by kind: subnormal (either sign) first, then zero, then normal."""
+    return (f32_interval(v, 2.0**-149, _LARGEST_SUBNORMAL), f32_interval(v, -_LARGEST_SUBNORMAL, -(2.0**-149)),
+            f32_interval(v, 0.0, 0.0), f32_interval(v, _SMALLEST_NORMAL, 1.0), f32_interval(v, -1.0, -_SMALLEST_NORMAL))
+
+
+# Decided by splitting the offsets by kind (25 parts, the cover proved by a solver); the first
+# refuted part ends the run, its witness replayed on the concrete spec.
+interpolated_gradient_is_zero_or_not_tiny_split = split(
+    interpolated_gradient_is_zero_or_not_tiny, product(_offset_pieces("dx"), _offset_pieces("dy")),
+    bisect_along=("dx", "dy"), expect="refuted", methods=("smt",), part_timeout=60.0, max_depth=2,
+    note="the offsets by kind: subnormal, zero or normal, each sign")
+
+
+# next_point_stays_near_the_cell in two links, each decided (see FinitePotentialPath's chain):
+# the step moves the offset by at most 1/2 along each axis, and a move of at most 1/2 keeps the
+# point within 3/2 of the cell.  The tie that makes the bound 3/2 tight sits in the second.
+
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
+            scope="one gradient step at any interior cell of any map up to 2**23 cells a side, any move of at "
+                  "most 1/2 per axis")
+def half_step_keeps_the_point_near_the_cell(D):
+    """A gradient step that moves the offset by at most 1/2 per axis puts the next point within
+    3/2 of the cell in each axis (``dx += x*ss`` with ``|x*ss| <= 1/2``, then calcPath's wrap).
+
+    1 <= sx, sy < 2**23, |dx|, |dy| <= 1, |tx|, |ty| <= 1/2  ==>
+    |((float)(sx + cdx) + dx') - sx| <= 3/2  and the same for y
+    """
+    sx, sy = D.int32("sx"), D.int32("sy")
+    dx, dy, tx, ty = (D.f32(v) for v in ("dx", "dy", "tx", "ty"))
+    half = D.f32const(0.5)
+    ndx, ndy, cdx, cdy = K.wrap_offsets(D, D.add(dx, tx), D.add(dy, ty))  # dx += x*ss, with tx = x*ss
+    pre = all_of(D, D.ge(sx, 1), D.lt(sx, 2**23), D.ge(sy, 1), D.lt(sy, 2**23), InUnitBox(D, dx, dy),
+                 _within(D, tx, 0.5), _within(D, ty, 0.5))
+    del half
+    return pre, D.and_(_near(D, sx, cdx, ndx), _near(D, sy, cdy, ndy))
+
+
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "unknown"},
+            scope="a gradient step along one axis, any component from 2**-100 to 20: the largest move the "
+                  "step can make (hypotf equals |x| there)", timeout=10)
+def step_along_an_axis_moves_at_most_half(D):
+    """A gradient step along the x axis moves the offset by at most 1/2: ``x * (pathStep / hypotf(x, 0))``
+    rounds to at most 1/2 in magnitude.  With the monotonicity of rounding this bounds every
+    step (a larger hypotf only shrinks ``ss``; see FinitePotentialPath).
+
+    2**-100 <= |x| <= 20  ==>  |x * (0.5f / hypotf(x, 0))| <= 1/2 and no cell move
+    """
+    x = D.f32("x")
+    zero = D.f32const(0.0)
+    ndx, ndy, cdx, cdy = K.step_offsets(D, zero, zero, x, zero, D.f32const(PATH_STEP))
+    pre = D.or_(D.and_(D.ge(x, D.f32const(LEAST_GRADIENT)), D.le(x, D.f32const(GRAD_BOUND))),
+                D.and_(D.le(x, D.f32const(-LEAST_GRADIENT)), D.ge(x, D.f32const(-GRAD_BOUND))))
+    return pre, D.and_(_within(D, ndx, 0.5), D.eq(cdx, 0))
+
+
+# Decided by enumeration: each sign is one part of about 8.8e8 floats, every one run on the
+# float32 arithmetic (the cover, both signs, proved by a solver).
+step_along_an_axis_moves_at_most_half_split = split(
+    step_along_an_axis_moves_at_most_half,
+    [(f32_interval("x", LEAST_GRADIENT, GRAD_BOUND),), (f32_interval("x", -GRAD_BOUND, -LEAST_GRADIENT),)],
+    bisect_along=("x",), expect="proved", methods=("enumerate",), max_depth=0,
+    note="both signs, every float32 of each enumerated")

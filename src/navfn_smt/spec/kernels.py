@@ -179,14 +179,17 @@ def interpolate_gradient(D, dx, dy, g00, g10, g01, g11):
 def step_offsets(D, dx, dy, x, y, path_step):
     """Advance the offset by ``path_step`` along ``(x, y)`` and normalise it.
 
-    ``ss = pathStep / hypotf(x, y); dx += x*ss; dy += y*ss`` (all float), then the four
-    sequential overflow tests: ``dx > 1.0`` moves one cell right and subtracts 1.0
-    (double, narrowed), and so on.  Returns ``(dx, dy, cell_dx, cell_dy)`` where the
-    cell moves are ints in {-1, 0, 1}.
+    ``ss = pathStep / hypotf(x, y); dx += x*ss; dy += y*ss`` (all float), then
+    :func:`wrap_offsets`.  Returns ``(dx, dy, cell_dx, cell_dy)``.
     """
     ss = D.div(path_step, D.hypotf(x, y))
-    ndx = D.add(dx, D.mul(x, ss))
-    ndy = D.add(dy, D.mul(y, ss))
+    return wrap_offsets(D, D.add(dx, D.mul(x, ss)), D.add(dy, D.mul(y, ss)))
+
+
+def wrap_offsets(D, ndx, ndy):
+    """calcPath's four sequential overflow tests on the advanced offset: ``dx > 1.0`` moves
+    one cell right and subtracts 1.0 (double, narrowed), and so on.  Returns
+    ``(dx, dy, cell_dx, cell_dy)`` where the cell moves are ints in {-1, 0, 1}."""
     one = D.f64const(1.0)
     mone = D.f64const(-1.0)
     right = D.gt(D.widen(ndx), one)

@@ -1,0 +1,119 @@
+"""``navfn-smt split``: decide the obligations no solver decides whole, part by part.
+
+Every split declared in the proof files (:func:`navfn_smt.smt.split.split`) is run on the
+engine: its parts, refined where undecided, then its cover.  The table gives per split the
+verdict against the expected one, the parts by verdict, the slowest part, the cover and the
+wall time; ``--report`` writes all of it with every part's box, method and time as JSON.
+Exit 1 when a verdict differs from the expected one.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+
+from ..errors import NavfnInputError
+from .tables import _duration, console
+
+
+def register(sub) -> None:
+    from ..engine import add_arguments
+
+    sp = sub.add_parser("split", help="decide the obligations no solver decides whole: parts that cover the input "
+                                      "space, each decided, and the cover proved")
+    sp.add_argument("names", nargs="*", metavar="OBLIGATION",
+                    help="the obligations whose splits to run (default: every split declared)")
+    sp.add_argument("--files", nargs="+", metavar="FILE|DIR",
+                    help="proof files declaring the splits (default: the package's navfn_smt/proofs)")
+    add_arguments(sp, "parts")
+    sp.add_argument("--part-timeout", type=float, default=None, metavar="S",
+                    help="seconds per part and method (default: what each split declares)")
+    sp.add_argument("--max-depth", type=int, default=None, metavar="N",
+                    help="how often an undecided part may be cut in two (default: what each split declares)")
+    sp.add_argument("--report", metavar="FILE.json", help="machine-readable report: every part, the cover, times")
+    sp.add_argument("--quiet", action="store_true", help="no line per decided part")
+    sp.set_defaults(func=cmd_split)
+
+
+def cmd_split(args) -> int:
+    from ..cli import _check_files, _check_positive, _proof_files
+    from ..engine import engine
+    from ..smt.runner import default_proof_files
+    from ..smt.split import load_splits, outcome_json, run_split
+
+    files = _proof_files(args.files) if args.files else default_proof_files()
+    if args.part_timeout is not None:
+        _check_positive("--part-timeout", args.part_timeout)
+    if args.max_depth is not None and not 0 <= args.max_depth <= 64:
+        raise NavfnInputError(f"--max-depth {args.max_depth}: must be between 0 and 64")
+    _check_files(args.report)
+    eng = engine(args.jobs, args.scheduler)
+    splits = load_splits(files)
+    unknown = set(args.names) - {s.obligation for s in splits}
+    if unknown:
+        raise NavfnInputError(f"no split declared for {', '.join(sorted(unknown))} "
+                              f"(declared: {', '.join(s.obligation for s in splits) or 'none'})")
+    chosen = [s for s in splits if not args.names or s.obligation in args.names]
+    if not chosen:
+        raise NavfnInputError("no split declared in the proof files")
+    t0 = time.perf_counter()
+    outcomes = []
+    for s in chosen:
+        used = eng.for_work(len(s.boxes), 2)
+        print(f"{s.obligation}: {len(s.boxes)} parts to start with, methods {', '.join(s.methods)}, on "
+              f"{used.describe()}", flush=True)
+        outcomes.append(run_split(s, used, args.part_timeout, args.max_depth,
+                                  progress=None if args.quiet else _part_line))
+    table(outcomes)
+    if args.report:
+        write_json(args.report, outcomes, time.perf_counter() - t0, eng.describe())
+    bad = [o for o in outcomes if not o.as_expected]
+    print(f"{len(outcomes) - len(bad)} of {len(outcomes)} splits as expected, "
+          f"{_duration(time.perf_counter() - t0)}" + (f"; differing: {', '.join(o.obligation for o in bad)}" if bad else ""))
+    return 1 if bad else 0
+
+
+def _part_line(done: int, total: int, part) -> None:
+    box = ", ".join(_interval(iv.as_json()) for iv in part.box)
+    print(f"  part {done}/{total} {part.status} in {part.seconds:.1f} s by {part.solver or '-'}: {box}", flush=True)
+
+
+def _interval(iv: dict) -> str:
+    if "lo_hex" in iv:
+        lo, hi = iv["lo"], iv["hi"]
+        return f"{iv['var']} = {lo:g}" if lo == hi else f"{iv['var']} in [{lo:g}, {hi:g}]"
+    return f"{iv['var']} = {iv['lo']}" if iv["lo"] == iv["hi"] else f"{iv['var']} in [{iv['lo']}, {iv['hi']}]"
+
+
+def table(outcomes) -> None:
+    from rich.table import Table
+
+    t = Table(title="splits")
+    for col in ("obligation", "verdict", "expected", "parts", "proved", "refuted", "unknown", "slowest part",
+                "cover", "wall time"):
+        t.add_column(col)
+    for o in outcomes:
+        c, slow = o.counts(), o.slowest()
+        t.add_row(o.obligation, o.status, o.expected, str(len(o.parts)), str(c["proved"]), str(c["refuted"]),
+                  str(c["unknown"]), f"{slow['seconds']:.1f} s" if slow else "-",
+                  f"{o.cover['status']} ({o.cover['seconds']:.1f} s)", _duration(o.seconds))
+    console.print(t)
+    for o in outcomes:
+        if o.undecided:
+            print(f"{o.obligation}: undecided parts:")
+            for p in o.undecided[:10]:
+                print(f"  {', '.join(_interval(iv) for iv in p['box'])} ({p['detail']})")
+        for p in o.parts:
+            if p["status"] == "refuted" and p.get("witness"):
+                vals = ", ".join(f"{k}={v['value'] if isinstance(v, dict) else v!r}"
+                                 for k, v in p["witness"]["values"].items())
+                print(f"{o.obligation}: refuted, witness replayed on the float32 spec: {vals}")
+                break
+
+
+def write_json(path: str, outcomes, seconds: float, where: str) -> None:
+    from ..fileio import atomic_write_text
+    from ..smt.split import outcome_json
+
+    doc = {"engine": where, "seconds": round(seconds, 3), "splits": [outcome_json(o) for o in outcomes]}
+    atomic_write_text(path, json.dumps(doc, indent=1) + "\n")

@@ -1,0 +1,397 @@
+"""Splitting an obligation no solver decides whole into parts that cover its input space.
+
+An obligation states ``pre ==> claim`` over its variables.  A *split* of it is a set of
+*parts*, each a box: an interval of values for some of the variables (float32 intervals
+in the order of the reals, both ends included; integer intervals for int variables).
+Part ``k`` is the obligation ``pre and box_k ==> claim``; the *cover* is the obligation
+``pre ==> box_1 or ... or box_n``.  The obligation is
+
+- ``proved`` when the cover and every part are proved;
+- ``refuted`` when a part is refuted by a model the concrete spec confirms (the model
+  satisfies ``pre``, so it refutes the whole obligation);
+- ``unknown`` otherwise, naming the undecided parts.
+
+The parts are found by refinement: a split declares its first boxes (sign cases, zero,
+ranges of magnitudes); a part a solver leaves undecided within the part time limit is
+bisected along its widest variable, in the order of float32 bit patterns, so that the
+first cuts separate exponent ranges and later ones intervals of the significand, down to a
+depth limit.  The cover is checked on the final parts, whatever their verdicts, as a
+solver query of its own.  Each round of parts runs on the engine (:mod:`navfn_smt.engine`):
+this process, local workers or a Dask cluster.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from dataclasses import asdict, dataclass, field
+from typing import Callable, Iterable, Optional
+
+import z3
+
+from .codec import f32_from_bits, f32_to_bits, fp32_val
+
+# ------------------------------------------------------------------ float32 in real order
+
+def ordinal(x: float) -> int:
+    """The position of float32 ``x`` in the order of the reals: 0 for both zeros, n for the
+    n-th float above zero, -n for the n-th below (NaN has none)."""
+    if math.isnan(x):
+        raise ValueError("NaN has no place in the order of the reals")
+    bits = f32_to_bits(x)
+    return bits if bits < 0x80000000 else -(bits & 0x7FFFFFFF)
+
+
+def from_ordinal(k: int) -> float:
+    """The float32 at position ``k`` (:func:`ordinal`'s inverse; 0 gives +0.0)."""
+    return f32_from_bits(k) if k >= 0 else f32_from_bits(0x80000000 | -k)
+
+
+@dataclass(frozen=True)
+class Interval:
+    """``lo <= v <= hi`` for variable ``var``: float32 ordinals (``kind="f32"``) or ints."""
+
+    var: str
+    lo: int
+    hi: int
+    kind: str = "f32"
+
+    @property
+    def width(self) -> int:
+        return self.hi - self.lo + 1
+
+    def halves(self) -> tuple["Interval", "Interval"]:
+        mid = (self.lo + self.hi) // 2
+        return Interval(self.var, self.lo, mid, self.kind), Interval(self.var, mid + 1, self.hi, self.kind)
+
+    def formula(self, D):
+        v = D.variables[self.var]
+        if self.kind == "f32":
+            lo, hi = fp32_val(from_ordinal(self.lo)), fp32_val(from_ordinal(self.hi))
+            return z3.And(z3.fpGEQ(v, lo), z3.fpLEQ(v, hi))
+        if z3.is_bv(v):
+            return z3.And(v >= self.lo, v <= self.hi)  # signed int32 comparisons
+        return z3.And(v >= self.lo, v <= self.hi)
+
+    def as_json(self) -> dict:
+        if self.kind == "f32":
+            lo, hi = from_ordinal(self.lo), from_ordinal(self.hi)
+            return {"var": self.var, "lo": lo, "hi": hi, "lo_hex": lo.hex(), "hi_hex": hi.hex(), "floats": self.width}
+        return {"var": self.var, "lo": self.lo, "hi": self.hi, "ints": self.width}
+
+
+def f32_interval(var: str, lo: float, hi: float) -> Interval:
+    """The float32 values from ``lo`` to ``hi``, both included (``-0.0`` and ``0.0`` are one place)."""
+    return Interval(var, ordinal(lo), ordinal(hi))
+
+
+def int_interval(var: str, lo: int, hi: int) -> Interval:
+    return Interval(var, lo, hi, "int")
+
+
+Box = tuple  # of Interval, at most one per variable
+
+
+def box_formula(D, box: Box):
+    return z3.And(*(iv.formula(D) for iv in box)) if box else z3.BoolVal(True)
+
+
+def product(*axes: Iterable[Interval]) -> list[Box]:
+    """Every box taking one interval from each axis (sign cases times ranges, and so on)."""
+    return [tuple(choice) for choice in itertools.product(*axes)]
+
+
+def bisect(box: Box, along: tuple[str, ...]) -> Optional[tuple[Box, Box]]:
+    """The box cut in two along its widest interval among the variables ``along`` (the first
+    of them on a tie); None when each of them is a single value."""
+    cands = [(iv.width, -along.index(iv.var), k) for k, iv in enumerate(box) if iv.var in along and iv.width > 1]
+    if not cands:
+        return None
+    _, _, k = max(cands)
+    a, b = box[k].halves()
+    return box[:k] + (a,) + box[k + 1:], box[:k] + (b,) + box[k + 1:]
+
+
+# ------------------------------------------------------------------------- declaration
+
+@dataclass
+class Split:
+    """A declared split of ``obligation`` (its name) in float32: the first boxes, the
+    variables refinement may cut, how deep, and the verdict the split is expected to reach."""
+
+    obligation: str
+    boxes: list
+    bisect: tuple
+    expect: str  # proved | refuted | unknown
+    max_depth: int = 12
+    part_timeout: float = 60.0
+    solvers: tuple = ("bitwuzla",)
+    note: str = ""
+    methods: tuple = ("smt",)
+    timeouts: dict = field(default_factory=dict)  # seconds per method, where not part_timeout
+    source: str = ""
+
+    def timeout_of(self, method: str, part_timeout: float) -> float:
+        return min(self.timeouts.get(method, part_timeout), part_timeout)
+
+    @property
+    def name(self) -> str:
+        return f"{self.obligation}/split"
+
+
+METHODS = ("smt", "errmodel", "enumerate")
+ERRMODEL_SEEDS = 4  # random seeds the error model's time is shared among
+
+
+def split(obligation, boxes, bisect_along, expect: str, max_depth: int = 12, part_timeout: float = 60.0,
+          solvers=("bitwuzla",), note: str = "", methods=("smt",), timeouts=None) -> Split:
+    """Declare a split of ``obligation`` (the declared obligation itself) in a proof file.
+
+    ``methods`` are tried on each part in order until one decides it: ``smt``, the
+    bit-precise query (:mod:`.checking`) with ``solvers``; ``errmodel``, the standard
+    rounding-error model (:mod:`.errmodel`, proofs only) with Z3's nonlinear real arithmetic;
+    ``enumerate``, every input of a part with one float variable (:mod:`.enumerate`)."""
+    if expect not in ("proved", "refuted", "unknown"):
+        raise ValueError(f"{obligation.name}: bad expectation {expect}")
+    if not methods or any(m not in METHODS for m in methods):
+        raise ValueError(f"{obligation.name}: methods must be among {METHODS}")
+    return Split(obligation.name, list(boxes), tuple(bisect_along), expect, max_depth, part_timeout,
+                 tuple(solvers), note, tuple(methods), dict(timeouts or {}))
+
+
+def load_splits(paths) -> list[Split]:
+    """Every :class:`Split` defined at module level in the given proof files."""
+    import importlib.util
+    from pathlib import Path
+
+    found = []
+    for p in paths:
+        spec = importlib.util.spec_from_file_location(f"navfn_splits.{Path(p).stem}", p)
+        mod = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mod)
+        for v in vars(mod).values():
+            if isinstance(v, Split):
+                v.source = str(p)
+                found.append(v)
+    return found
+
+
+# ------------------------------------------------------------------------------ checking
+
+@dataclass
+class Part:
+    box: Box
+    depth: int
+    status: str = "unknown"  # proved | refuted | unknown
+    seconds: float = 0.0
+    solver: str = ""
+    detail: str = ""
+    witness: Optional[dict] = None
+
+    def as_json(self) -> dict:
+        return {"box": [iv.as_json() for iv in self.box], "depth": self.depth, "status": self.status,
+                "seconds": self.seconds, "solver": self.solver, "detail": self.detail, "witness": self.witness}
+
+
+@dataclass
+class SplitOutcome:
+    name: str
+    obligation: str
+    status: str
+    expected: str
+    parts: list
+    cover: dict
+    rounds: int
+    seconds: float
+    engine: str
+    note: str = ""
+    undecided: list = field(default_factory=list)
+
+    @property
+    def as_expected(self) -> bool:
+        return self.status == self.expected
+
+    def counts(self) -> dict:
+        out = {"proved": 0, "refuted": 0, "unknown": 0}
+        for p in self.parts:
+            out[p["status"]] += 1
+        return out
+
+    def slowest(self) -> Optional[dict]:
+        return max(self.parts, key=lambda p: p["seconds"], default=None)
+
+
+def _obligation(source: str, name: str):
+    from .obligation import load_obligations
+
+    return next(o for o in load_obligations([source]) if o.name == name)
+
+
+def check_part(job: tuple) -> Part:
+    """One part, decided in float32 (a worker's task): ``(source, name, part, timeouts, solvers)``
+    with ``timeouts`` the seconds of each method, tried in turn until one decides the part."""
+    source, name, part, timeouts, solvers = job
+    ob = _obligation(source, name)
+    t0 = time.perf_counter()
+    out = Part(part.box, part.depth)
+    notes = []
+    for method, timeout in timeouts:
+        status, solver, detail, witness = _METHOD[method](ob, part.box, timeout, solvers)
+        notes.append(f"{method}: {detail or status}")
+        if status != "unknown":
+            out.status, out.solver, out.witness = status, solver, witness
+            break
+        out.solver = solver
+    out.detail = "; ".join(notes)
+    out.seconds = round(time.perf_counter() - t0, 3)
+    return out
+
+
+def _smt(ob, box: Box, timeout: float, solvers) -> tuple:
+    """The bit-precise query on the part; a model counts only once the concrete spec confirms it."""
+    from .checking import Outcome, _judge_model, query
+    from .runner import solve_query
+
+    D, assertions = query(ob, "fp32", lambda D: box_formula(D, box))
+    answer, values, solver, detail = solve_query(tuple(solvers))(assertions, D.variables, timeout)
+    if answer == "unsat":
+        return "proved", solver, "", None
+    if answer == "sat":
+        judged = Outcome(ob.name, ob.predicate, "fp32", "unknown", "", 0.0, solver, "", "")
+        _judge_model(judged, ob, values)
+        return judged.status, solver, judged.detail, judged.witness
+    return "unknown", solver, detail or "unknown", None
+
+
+def _errmodel(ob, box: Box, timeout: float, solvers) -> tuple:
+    """The error-model query on the part (:mod:`.errmodel`): proves or leaves unknown, never refutes."""
+    from . import errmodel
+
+    try:
+        D, assertions = errmodel.query(ob, lambda D: _real_box(D, box))
+    except NotImplementedError as e:
+        return "unknown", "z3 (error model)", str(e), None
+    # nonlinear real arithmetic is sensitive to the order it explores: a query that takes 6 s with
+    # one seed can time out with another, so the time is shared among a few seeds, tried in turn
+    why = ""
+    for seed in range(ERRMODEL_SEEDS):
+        s = z3.SolverFor("QF_NRA")
+        s.set(timeout=max(1, int(timeout * 1000 / ERRMODEL_SEEDS)), random_seed=seed)
+        s.add(*assertions)
+        r = s.check()
+        if r == z3.unsat:
+            return "proved", f"z3 (error model, seed {seed})", "", None
+        if r == z3.sat:
+            return "unknown", "z3 (error model)", "a choice of rounding errors breaks the claim", None
+        why = s.reason_unknown()
+    return "unknown", "z3 (error model)", why, None
+
+
+def _enumerate(ob, box: Box, timeout: float, solvers) -> tuple:
+    """Every input of the part on the concrete float32 arithmetic (:mod:`.enumerate`)."""
+    from .enumerate import decide
+
+    status, detail, witness = decide(ob, box)
+    return status, "enumeration", detail, witness
+
+
+_METHOD = {"smt": _smt, "errmodel": _errmodel, "enumerate": _enumerate}
+
+
+def _real_box(D, box: Box):
+    """The box over the error model's real variables (float intervals by their values)."""
+    from fractions import Fraction
+
+    out = []
+    for iv in box:
+        v = D.variables[iv.var]
+        if iv.kind == "f32":
+            lo, hi = Fraction(from_ordinal(iv.lo)), Fraction(from_ordinal(iv.hi))
+        else:
+            lo, hi = iv.lo, iv.hi
+        out.append(z3.And(v >= z3.RealVal(lo) if iv.kind == "f32" else v >= lo,
+                          v <= z3.RealVal(hi) if iv.kind == "f32" else v <= hi))
+    return z3.And(*out) if out else z3.BoolVal(True)
+
+
+def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z3",)) -> dict:
+    """The cover obligation: ``pre ==> box_1 or ... or box_n``; ``proved`` when unsatisfiable."""
+    from .checking import query
+    from .runner import solve_query
+
+    ob = _obligation(source, name)
+    t0 = time.perf_counter()
+    D, _ = query(ob, "fp32")
+    pre, _ = ob.build(D)
+    cover = z3.Or(*(box_formula(D, b) for b in boxes))
+    answer, values, solver, detail = solve_query(tuple(solvers))([pre, z3.Not(cover)], D.variables, timeout)
+    status = {"unsat": "proved", "sat": "refuted"}.get(answer, "unknown")
+    out = {"status": status, "parts": len(boxes), "seconds": round(time.perf_counter() - t0, 3), "solver": solver}
+    if status == "refuted":
+        from .codec import witness_values
+
+        out["uncovered_input"] = witness_values(values)
+    return out
+
+
+def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Optional[int] = None,
+              progress: Optional[Callable[[int, int, Part], None]] = None, stop_at_refutation: bool = True) -> SplitOutcome:
+    """Decide the split's parts round by round on ``eng``, then its cover."""
+    from ..engine import session
+
+    timeout = s.part_timeout if part_timeout is None else part_timeout
+    depth_limit = s.max_depth if max_depth is None else max_depth
+    t0 = time.perf_counter()
+    todo = [Part(tuple(b), 0) for b in s.boxes]
+    final: list[Part] = []
+    rounds, done = 0, 0
+    per_method = tuple((m, s.timeout_of(m, timeout)) for m in s.methods)
+    with session(eng) as run:
+        while todo:
+            rounds += 1
+            jobs = [(s.source, s.obligation, p, per_method, s.solvers) for p in todo]
+            total = done + len(jobs)
+            nxt: list[Part] = []
+            returned: set = set()
+            refuted = False
+            for i, part in run(check_part, jobs):
+                returned.add(i)
+                done += 1
+                if progress:
+                    progress(done, total, part)
+                halves = bisect(part.box, s.bisect) if part.status == "unknown" and part.depth < depth_limit else None
+                if halves is None:
+                    final.append(part)
+                else:
+                    nxt.extend(Part(h, part.depth + 1) for h in halves)
+                if part.status == "refuted" and stop_at_refutation:
+                    refuted = True
+                    break  # the obligation is refuted: the parts still out are not needed
+            if refuted:
+                for i, p in enumerate(todo):
+                    if i not in returned:
+                        final.append(Part(p.box, p.depth, detail="not run: another part refuted the obligation"))
+                final.extend(nxt)
+                break
+            todo = nxt
+    final.sort(key=lambda p: tuple((iv.var, iv.lo) for iv in p.box))
+    cover = check_cover(s.source, s.obligation, [p.box for p in final], max(timeout, 60.0))
+    statuses = {p.status for p in final}
+    if "refuted" in statuses:
+        status = "refuted"
+    elif statuses == {"proved"} and cover["status"] == "proved":
+        status = "proved"
+    else:
+        status = "unknown"
+    parts = [p.as_json() for p in final]
+    return SplitOutcome(s.name, s.obligation, status, s.expect, parts, cover, rounds,
+                        round(time.perf_counter() - t0, 3), eng.describe(), s.note,
+                        [p for p in parts if p["status"] == "unknown"] if status != "refuted" else [])
+
+
+def outcome_json(o: SplitOutcome) -> dict:
+    d = asdict(o)
+    d["counts"] = o.counts()
+    d["slowest_part"] = o.slowest()
+    return d
