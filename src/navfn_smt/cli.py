@@ -258,7 +258,7 @@ def cmd_prove(args) -> int:
     from .report.tables import progress_bar
     from .smt.obligation import load_obligations
     from .smt.solvers import SOLVERS
-    from .smt.runner import SEMANTICS, default_proof_files, run, write_smt2
+    from .smt.runner import SEMANTICS, default_proof_files, run, slow_queries, write_smt2
 
     files = _proof_files(args.files) if args.files else default_proof_files()
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
@@ -270,10 +270,11 @@ def cmd_prove(args) -> int:
         if d:
             check_writable_dir(d)
     solvers = tuple(args.solver) if args.solver else SOLVERS
-    n = sum(len([s for s in semantics if s in o.expect]) for o in load_obligations(files))
+    n = sum(len([s for s in semantics if s in o.expect and (args.all or s not in o.slow)])
+            for o in load_obligations(files))
     with progress_bar(n, "prove") as advance:
         outcomes = run(files, semantics, args.timeout, eng, solvers, progress=lambda o: advance(1),
-                       bounds=not args.no_bound_search)
+                       bounds=not args.no_bound_search, everything=args.all)
     witness_files = proof_run.write_witnesses(outcomes, witnesses)
     if args.smt2:
         write_smt2(files, semantics, Path(args.smt2))
@@ -286,6 +287,9 @@ def cmd_prove(args) -> int:
     if args.markdown:
         report.write_markdown(args.markdown, outcomes, meta)
     proof_run.witness_note(outcomes, witnesses)
+    left = [] if args.all else slow_queries(files, semantics)
+    if left:
+        print(f"{len(left)} slow queries left to `navfn-smt prove --all` (splits: `navfn-smt split`): {', '.join(left)}")
     proof_run.closing_line(outcomes)
     return 0 if all(o.as_expected for o in outcomes) else 1
 
@@ -672,6 +676,9 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--junit", metavar="FILE.xml", help="JUnit XML, one test case per obligation and semantics")
     pr.add_argument("--markdown", metavar="FILE.md", help="the invariants page (docs/invariants.md)")
     pr.add_argument("--smt2", metavar="DIR", help="also write every query as SMT-LIB2")
+    pr.add_argument("--all", action="store_true",
+                    help="also the slow queries (open questions a split decides, long proofs), which the default "
+                         "run leaves out to stay within a minute")
     pr.add_argument("--no-bound-search", action="store_true",
                     help="do not search bounds for properties refuted in fp32 (verdicts only)")
     pr.add_argument("--witness-dir", metavar="DIR",

@@ -95,6 +95,10 @@ Gradient = Predicate(
     applies="path extraction: the gradient gradCell caches per cell, which calcPath interpolates",
     lemmas=("grad_differences_are_not_tiny", "grad_is_unit_or_zero"),
     limits=("grad_is_unit_or_zero_any_float",),
+    trusted=("grad_is_unit_or_zero is decided by its split (navfn-smt split): nine sign cases whose cover is "
+             "proved, the zero vector bit-precisely, every other part in the standard rounding-error model "
+             "(IEEE 754 rounds each operation to within half an ulp, relative, when the result is normal, which "
+             "the same queries prove)",),
     open=("that every potential propagation produces is 0 or at least 1/2 (the precondition of "
           "grad_differences_are_not_tiny) is argued in gradient.py, not an obligation",
           "over the reals the chain is float32's: differences of real potentials can be arbitrarily small, and "
@@ -110,14 +114,22 @@ FinitePotentialPath = Predicate(
             "coordinate bounds of the links; the paper's FinitePotentialPath",
     base=("ValidPath.first_point_is_the_start", "NoPathWithoutFinitePotential.unreached_cell_stays_put"),
     lemmas=("Gradient.grad_differences_are_not_tiny", "stored_gradient_is_bounded", "interpolated_gradient_is_bounded",
-            "step_keeps_offset_in_unit_box", "next_point_stays_near_the_cell", "near_goal_probe_reads_a_neighbour"),
-    limits=("step_keeps_offset_in_unit_box_any_gradient",),
+            "step_keeps_offset_in_unit_box", "step_along_an_axis_moves_at_most_half",
+            "half_step_keeps_the_point_near_the_cell", "near_goal_probe_reads_a_neighbour"),
+    limits=("step_keeps_offset_in_unit_box_any_gradient", "interpolated_gradient_is_zero_or_not_tiny"),
+    whole=("next_point_stays_near_the_cell",),
     trusted=("a fallback step moves to a cell with offset 0 and stops unless that cell is reached",
              "a gradient step is taken only when the cell and its eight neighbours are all reached",
-             "the last point is the goal exactly (potential 0)"),
+             "the last point is the goal exactly (potential 0)",
+             "rounding is monotone (IEEE 754: each operation rounds its exact result, and rounding to nearest is "
+             "monotone), so for hypotf(x, y) >= max(|x|, 2**-100) the move |x * (0.5f / hypotf)| is at most the "
+             "move along the axis, |x * (0.5f / |x|)| (step_along_an_axis_moves_at_most_half), or for "
+             "|x| < 2**-100 at most |x| * 2**99 <= 1/2; with half_step_keeps_the_point_near_the_cell this gives "
+             "next_point_stays_near_the_cell"),
     open=("the interpolated gradient is exactly zero (calcPath then fails) or has a component of at least "
-          "2**-100: a precondition of step_keeps_offset_in_unit_box and next_point_stays_near_the_cell, not "
-          "discharged (step_keeps_offset_in_unit_box_any_gradient shows what a smaller one does in float32)",
+          "2**-100: a precondition of step_keeps_offset_in_unit_box and of the step bound, refuted for one step "
+          "(interpolated_gradient_is_zero_or_not_tiny: a subnormal offset beside a cell with a zero gradient); "
+          "whether calcPath's own offsets get that small is open",
           "the precondition of the borrowed grad_differences_are_not_tiny (potentials 0 or at least 1/2) is "
           "argued, not an obligation (see Gradient)"),
 )

@@ -55,7 +55,7 @@ def grad_differences_are_not_tiny(D):
 # run, so the expectation is then updated deliberately.
 @obligation(Gradient, expect={"real": "proved", "fp32": "unknown"},
             scope="gradCell's normalisation of any vector whose components are 0 or in [2**-25, 2**35]",
-            timeout=10)
+            timeout=10, slow=("fp32",))
 def grad_is_unit_or_zero(D):
     """gradCell's normalisation returns a unit or zero vector; with the lemma above, gradCell
     stores a unit or zero vector on every potential NavFn produces.

@@ -167,7 +167,7 @@ def interpolated_gradient_is_bounded(D):
 # only, and at 60 s even for the looser bound 3/2 + 2**-20.
 @obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "unknown"},
             scope="one gradient step at any interior cell of any map up to 2**23 cells a side",
-            hypotf_model="bounds", timeout=10)
+            hypotf_model="bounds", timeout=10, slow=("fp32",))
 def next_point_stays_near_the_cell(D):
     """After a gradient step from cell (sx, sy) the next point emitted lies within 3/2 of it in
     each axis, so within 1/2 of one of the nine cells around it, all reached when the step is taken.
@@ -195,7 +195,7 @@ def _unit_or_zero(D, gx, gy):
 # whole, bitwuzla finds a witness in about 2 minutes, z3 times out; the split below refutes it in seconds
 @obligation(FinitePotentialPath, expect={"real": "refuted", "fp32": "unknown"},
             scope="calcPath's interpolation at any offset in the unit box, of any four stored gradients that are "
-                  "unit or zero: every map size", timeout=10)
+                  "unit or zero: every map size", timeout=10, slow=("fp32",))
 def interpolated_gradient_is_zero_or_not_tiny(D):
     """The interpolated gradient is exactly zero or has a component of at least 2**-100 (the
     precondition of step_keeps_offset_in_unit_box and next_point_stays_near_the_cell).
@@ -238,7 +238,7 @@ interpolated_gradient_is_zero_or_not_tiny_split = split(
 
 @obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
             scope="one gradient step at any interior cell of any map up to 2**23 cells a side, any move of at "
-                  "most 1/2 per axis")
+                  "most 1/2 per axis", slow=("fp32",))
 def half_step_keeps_the_point_near_the_cell(D):
     """A gradient step that moves the offset by at most 1/2 per axis puts the next point within
     3/2 of the cell in each axis (``dx += x*ss`` with ``|x*ss| <= 1/2``, then calcPath's wrap).
@@ -258,7 +258,7 @@ def half_step_keeps_the_point_near_the_cell(D):
 
 @obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "unknown"},
             scope="a gradient step along one axis, any component from 2**-100 to 20: the largest move the "
-                  "step can make (hypotf equals |x| there)", timeout=10)
+                  "step can make (hypotf equals |x| there)", timeout=10, slow=("fp32",))
 def step_along_an_axis_moves_at_most_half(D):
     """A gradient step along the x axis moves the offset by at most 1/2: ``x * (pathStep / hypotf(x, 0))``
     rounds to at most 1/2 in magnitude.  With the monotonicity of rounding this bounds every

@@ -100,6 +100,9 @@ INTRO = ("Each obligation below is a property of the specification's kernels, st
 
 
 # ------------------------------------------------------------------------------ reading
+SPLIT_REPORT = "split.json"  # beside the prove report: a `navfn-smt split --report` run
+
+
 def default_check_reports(reports_dir: Path = REPORTS_DIR) -> list[Path]:
     """The committed ``check`` reports: every ``check*.json`` of the reports directory, by name."""
     return sorted(Path(reports_dir).glob(CHECK_REPORT_GLOB)) if Path(reports_dir).is_dir() else []
@@ -439,12 +442,61 @@ def check_section(checks: list, images: Optional[Path]) -> list[str]:
 
 
 # --------------------------------------------------------------------------- the page
+def with_splits(outcomes: list, split_doc: Optional[dict]) -> list:
+    """The fp32 verdicts of obligations their splits decide, taken from the split report."""
+    import dataclasses
+
+    decided = {sp["obligation"]: sp for sp in (split_doc or {}).get("splits", [])
+               if sp.get("status") in ("proved", "refuted")}
+    out = []
+    for o in outcomes:
+        sp = decided.get(o.name)
+        if sp is not None and o.semantics == "fp32":
+            o = dataclasses.replace(o, status=sp["status"], expected=sp["expected"], solver="split",
+                                    seconds=float(sp["seconds"]),
+                                    detail=f"decided by its split ({len(sp['parts'])} parts, cover "
+                                           f"{sp['cover']['status']}); whole: {o.status}")
+        out.append(o)
+    return out
+
+
+def split_section(split_doc: Optional[dict], label: str) -> list[str]:
+    """The splits: verdict, parts, slowest part, cover and time of each (from ``navfn-smt split --report``)."""
+    if not split_doc:
+        return []
+    out = ["## Splits", "",
+           f"Obligations no solver decides whole, decided part by part ([{label}]({label}), a `navfn-smt split` "
+           f"run on {split_doc.get('engine', '?')}): the parts cover the input space (the cover is itself a "
+           "solver query) and each part is decided bit-precisely, in the standard rounding-error model (proofs "
+           "only) or by enumerating every input.", "",
+           "| obligation | verdict | expected | parts | proved / refuted / unknown | slowest part | cover | wall time |",
+           "|---|---|---|---|---|---|---|---|"]
+    for sp in split_doc.get("splits", []):
+        c = sp.get("counts", {})
+        slow = sp.get("slowest_part") or {}
+        out.append(f"| `{sp['obligation']}` | {sp['status']} | {sp['expected']} | {len(sp['parts'])} | "
+                   f"{c.get('proved', 0)} / {c.get('refuted', 0)} / {c.get('unknown', 0)} | "
+                   f"{_fmt_seconds(slow.get('seconds', 0))} ({slow.get('solver', '-')}) | "
+                   f"{sp['cover']['status']} | {_fmt_seconds(sp['seconds'])} |")
+    out.append("")
+    for sp in split_doc.get("splits", []):
+        if sp.get("note"):
+            out.append(f"- `{sp['obligation']}`: {sp['note']}.")
+        for p in sp.get("undecided", [])[:10]:
+            box = ", ".join(f"{iv['var']} in [{iv['lo']!r}, {iv['hi']!r}]" for iv in p["box"])
+            out.append(f"  - undecided part: {box} ({p['detail']})")
+    out.append("")
+    return out
+
+
 def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Path] = None,
-           declared: Optional[list] = None) -> str:
+           declared: Optional[list] = None, split: Optional[tuple] = None) -> str:
     """The page from a prove report (``prove_label`` names it), the ``(label, doc)`` check
     reports, and the directory where check counterexample pictures are looked up;
-    ``declared``: the obligations to list (default: those shipped in the package)."""
-    outcomes = outcomes_of(prove_doc)
+    ``declared``: the obligations to list (default: those shipped in the package);
+    ``split``: the ``(label, doc)`` of a split report, whose verdicts replace the whole ones."""
+    split_label, split_doc = split or (None, None)
+    outcomes = with_splits(outcomes_of(prove_doc), split_doc)
     sems = list(prove_doc.get("semantics") or predicates.run_semantics(outcomes)) or ["real", "fp32"]
     declared = declared_obligations() if declared is None else declared
     by_name: dict = {}
@@ -482,6 +534,7 @@ def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Pat
         out += [f"## {prop}", "", *predicates.markdown_chain(prop, outcomes)]
         for ob in obs:
             out += _obligation_lines(ob, by_name.get(ob.name, {}), sems)
+    out += split_section(split_doc, split_label)
     out += check_section(checks, images)
     while out and out[-1] == "":
         out.pop()
@@ -499,7 +552,9 @@ def generate(prove_report, check_reports) -> str:
     """Read the reports (one-line errors on a missing or malformed one) and render the page."""
     prove_doc = read_prove_report(prove_report)
     checks = [(report_label(p), read_check_report(p)) for p in check_reports]
-    return render(prove_doc, report_label(prove_report), checks, images_dir(check_reports))
+    split_path = Path(prove_report).parent / SPLIT_REPORT
+    split = (report_label(split_path), _read_json(split_path, "split")) if split_path.is_file() else None
+    return render(prove_doc, report_label(prove_report), checks, images_dir(check_reports), split=split)
 
 
 def first_difference(committed: str, generated: str) -> Optional[tuple[int, str, str]]:

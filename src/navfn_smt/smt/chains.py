@@ -36,6 +36,7 @@ class Predicate:
     rests_on: tuple = ()  # other predicates the argument needs whole
     trusted: tuple = ()  # steps taken from the planner's control flow, not checked by a solver
     open: tuple = ()  # what the chain leaves open beyond its links' verdicts
+    whole: tuple = ()  # own obligations no solver decides whole, which finer links of the chain decide instead
 
     @property
     def links(self) -> tuple:
@@ -68,7 +69,7 @@ def own_obligations(predicates: Iterable[Predicate]) -> set:
     """Every obligation some predicate's chain holds as its own (not borrowed) link or limit."""
     out = set()
     for p in predicates:
-        out |= {split_link(x)[1] for x in p.links if split_link(x)[0] is None} | set(p.limits)
+        out |= {split_link(x)[1] for x in p.links if split_link(x)[0] is None} | set(p.limits) | set(p.whole)
     return out
 
 
@@ -102,14 +103,14 @@ def check_chains(predicates, obligations, complete: bool = True) -> list[str]:
 def _check_links(p: Predicate, preds: dict, declared: dict, complete: bool) -> list[str]:
     """The links and limits of one predicate against the declarations."""
     problems = []
-    entries = [(x, "link") for x in p.links] + [(x, "limit") for x in p.limits]
+    entries = [(x, "link") for x in p.links] + [(x, "limit") for x in p.limits] + [(x, "whole") for x in p.whole]
     seen = [split_link(x)[1] for x, _ in entries]
     problems += [f"{p.name}: {n} appears twice in the chain" for n in sorted(set(seen)) if seen.count(n) > 1]
     for x, role in entries:
         owner, name = split_link(x)
         want = owner or p.name
-        if role == "limit" and owner is not None:
-            problems.append(f"{p.name}: limit {x} is borrowed (a limit is the predicate's own)")
+        if role in ("limit", "whole") and owner is not None:
+            problems.append(f"{p.name}: {role} {x} is borrowed (it must be the predicate's own)")
         elif owner == p.name:
             problems.append(f"{p.name}: link {x} borrows from the predicate itself")
         elif owner is not None and owner not in preds:

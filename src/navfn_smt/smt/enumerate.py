@@ -51,19 +51,23 @@ class ArrayDomain(ConcreteDomain):
 
     @staticmethod
     def narrow(a):
-        return np.asarray(a, dtype=np.float64).astype(np.float32)
+        with np.errstate(all="ignore"):
+            return np.asarray(a, dtype=np.float64).astype(np.float32)
 
     @staticmethod
     def add(a, b):
-        return np.add(a, b, dtype=np.float32)
+        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
+            return np.add(a, b, dtype=np.float32)
 
     @staticmethod
     def sub(a, b):
-        return np.subtract(a, b, dtype=np.float32)
+        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
+            return np.subtract(a, b, dtype=np.float32)
 
     @staticmethod
     def mul(a, b):
-        return np.multiply(a, b, dtype=np.float32)
+        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
+            return np.multiply(a, b, dtype=np.float32)
 
     @staticmethod
     def div(a, b):
@@ -76,15 +80,18 @@ class ArrayDomain(ConcreteDomain):
 
     @staticmethod
     def add64(a, b):
-        return np.add(a, b, dtype=np.float64)
+        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
+            return np.add(a, b, dtype=np.float64)
 
     @staticmethod
     def sub64(a, b):
-        return np.subtract(a, b, dtype=np.float64)
+        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
+            return np.subtract(a, b, dtype=np.float64)
 
     @staticmethod
     def mul64(a, b):
-        return np.multiply(a, b, dtype=np.float64)
+        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
+            return np.multiply(a, b, dtype=np.float64)
 
     @staticmethod
     def div64(a, b):
@@ -93,7 +100,8 @@ class ArrayDomain(ConcreteDomain):
 
     def hypotf(self, a, b):
         wa, wb = self.widen(a), self.widen(b)
-        return self.narrow(np.sqrt(wa * wa + wb * wb))
+        with np.errstate(all="ignore"):
+            return self.narrow(np.sqrt(wa * wa + wb * wb))
 
     @staticmethod
     def lt(a, b):

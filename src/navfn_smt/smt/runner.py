@@ -68,27 +68,35 @@ def _job(task: Task) -> Outcome:
     return check(ob, task.semantics, task.timeout, solve_query(task.solvers), bounds=task.bounds)
 
 
-def tasks(paths, semantics=SEMANTICS, timeout: float = 30.0, solvers=("z3",), bounds: bool = True) -> list[Task]:
+def tasks(paths, semantics=SEMANTICS, timeout: float = 30.0, solvers=("z3",), bounds: bool = True,
+          everything: bool = True) -> list[Task]:
     """Every (obligation, semantics) of the proof files that has an expected verdict, in
-    file, obligation and semantics order (the order of the results)."""
+    file, obligation and semantics order (the order of the results); without
+    ``everything``, not the slow ones (:attr:`Obligation.slow`)."""
     sources = {}
     out = []
     for o in load_obligations(paths):
         if o.source not in sources:
             sources[o.source] = Path(o.source).read_bytes()
         out.extend(Task(o.source, sources[o.source], o.name, s, timeout, tuple(solvers), bounds)
-                   for s in semantics if s in o.expect)
+                   for s in semantics if s in o.expect and (everything or s not in o.slow))
     return out
 
 
+def slow_queries(paths, semantics=SEMANTICS) -> list[str]:
+    """The ``name (semantics)`` of the slow queries a default run leaves out."""
+    return [f"{o.name} ({s})" for o in load_obligations(paths) for s in semantics if s in o.expect and s in o.slow]
+
+
 def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: Union[Engine, int] = 1, solvers=("z3",),
-        progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True) -> list[Outcome]:
+        progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True,
+        everything: bool = True) -> list[Outcome]:
     """The outcome of every obligation of ``paths`` in every semantics it expects a verdict in,
     in the order of :func:`tasks` whatever the order they finish in.  ``jobs``: an
     :class:`~navfn_smt.engine.Engine` (``auto`` resolved here), or a number of local workers."""
     if not (timeout > 0 and timeout < float("inf")):
         raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
-    work = tasks(paths, semantics, timeout, solvers, bounds)
+    work = tasks(paths, semantics, timeout, solvers, bounds, everything)
     if not work:
         raise NavfnInputError("no obligation to check in the requested semantics")
     eng = jobs if isinstance(jobs, Engine) else Engine(max(1, int(jobs)))

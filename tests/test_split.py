@@ -1,0 +1,193 @@
+"""Splits: parts that cover an obligation's input space, each decided; the cover proved.
+
+The toy proof file (tests/data/split/toy_proofs.py) has one split per way a part is decided
+(bit-precise query, enumeration, error model) and per verdict; each must reach its declared
+verdict, in this process and on a real two-worker Dask cluster alike.  The array domain that
+enumeration runs on is a second statement of the concrete arithmetic, so it is held equal to
+the scalar spec bit for bit on generated inputs.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from navfn_smt.cli import main
+from navfn_smt.engine import Engine
+from navfn_smt.smt import split as S
+from navfn_smt.smt.enumerate import ArrayDomain
+from navfn_smt.spec import kernels as K
+from navfn_smt.spec.numeric import ConcreteDomain
+
+TOY = Path(__file__).parent / "data" / "split" / "toy_proofs.py"
+f32s = st.floats(width=32, allow_nan=False)
+
+
+def _splits():
+    return {s.obligation: s for s in S.load_splits([TOY])}
+
+
+# ------------------------------------------------------------------------ the order of floats
+@given(f32s, f32s)
+def test_ordinal_is_the_order_of_the_reals(a, b):
+    assert S.from_ordinal(S.ordinal(a)) == a
+    assert (S.ordinal(a) < S.ordinal(b)) == (a < b)
+
+
+@given(st.integers(-(2**31) + 1, 2**31 - 2), st.integers(0, 2**20))
+def test_halves_partition_an_interval(lo, width):
+    iv = S.Interval("x", lo, lo + width)
+    if iv.width < 2:
+        return
+    a, b = iv.halves()
+    assert (a.lo, b.hi) == (iv.lo, iv.hi) and a.hi + 1 == b.lo and a.width + b.width == iv.width
+
+
+def test_bisect_cuts_the_widest_variable_and_stops_at_single_values():
+    box = (S.f32_interval("x", 1.0, 2.0), S.f32_interval("y", 1.0, 1.0))
+    a, b = S.bisect(box, ("x", "y"))
+    assert a[1] == b[1] == box[1] and a[0].hi + 1 == b[0].lo
+    assert S.bisect((S.f32_interval("x", 0.0, 0.0),), ("x",)) is None
+
+
+# ------------------------------------------------------------------------------ the verdicts
+@pytest.mark.parametrize("name", ["doubling_is_exact", "sum_minus_one_keeps_y", "square_root_of_square",
+                                  "product_is_close"])
+def test_each_toy_split_reaches_its_declared_verdict(name):
+    s = _splits()[name]
+    o = S.run_split(s, Engine(1))
+    assert o.status == s.expect
+    assert o.cover["status"] == "proved"
+    if o.status == "refuted":
+        witness = next(p["witness"] for p in o.parts if p["status"] == "refuted")
+        assert witness["replayed_on_spec"] is True
+
+
+def test_a_part_the_cover_misses_makes_the_split_unknown():
+    s = _splits()["doubling_is_exact"]
+    gap = S.Split(s.obligation, [(S.f32_interval("x", -4.0, 0.0),)], ("x",), "proved", 0, 30.0, ("z3",),
+                  source=s.source)
+    o = S.run_split(gap, Engine(1))
+    assert o.status == "unknown" and o.cover["status"] == "refuted"
+    assert 0 < o.cover["uncovered_input"]["x"]["value"] <= 4.0
+
+
+def test_the_error_model_never_proves_a_false_claim():
+    s = _splits()["sum_minus_one_keeps_y"]
+    em = S.Split(s.obligation, s.boxes, s.bisect, "unknown", 0, 30.0, ("z3",), methods=("errmodel",),
+                 source=s.source)
+    o = S.run_split(em, Engine(1))
+    assert o.status == "unknown" and all(p["status"] == "unknown" for p in o.parts)
+
+
+def test_an_undecided_part_is_cut_in_two_and_named():
+    s = _splits()["doubling_is_exact"]
+    tiny = S.Split(s.obligation, [(S.f32_interval("x", -4.0, 4.0),)], ("x",), "proved", 2, 1e-3, ("z3",),
+                   source=s.source)
+    o = S.run_split(tiny, Engine(1))
+    if o.status == "unknown":  # a millisecond per part: the parts were cut down to the depth limit
+        assert len(o.parts) == 4 and o.rounds == 3 and o.undecided
+    else:
+        assert o.status == "proved"
+
+
+# --------------------------------------------------------------------------- on a cluster
+@pytest.fixture(scope="module")
+def cluster():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                  host="127.0.0.1") as c:
+        yield c
+
+
+def _result(o):
+    return o.status, o.cover["status"], [(tuple((iv["var"], iv["lo"], iv["hi"]) for iv in p["box"]), p["status"])
+                                         for p in o.parts]
+
+
+@pytest.mark.parametrize("name", ["doubling_is_exact", "product_is_close", "square_root_of_square"])
+def test_a_split_on_a_local_cluster_equals_the_local_run(cluster, name):
+    s = _splits()[name]
+    local = S.run_split(s, Engine(1))
+    remote = S.run_split(s, Engine(scheduler=cluster.scheduler_address))
+    assert _result(remote) == _result(local)
+
+
+def test_a_refuted_split_is_refuted_on_the_cluster_too(cluster):
+    s = _splits()["sum_minus_one_keeps_y"]
+    o = S.run_split(s, Engine(scheduler=cluster.scheduler_address))
+    assert o.status == "refuted" and o.cover["status"] == "proved"
+    assert next(p for p in o.parts if p["status"] == "refuted")["witness"]["replayed_on_spec"] is True
+
+
+# ------------------------------------------------------------------------------ the command
+def test_split_command_reports_every_part(tmp_path, capsys):
+    report = tmp_path / "split.json"
+    assert main(["split", "doubling_is_exact", "product_is_close", "--files", str(TOY), "--jobs", "1",
+                 "--report", str(report)]) == 0
+    doc = json.loads(report.read_text())
+    assert [s["obligation"] for s in doc["splits"]] == ["doubling_is_exact", "product_is_close"]
+    assert all(s["status"] == "proved" and s["cover"]["status"] == "proved" for s in doc["splits"])
+    assert "2 of 2 splits as expected" in capsys.readouterr().out
+
+
+def test_split_command_errors_are_one_line(capsys):
+    assert main(["split", "no_such_obligation", "--files", str(TOY)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no split declared for no_such_obligation" in err[0]
+
+
+def test_the_shipped_splits_name_declared_obligations():
+    from navfn_smt.smt.obligation import load_obligations
+    from navfn_smt.smt.runner import default_proof_files
+
+    names = {o.name for o in load_obligations(default_proof_files())}
+    splits = S.load_splits(default_proof_files())
+    assert {s.obligation for s in splits} >= {"grad_is_unit_or_zero", "interpolated_gradient_is_zero_or_not_tiny",
+                                              "step_along_an_axis_moves_at_most_half"}
+    assert all(s.obligation in names for s in splits)
+
+
+# ------------------------------------------------- the array domain equals the scalar spec
+def _bits(v):
+    return np.asarray(v, dtype=np.float32).view(np.uint32)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(f32s, f32s), min_size=1, max_size=64))
+def test_array_normalise_equals_the_spec(pairs):
+    a = np.array([p[0] for p in pairs], dtype=np.float32)
+    b = np.array([p[1] for p in pairs], dtype=np.float32)
+    gx, gy = K.normalise(ArrayDomain({}), a, b)
+    for i, (x, y) in enumerate(pairs):
+        sx, sy = K.normalise(ConcreteDomain, float(np.float32(x)), float(np.float32(y)))
+        assert _bits(gx[i]) == _bits(sx) and _bits(gy[i]) == _bits(sy)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(*(st.floats(-1, 1, width=32),) * 2, *(st.floats(-20, 20, width=32),) * 2),
+                min_size=1, max_size=64))
+def test_array_step_offsets_equal_the_spec(rows):
+    cols = [np.array(c, dtype=np.float32) for c in zip(*rows)]
+    out = K.step_offsets(ArrayDomain({}), *cols, np.float32(0.5))
+    for i, r in enumerate(rows):
+        want = K.step_offsets(ConcreteDomain, *(float(np.float32(v)) for v in r), 0.5)
+        got = tuple(o[i] for o in out)
+        assert [_bits(g) for g in got[:2]] == [_bits(w) for w in want[:2]] and tuple(map(int, got[2:])) == want[2:]
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(*(st.floats(-1, 1, width=32),) * 2, *(st.floats(-2, 2, width=32),) * 4),
+                min_size=1, max_size=64))
+def test_array_interpolation_equals_the_spec(rows):
+    cols = [np.array(c, dtype=np.float32) for c in zip(*rows)]
+    got = K.interpolate_gradient(ArrayDomain({}), *cols)
+    for i, r in enumerate(rows):
+        want = K.interpolate_gradient(ConcreteDomain, *(float(np.float32(v)) for v in r))
+        assert _bits(got[i]) == _bits(want) or (math.isnan(want) and math.isnan(float(got[i])))
