@@ -48,7 +48,9 @@ def test_statuses_derived_from_the_expected_verdicts(obligations):
            for p in PREDICATES}
     assert got == EXPECTED
     fpp = next(p for p in PREDICATES if p.name == "FinitePotentialPath")
-    assert derive(fpp, "fp32", verdict_of, PREDICATES)["open"] == ["next_point_stays_near_the_cell"]
+    # whole, the axis step bound is open (its split decides it) and the step's precondition is assumed
+    assert derive(fpp, "fp32", verdict_of, PREDICATES)["open"] == [
+        "step_along_an_axis_moves_at_most_half", "interpolated_gradient_is_zero_or_not_tiny (assumed)"]
     assert set(derive(fpp, "real", verdict_of, PREDICATES)["refuted"]) == {
         "NoPathWithoutFinitePotential.unreached_cell_stays_put", "Gradient.grad_differences_are_not_tiny"}
 
@@ -106,3 +108,22 @@ def test_status_takes_the_predicates_it_rests_on():
     table = {"a0": Verdict("unknown"), "a1": Verdict("proved"), "b0": Verdict("proved")}
     got = derive(B, "fp32", _verdicts(table), [A, B])
     assert got["status"] == "open" and got["open"] == ["a0 (via A)"]
+
+
+C = Predicate("C", "c", "here", lemmas=("c0",), assumes=("c1",), whole=("c2",))
+
+
+@pytest.mark.parametrize("assumption,status", [("proved", "proved"), ("refuted", "open"), ("unknown", "open")])
+def test_an_assumption_not_proved_leaves_the_chain_open(assumption, status):
+    """A precondition the links assume: refuted or unknown, the chain holds only where it does
+    (open, never refuted by it); the obligation stated whole never counts."""
+    table = {"c0": Verdict("proved"), "c1": Verdict(assumption), "c2": Verdict("unknown")}
+    got = derive(C, "fp32", _verdicts(table), [C])
+    assert got["status"] == status and got["open"] == ([] if status == "proved" else ["c1 (assumed)"])
+
+
+def test_assumptions_and_whole_obligations_are_the_predicates_own():
+    obs = [_ob("c0", "C"), _ob("c1", "C"), _ob("c2", "C")]
+    assert check_chains([C], obs) == []
+    bad = Predicate("D", "d", "here", lemmas=("d0",), assumes=("C.c1",))
+    assert any("assumption C.c1 is borrowed" in p for p in check_chains([C, bad], obs + [_ob("d0", "D")]))

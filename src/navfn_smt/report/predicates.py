@@ -49,8 +49,10 @@ def link_verdict(outcomes_by_key: dict, name: str, semantics: str) -> str:
 
 
 def _chain_rows(p, by_key: dict, sems: list) -> list:
-    """The chain of ``p`` as rows: base case, step, then limits."""
-    rows = [("base", x) for x in p.base] + [("step", x) for x in p.lemmas] + [("limit", x) for x in p.limits]
+    """The chain of ``p`` as rows: base case, step, assumptions, limits, then the obligations
+    stated whole that the chain decides through finer links."""
+    rows = ([("base", x) for x in p.base] + [("step", x) for x in p.lemmas] + [("assumed", x) for x in p.assumes]
+            + [("limit", x) for x in p.limits] + [("whole", x) for x in p.whole])
     return [{"role": role, "link": x, "obligation": split_link(x)[1], "declared_for": link_owner(p, x),
              "verdicts": {s: link_verdict(by_key, split_link(x)[1], s) for s in sems}} for role, x in rows]
 

@@ -37,6 +37,7 @@ class Predicate:
     trusted: tuple = ()  # steps taken from the planner's control flow, not checked by a solver
     open: tuple = ()  # what the chain leaves open beyond its links' verdicts
     whole: tuple = ()  # own obligations no solver decides whole, which finer links of the chain decide instead
+    assumes: tuple = ()  # own obligations stating a precondition the links assume: unless proved, the chain is open
 
     @property
     def links(self) -> tuple:
@@ -69,7 +70,8 @@ def own_obligations(predicates: Iterable[Predicate]) -> set:
     """Every obligation some predicate's chain holds as its own (not borrowed) link or limit."""
     out = set()
     for p in predicates:
-        out |= {split_link(x)[1] for x in p.links if split_link(x)[0] is None} | set(p.limits) | set(p.whole)
+        out |= ({split_link(x)[1] for x in p.links if split_link(x)[0] is None} | set(p.limits) | set(p.whole)
+                | set(p.assumes))
     return out
 
 
@@ -103,13 +105,14 @@ def check_chains(predicates, obligations, complete: bool = True) -> list[str]:
 def _check_links(p: Predicate, preds: dict, declared: dict, complete: bool) -> list[str]:
     """The links and limits of one predicate against the declarations."""
     problems = []
-    entries = [(x, "link") for x in p.links] + [(x, "limit") for x in p.limits] + [(x, "whole") for x in p.whole]
+    entries = ([(x, "link") for x in p.links] + [(x, "limit") for x in p.limits] + [(x, "whole") for x in p.whole]
+               + [(x, "assumption") for x in p.assumes])
     seen = [split_link(x)[1] for x, _ in entries]
     problems += [f"{p.name}: {n} appears twice in the chain" for n in sorted(set(seen)) if seen.count(n) > 1]
     for x, role in entries:
         owner, name = split_link(x)
         want = owner or p.name
-        if role in ("limit", "whole") and owner is not None:
+        if role in ("limit", "whole", "assumption") and owner is not None:
             problems.append(f"{p.name}: {role} {x} is borrowed (it must be the predicate's own)")
         elif owner == p.name:
             problems.append(f"{p.name}: link {x} borrows from the predicate itself")
@@ -158,7 +161,8 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
     """The predicate's status in one semantics from its links' verdicts (and those of the
     predicates it rests on): ``proved`` only when every link is; ``bounded`` when the only
     failures are refutations below which a bound holds; ``open`` when a link is unknown (or
-    was not checked) and none is refuted; ``refuted`` when a link has a counterexample.
+    was not checked) and none is refuted, or an assumption is not proved (``x (assumed)``);
+    ``refuted`` when a link has a counterexample.
     Returns the status and, for each status but proved, the links behind it (``link (via
     Owner)`` for those of a predicate it rests on)."""
     preds = {p.name: p for p in predicates}
@@ -166,6 +170,9 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
     for x in pred.links:
         v = verdict_of(split_link(x)[1], semantics)
         by_status[link_status(v)].append(x if v is None or not v.bound else f"{x} ({v.bound})")
+    for x in pred.assumes:  # a precondition of the links: where it fails, the chain says nothing
+        if link_status(verdict_of(x, semantics)) != "proved":
+            by_status["open"].append(f"{x} (assumed)")
     for r in pred.rests_on:
         if r in preds:
             sub = derive(preds[r], semantics, verdict_of, predicates)
