@@ -15,6 +15,7 @@ from typing import Optional
 import numpy as np
 import z3
 
+from ..smt.codec import free_constants
 from ..smt.evaluate import value
 
 CHUNK = 1 << 17
@@ -164,28 +165,15 @@ def _eval(t, env, n, memo):  # noqa: C901 - one branch per operator
     raise Unsupported(f"operator {t.decl()}")
 
 
-def _consts(assertions) -> dict:
-    seen, out, todo = set(), {}, list(assertions)
-    while todo:
-        t = todo.pop()
-        if t.get_id() in seen:
-            continue
-        seen.add(t.get_id())
-        if z3.is_const(t) and t.decl().kind() == z3.Z3_OP_UNINTERPRETED:
-            out[t.decl().name()] = t
-        todo.extend(t.children())
-    return out
-
-
 def points(ranges: dict, variables: dict, assertions) -> int:
     """How many points the box has over the variables the assertions mention."""
-    used = set(_consts(assertions))
+    used = set(free_constants(assertions))
     return int(np.prod([hi - lo + 1 for k, (lo, hi) in ranges.items() if str(variables[k]) in used] or [1]))
 
 
 def solve(assertions: list, variables: dict, ranges: dict):
     """``("sat", {cell: cost})`` at the first point satisfying every assertion, or ``("unsat", None)``."""
-    used = _consts(assertions)
+    used = free_constants(assertions)
     unknown = set(used) - {str(v) for v in variables.values()}
     if unknown:
         raise Unsupported(f"constants other than costs: {sorted(unknown)}")

@@ -53,6 +53,7 @@ KERNEL_CODE = {
     "bilinear": "`NavFn::calcPath`: one bilinear interpolation",
     "interpolate_gradient": "`NavFn::calcPath`: the interpolated gradient",
     "step_offsets": "`NavFn::calcPath`: the gradient step of the offsets",
+    "wrap_offsets": "`NavFn::calcPath`: the offset wrapped back into the cell, moving the cell",
     "nearest_cell": "`NavFn::calcPath`: the near-goal probe",
     "path_point": "`NavFn::calcPath`: the point appended to the path",
     "lowest_of_eight": "`NavFn::calcPath`: the grid-following fallback",
@@ -101,6 +102,12 @@ INTRO = ("Each obligation below is a property of the specification's kernels, st
 
 # ------------------------------------------------------------------------------ reading
 SPLIT_REPORT = "split.json"  # beside the prove report: a `navfn-smt split --report` run
+
+
+def split_beside(reports_dir) -> Optional[tuple]:
+    """The ``(label, doc)`` of the split report in ``reports_dir`` (:data:`SPLIT_REPORT`), if there is one."""
+    path = Path(reports_dir) / SPLIT_REPORT
+    return (report_label(path), _read_json(path, "split")) if path.is_file() else None
 
 
 def default_check_reports(reports_dir: Path = REPORTS_DIR) -> list[Path]:
@@ -552,8 +559,7 @@ def generate(prove_report, check_reports) -> str:
     """Read the reports (one-line errors on a missing or malformed one) and render the page."""
     prove_doc = read_prove_report(prove_report)
     checks = [(report_label(p), read_check_report(p)) for p in check_reports]
-    split_path = Path(prove_report).parent / SPLIT_REPORT
-    split = (report_label(split_path), _read_json(split_path, "split")) if split_path.is_file() else None
+    split = split_beside(Path(prove_report).parent)
     return render(prove_doc, report_label(prove_report), checks, images_dir(check_reports), split=split)
 
 

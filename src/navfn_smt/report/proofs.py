@@ -4,6 +4,7 @@ that becomes ``docs/invariants.md`` (generated from the obligations, never hand-
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from dataclasses import asdict
 from xml.sax.saxutils import escape, quoteattr
 
@@ -83,7 +84,8 @@ def markdown(outcomes, meta: dict, check_reports=None) -> str:
     checks = [(page.report_label(p), page.read_check_report(p)) for p in paths]
     files = meta.get("files")
     declared = load_obligations(files) if files else None
-    return page.render(doc, "the run's report", checks, page.images_dir(paths), declared=declared)
+    return page.render(doc, "the run's report", checks, page.images_dir(paths), declared=declared,
+                       split=page.split_beside(Path(paths[0]).parent if paths else page.REPORTS_DIR))
 
 
 def write_markdown(path, outcomes, meta: dict) -> None:

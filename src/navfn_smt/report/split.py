@@ -63,7 +63,7 @@ def cmd_split(args) -> int:
         print(f"{s.obligation}: {len(s.boxes)} parts to start with, methods {', '.join(s.methods)}, on "
               f"{used.describe()}", flush=True)
         outcomes.append(run_split(s, used, args.part_timeout, args.max_depth,
-                                  progress=None if args.quiet else _part_line))
+                                  progress=None if args.quiet else _part_line(time.perf_counter())))
     table(outcomes)
     if args.report:
         write_json(args.report, outcomes, time.perf_counter() - t0, eng.describe())
@@ -73,9 +73,18 @@ def cmd_split(args) -> int:
     return 1 if bad else 0
 
 
-def _part_line(done: int, total: int, part) -> None:
-    box = ", ".join(_interval(iv.as_json()) for iv in part.box)
-    print(f"  part {done}/{total} {part.status} in {part.seconds:.1f} s by {part.solver or '-'}: {box}", flush=True)
+def _part_line(t0: float):
+    """``progress(done, total, part)``: a line per decided part with done/total, the time so far
+    and an estimate of the time left for the parts known (refinement may add more)."""
+
+    def line(done: int, total: int, part) -> None:
+        box = ", ".join(_interval(iv.as_json()) for iv in part.box)
+        elapsed = time.perf_counter() - t0
+        left = f", about {_duration(elapsed * (total - done) / done)} left" if done < total else ""
+        print(f"  part {done}/{total} {part.status} in {part.seconds:.1f} s by {part.solver or '-'} "
+              f"({_duration(elapsed)}{left}): {box}", flush=True)
+
+    return line
 
 
 def _interval(iv: dict) -> str:

@@ -306,3 +306,17 @@ def entry_to_z3(entry, c):
         f = {"RNE": z3.RNE, "RNA": z3.RNA, "RTP": z3.RTP, "RTN": z3.RTN, "RTZ": z3.RTZ}.get(entry)
         return f(ctx) if f else None
     return None
+
+
+def free_constants(terms) -> dict:
+    """The uninterpreted constants (the variables) the Z3 ``terms`` mention, by name."""
+    seen, out, todo = set(), {}, list(terms)
+    while todo:
+        t = todo.pop()
+        if t.get_id() in seen:
+            continue
+        seen.add(t.get_id())
+        if z3.is_const(t) and t.decl().kind() == z3.Z3_OP_UNINTERPRETED:
+            out[t.decl().name()] = t
+        todo.extend(t.children())
+    return out

@@ -26,6 +26,7 @@ from fractions import Fraction
 
 import z3
 
+from .codec import free_constants
 from .domains import RealDomain
 
 U32, U64 = Fraction(1, 2**24), Fraction(1, 2**53)  # half an ulp, relative: float and double
@@ -163,21 +164,8 @@ def query(ob, extra=None):
     pre, claim = ob.build(D)
     if extra is not None:
         pre = z3.And(pre, extra(D))
-    rounding = {str(v) for v in _free(pre)} - set(D.variables)
+    rounding = set(free_constants([pre])) - set(D.variables)
     if rounding:
         raise NotImplementedError(f"{ob.name}: its precondition rounds ({', '.join(sorted(rounding))}); the error "
                                   f"model needs a precondition of plain comparisons")
     return D, [*D.assumptions, pre, z3.Not(z3.And(claim, *D.side))]
-
-
-def _free(e) -> set:
-    out, seen, todo = set(), set(), [e]
-    while todo:
-        t = todo.pop()
-        if t.get_id() in seen:
-            continue
-        seen.add(t.get_id())
-        if z3.is_const(t) and t.decl().kind() == z3.Z3_OP_UNINTERPRETED:
-            out.add(t)
-        todo.extend(t.children())
-    return out
