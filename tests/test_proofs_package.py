@@ -60,7 +60,7 @@ def test_unwritable_bound_cache_keeps_the_bound_and_says_so(tmp_path):
     (tmp_path / ".bounds.json").mkdir()  # the cache cannot be written (as if installed read-only)
     work = tmp_path / "cwd"
     work.mkdir()
-    p = subprocess.run([sys.executable, "-m", "navfn_smt", "prove", tmp_path / "p.py", "--semantics", "fp32",
+    p = subprocess.run([sys.executable, "-m", "navfn_smt", "prove", tmp_path / "p.py", "--all", "--semantics", "fp32",
                         "--solver", "z3", "--report", tmp_path / "r.json"], capture_output=True, text=True,
                        cwd=work, env={**os.environ, "COLUMNS": "200"})
     assert p.returncode == 0, p.stdout + p.stderr

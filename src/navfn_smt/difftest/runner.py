@@ -132,8 +132,14 @@ class Task:
 
 def _stamp(map_dir: str) -> tuple:
     """What the files of a map directory look like now (name, size, mtime, inode), to notice a change."""
-    return tuple(sorted((p.name, st.st_size, st.st_mtime_ns, st.st_ino)
-                        for p in Path(map_dir).iterdir() for st in (p.stat(),)))
+    out = []
+    for p in Path(map_dir).iterdir():
+        try:
+            st = p.stat()
+        except OSError as e:  # a dangling link, a symlink loop: the map's own loader would say the same
+            raise NavfnInputError(f"{p}: cannot read ({e.strerror})") from None
+        out.append((p.name, st.st_size, st.st_mtime_ns, st.st_ino))
+    return tuple(sorted(out))
 
 
 @functools.lru_cache(maxsize=2)

@@ -182,16 +182,18 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
     return {"status": status, **{s: by_status[s] for s in STATUS_RANK[1:]}}
 
 
-def declared_verdicts(obligations) -> Callable[[str, str], Optional[Verdict]]:
+def declared_verdicts(obligations, splits=()) -> Callable[[str, str], Optional[Verdict]]:
     """``verdict_of`` from the declarations: each obligation's expected verdict, a declared
-    bound search counting as a bound (it runs in fp32 only)."""
+    bound search counting as a bound (it runs in fp32 only); with ``splits``, the verdict a
+    split is declared to reach stands for its obligation's in fp32."""
     obs = {o.name: o for o in obligations}
+    decided = {s.obligation: s.expect for s in splits if s.expect in ("proved", "refuted")}
 
     def verdict_of(name, semantics):
         o = obs.get(name)
         if o is None or semantics not in o.expect:
             return None
-        status = o.expect[semantics]
+        status = decided[name] if semantics == "fp32" and name in decided else o.expect[semantics]
         searched = o.bound is not None and semantics == "fp32" and status == "refuted"
         return Verdict(status, f"{o.bound.var} < a bound found by search" if searched else None)
 
