@@ -191,3 +191,11 @@ def test_array_interpolation_equals_the_spec(rows):
     for i, r in enumerate(rows):
         want = K.interpolate_gradient(ConcreteDomain, *(float(np.float32(v)) for v in r))
         assert _bits(got[i]) == _bits(want) or (math.isnan(want) and math.isnan(float(got[i])))
+
+
+def test_a_worker_without_the_proof_file_decides_a_part_from_its_contents(tmp_path):
+    """A remote worker: the driver's path does not exist there, the file's contents travel with the part."""
+    s = _splits()["doubling_is_exact"]
+    gone = str(tmp_path / "elsewhere" / "toy_proofs.py")
+    part = S.check_part((gone, TOY.read_bytes(), s.obligation, S.Part(s.boxes[0], 0), (("smt", 30.0),), ("z3",)))
+    assert part.status == "proved"

@@ -222,17 +222,21 @@ class SplitOutcome:
         return max(self.parts, key=lambda p: p["seconds"], default=None)
 
 
-def _obligation(source: str, name: str):
-    from .obligation import load_obligations
+def _obligation(source: str, name: str, code: Optional[bytes] = None):
+    """The obligation ``name`` of proof file ``source``; with ``code`` (the file's contents, sent
+    with a task) loaded from those where the file is missing or differs (a remote worker)."""
+    from .obligation import load_obligations, load_obligations_from
 
-    return next(o for o in load_obligations([source]) if o.name == name)
+    found = load_obligations_from(source, code) if code is not None else load_obligations([source])
+    return next(o for o in found if o.name == name)
 
 
 def check_part(job: tuple) -> Part:
-    """One part, decided in float32 (a worker's task): ``(source, name, part, timeouts, solvers)``
-    with ``timeouts`` the seconds of each method, tried in turn until one decides the part."""
-    source, name, part, timeouts, solvers = job
-    ob = _obligation(source, name)
+    """One part, decided in float32 (a worker's task): ``(source, code, name, part, timeouts,
+    solvers)`` with ``code`` the proof file's contents and ``timeouts`` the seconds of each
+    method, tried in turn until one decides the part."""
+    source, code, name, part, timeouts, solvers = job
+    ob = _obligation(source, name, code)
     t0 = time.perf_counter()
     out = Part(part.box, part.depth)
     notes = []
@@ -347,10 +351,13 @@ def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Op
     final: list[Part] = []
     rounds, done = 0, 0
     per_method = tuple((m, s.timeout_of(m, timeout)) for m in s.methods)
+    from pathlib import Path
+
+    code = Path(s.source).read_bytes()  # sent with every part: a remote worker needs no copy of the file
     with session(eng) as run:
         while todo:
             rounds += 1
-            jobs = [(s.source, s.obligation, p, per_method, s.solvers) for p in todo]
+            jobs = [(s.source, code, s.obligation, p, per_method, s.solvers) for p in todo]
             total = done + len(jobs)
             nxt: list[Part] = []
             returned: set = set()
