@@ -227,27 +227,10 @@ def cmd_coverage(args) -> int:
 
 # ---------------------------------------------------------------------------------- prove
 def _proof_files(names) -> list[Path]:
-    """The proof files the command line names: Python files, or folders of them (every
-    ``*.py`` not starting with ``_``, as in the package's own ``proofs/``)."""
-    from .smt.runner import default_proof_files
+    """The proof files the command line names (:func:`navfn_smt.smt.runner.proof_files`)."""
+    from .smt.runner import proof_files
 
-    files: list[Path] = []
-    for name in names:
-        p = Path(name)
-        if p.is_dir():
-            try:
-                files += default_proof_files(p)
-            except NavfnInputError:
-                raise NavfnInputError(f"{name}: no proof files in this folder (prove reads Python files "
-                                      "declaring obligations, *.py not starting with _)") from None
-        elif not p.exists():
-            raise NavfnInputError(f"{name}: no such proof file or folder")
-        elif p.suffix != ".py":
-            raise NavfnInputError(f"{name}: not a proof file (prove reads Python files declaring obligations, "
-                                  "or a folder of them)")
-        else:
-            files.append(p)
-    return files
+    return proof_files(names)
 
 
 def cmd_prove(args) -> int:

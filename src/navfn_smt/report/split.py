@@ -36,17 +36,20 @@ def register(sub) -> None:
 
 
 def cmd_split(args) -> int:
-    from ..cli import _check_files, _check_positive, _proof_files
-    from ..engine import engine
-    from ..smt.runner import default_proof_files
-    from ..smt.split import load_splits, outcome_json, run_split
+    import math
 
-    files = _proof_files(args.files) if args.files else default_proof_files()
-    if args.part_timeout is not None:
-        _check_positive("--part-timeout", args.part_timeout)
+    from ..engine import engine
+    from ..fileio import check_writable
+    from ..smt.runner import default_proof_files, proof_files
+    from ..smt.split import load_splits, run_split
+
+    files = proof_files(args.files) if args.files else default_proof_files()
+    if args.part_timeout is not None and not (math.isfinite(args.part_timeout) and args.part_timeout > 0):
+        raise NavfnInputError(f"--part-timeout {args.part_timeout:g}: must be a positive number of seconds")
     if args.max_depth is not None and not 0 <= args.max_depth <= 64:
         raise NavfnInputError(f"--max-depth {args.max_depth}: must be between 0 and 64")
-    _check_files(args.report)
+    if args.report:
+        check_writable(args.report)
     eng = engine(args.jobs, args.scheduler)
     splits = load_splits(files)
     unknown = set(args.names) - {s.obligation for s in splits}

@@ -162,3 +162,25 @@ def write_smt2(paths, semantics, out_dir: Path) -> list[Path]:
             atomic_write_text(p, s.to_smt2())
             written.append(p)
     return written
+
+
+def proof_files(names) -> list[Path]:
+    """The proof files the command line names: Python files, or folders of them (every
+    ``*.py`` not starting with ``_``, as in the package's own ``proofs/``)."""
+    files: list[Path] = []
+    for name in names:
+        p = Path(name)
+        if p.is_dir():
+            try:
+                files += default_proof_files(p)
+            except NavfnInputError:
+                raise NavfnInputError(f"{name}: no proof files in this folder (prove reads Python files "
+                                      "declaring obligations, *.py not starting with _)") from None
+        elif not p.exists():
+            raise NavfnInputError(f"{name}: no such proof file or folder")
+        elif p.suffix != ".py":
+            raise NavfnInputError(f"{name}: not a proof file (prove reads Python files declaring obligations, "
+                                  "or a folder of them)")
+        else:
+            files.append(p)
+    return files
