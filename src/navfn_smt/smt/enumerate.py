@@ -15,35 +15,41 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..spec.numeric import ConcreteDomain
+from .replay import ReplayDomain
 
 CHUNK = 1 << 24  # inputs per evaluation (a few hundred MiB of temporaries at most)
 LIMIT = 1 << 33  # the most inputs a part may have to be enumerated
 
 
-class ArrayDomain(ConcreteDomain):
-    """C++ float and double arithmetic, elementwise on numpy arrays (one variable enumerated)."""
+def _elementwise(fn, dtype):
+    """``fn(a, b)`` computed in ``dtype``, with infinities and NaN as in C++ (no warning)."""
+
+    def op(a, b):
+        with np.errstate(all="ignore"):
+            return fn(a, b, dtype=dtype)
+
+    return staticmethod(op)
+
+
+class ArrayDomain(ReplayDomain):
+    """C++ float and double arithmetic, elementwise on numpy arrays: the replay domain whose
+    values are arrays of inputs (one variable enumerated, the others repeated)."""
 
     name = "array"
 
-    def __init__(self, values: dict):
-        self.values = values
-        self.assumptions: list = []
-        self.assumption_notes: set = set()
-        self.variables: dict = {}
-
-    def f32(self, name):
-        if name not in self.values:
-            raise KeyError(f"{name}: not enumerated by the part")
-        return self.values[name]
-
-    @staticmethod
-    def f32const(x):
-        return np.float32(x)
-
-    @staticmethod
-    def f64const(x):
-        return np.float64(x)
+    # comparisons, logic and choice: numpy's elementwise functions
+    lt = staticmethod(np.less)
+    le = staticmethod(np.less_equal)
+    gt = staticmethod(np.greater)
+    ge = staticmethod(np.greater_equal)
+    eq = staticmethod(np.equal)
+    and_ = staticmethod(np.logical_and)
+    or_ = staticmethod(np.logical_or)
+    not_ = staticmethod(np.logical_not)
+    ite = staticmethod(np.where)
+    neg = staticmethod(np.negative)
+    f32const = staticmethod(np.float32)
+    f64const = staticmethod(np.float64)
 
     @staticmethod
     def widen(a):
@@ -54,90 +60,14 @@ class ArrayDomain(ConcreteDomain):
         with np.errstate(all="ignore"):
             return np.asarray(a, dtype=np.float64).astype(np.float32)
 
-    @staticmethod
-    def add(a, b):
-        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
-            return np.add(a, b, dtype=np.float32)
-
-    @staticmethod
-    def sub(a, b):
-        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
-            return np.subtract(a, b, dtype=np.float32)
-
-    @staticmethod
-    def mul(a, b):
-        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
-            return np.multiply(a, b, dtype=np.float32)
-
-    @staticmethod
-    def div(a, b):
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            return np.divide(a, b, dtype=np.float32)
-
-    @staticmethod
-    def neg(a):
-        return np.negative(a)
-
-    @staticmethod
-    def add64(a, b):
-        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
-            return np.add(a, b, dtype=np.float64)
-
-    @staticmethod
-    def sub64(a, b):
-        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
-            return np.subtract(a, b, dtype=np.float64)
-
-    @staticmethod
-    def mul64(a, b):
-        with np.errstate(all="ignore"):  # inf and NaN as in C++, silently
-            return np.multiply(a, b, dtype=np.float64)
-
-    @staticmethod
-    def div64(a, b):
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            return np.divide(a, b, dtype=np.float64)
+    # float ops in float32, double ops in float64 (numpy rounds each result to nearest-even)
+    add, sub, mul, div = (_elementwise(f, np.float32) for f in (np.add, np.subtract, np.multiply, np.divide))
+    add64, sub64, mul64, div64 = (_elementwise(f, np.float64) for f in (np.add, np.subtract, np.multiply, np.divide))
 
     def hypotf(self, a, b):
         wa, wb = self.widen(a), self.widen(b)
         with np.errstate(all="ignore"):
             return self.narrow(np.sqrt(wa * wa + wb * wb))
-
-    @staticmethod
-    def lt(a, b):
-        return np.less(a, b)
-
-    @staticmethod
-    def le(a, b):
-        return np.less_equal(a, b)
-
-    @staticmethod
-    def gt(a, b):
-        return np.greater(a, b)
-
-    @staticmethod
-    def ge(a, b):
-        return np.greater_equal(a, b)
-
-    @staticmethod
-    def eq(a, b):
-        return np.equal(a, b)
-
-    @staticmethod
-    def and_(a, b):
-        return np.logical_and(a, b)
-
-    @staticmethod
-    def or_(a, b):
-        return np.logical_or(a, b)
-
-    @staticmethod
-    def not_(a):
-        return np.logical_not(a)
-
-    @staticmethod
-    def ite(c, a, b):
-        return np.where(c, a, b)
 
 
 def _floats(lo: int, hi: int) -> np.ndarray:
