@@ -199,3 +199,11 @@ def test_a_worker_without_the_proof_file_decides_a_part_from_its_contents(tmp_pa
     gone = str(tmp_path / "elsewhere" / "toy_proofs.py")
     part = S.check_part((gone, TOY.read_bytes(), s.obligation, S.Part(s.boxes[0], 0), (("smt", 30.0),), ("z3",)))
     assert part.status == "proved"
+
+
+def test_split_command_with_the_default_jobs_writes_its_report(tmp_path):
+    """--jobs auto (the default): the report names the engine as asked, each split where it ran."""
+    report = tmp_path / "split.json"
+    assert main(["split", "doubling_is_exact", "--files", str(TOY), "--quiet", "--report", str(report)]) == 0
+    doc = json.loads(report.read_text())
+    assert doc["engine"].startswith("auto") and doc["splits"][0]["status"] == "proved"

@@ -60,7 +60,14 @@ class Engine:
     def describe(self) -> str:
         if self.scheduler:
             return f"Dask cluster at {self.scheduler}"
+        if self.jobs is None:
+            return "auto (local workers where the run pays for them)"
         return "this process" if self.jobs <= 1 else f"{self.jobs} local worker processes"
+
+
+def as_engine(jobs) -> Engine:
+    """An :class:`Engine` as given, or the engine of a number of local workers (1: this process)."""
+    return jobs if isinstance(jobs, Engine) else Engine(max(1, int(jobs)))
 
 
 def engine(jobs: Optional[int] = 1, scheduler: Optional[str] = None) -> Engine:
@@ -213,6 +220,22 @@ def _on_cluster(c, fn, tasks, window: int):
     finally:
         for f in list(pending.futures):
             f.cancel()
+
+
+def in_order(results: Iterable[tuple[int, R]],
+             on_arrival: Optional[Callable[[int, R], None]] = None) -> Iterator[tuple[int, R]]:
+    """The ``(i, result)`` pairs of :func:`stream`, which arrive in any order, handed on in task
+    order (a result waits for those before it), so that what is folded from them does not depend
+    on where the tasks ran; ``on_arrival(i, result)`` hears of each as it arrives."""
+    waiting: dict = {}
+    nxt = 0
+    for i, r in results:
+        if on_arrival is not None:
+            on_arrival(i, r)
+        waiting[i] = r
+        while nxt in waiting:
+            yield nxt, waiting.pop(nxt)
+            nxt += 1
 
 
 def default_jobs() -> int:

@@ -18,7 +18,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
-from ..engine import Engine, stream
+from ..engine import Engine, as_engine, in_order, stream
 from ..errors import NavfnInputError
 from . import properties as P
 from .bounded import CHECKABLE, Case, cases, explore
@@ -105,7 +105,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     todo = list(cases(nx, ny, modes, start, goal, ends))
     out = {n: SizeResult((nx, ny), n, "proved", cases=len(todo)) for n in names}
     t0 = time.perf_counter()
-    eng = jobs if isinstance(jobs, Engine) else Engine(max(1, int(jobs)))
+    eng = as_engine(jobs)
     work = [(tuple(todo[k:k + BATCH]), tuple(names), lo, hi, semantics, timeout, exhaustive_limit)
             for k in range(0, len(todo), BATCH)]
     _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), out, len(todo), progress)
@@ -120,18 +120,18 @@ def _collect(batches, out: dict, total: int, progress) -> None:
     """Fold ``(index, [case result, ...])`` batches, arriving in any order, into ``out`` in
     index order: counts, unknown cases and the counterexample (that of the first case refuting
     a property) are those of a run in order.  ``progress`` hears of every case as it arrives."""
-    waiting: dict = {}
-    done = nxt = 0
-    for i, results in batches:
-        waiting[i] = results
+    done = 0
+
+    def arrived(_, results) -> None:
+        nonlocal done
         for cr in results:
             done += 1
             if progress:
                 progress(done, total, cr)
-        while nxt in waiting:
-            for cr in waiting.pop(nxt):
-                _fold(cr, out)
-            nxt += 1
+
+    for _, results in in_order(batches, arrived):
+        for cr in results:
+            _fold(cr, out)
 
 
 def _fold(cr, out: dict) -> None:

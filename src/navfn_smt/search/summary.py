@@ -26,7 +26,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from ..engine import Engine, stream
+from ..engine import Engine, in_order, stream
 from ..maps.suite import discover, load_map
 from ..spec.extraction import ExtractionExit
 from . import fast
@@ -143,19 +143,15 @@ def summarize(suite: Path, modes, progress: Optional[Callable[[str], None]] = No
     per_mode = {m: _zero() for m in modes}
     per_cat: dict = {}
     last = t0
-    waiting: dict = {}
-    nxt = 0
     tasks = [(d, root, tuple(modes)) for d in dirs]
-    for k, (i, got) in enumerate(stream(_map_counts, tasks, eng.for_work(len(dirs), PARALLEL_FROM))):
-        waiting[i] = got
-        while nxt in waiting:  # merged in suite order: ties (the largest gap's case) as in order
-            category, counts = waiting.pop(nxt)
-            for m in modes:
-                _merge(per_mode[m], counts[m])
-                _merge(per_cat.setdefault((category, m), _zero()), counts[m])
-            nxt += 1
-        if progress and (time.perf_counter() - last > 5.0 or k + 1 == len(dirs)):
-            progress(f"[search --summary] {k + 1}/{len(dirs)} maps, {time.perf_counter() - t0:.1f} s")
+    # merged in suite order: ties (the largest gap's case) as in a run in order
+    for k, (_, (category, counts)) in enumerate(in_order(stream(_map_counts, tasks,
+                                                                 eng.for_work(len(dirs), PARALLEL_FROM))), 1):
+        for m in modes:
+            _merge(per_mode[m], counts[m])
+            _merge(per_cat.setdefault((category, m), _zero()), counts[m])
+        if progress and (time.perf_counter() - last > 5.0 or k == len(dirs)):
+            progress(f"[search --summary] {k}/{len(dirs)} maps, {time.perf_counter() - t0:.1f} s")
             last = time.perf_counter()
     return {
         "suite": str(root), "maps": len(dirs), "modes": list(modes), "seconds": round(time.perf_counter() - t0, 2),

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Optional, Union
 
-from ..engine import Engine, default_jobs, stream
+from ..engine import Engine, as_engine, default_jobs, stream
 from ..errors import NavfnInputError
 from . import codec
 from .checking import Outcome, check, solve_z3
@@ -99,7 +99,7 @@ def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: Union[Engine, i
     work = tasks(paths, semantics, timeout, solvers, bounds, everything)
     if not work:
         raise NavfnInputError("no obligation to check in the requested semantics")
-    eng = jobs if isinstance(jobs, Engine) else Engine(max(1, int(jobs)))
+    eng = as_engine(jobs)
     got: dict[int, Outcome] = {}
     for i, o in stream(_job, work, auto_engine(eng, len(work), solvers)):
         got[i] = o
