@@ -48,10 +48,15 @@ class Outcome:
         return self.status == self.expected
 
 
+def domain_of(ob: Obligation, semantics: str):
+    """A fresh domain of ``semantics`` for ``ob`` (fp32 with the obligation's hypotf model)."""
+    return DOMAINS[semantics](hypotf_model=ob.hypotf_model) if semantics == "fp32" else DOMAINS[semantics]()
+
+
 def query(ob: Obligation, semantics: str, extra=None):
     """The obligation's domain and the assertions whose unsatisfiability proves it:
     the domain's assumptions, the precondition (and ``extra(D)``) and the negated claim."""
-    D = DOMAINS[semantics](hypotf_model=ob.hypotf_model) if semantics == "fp32" else DOMAINS[semantics]()
+    D = domain_of(ob, semantics)
     pre, claim = ob.build(D)
     if extra is not None:
         pre = z3.And(pre, extra(D))
@@ -96,16 +101,21 @@ def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3,
 def _judge_model(out: Outcome, ob: Obligation, values: dict) -> None:
     """A solver's model, replayed on the concrete spec: ``refuted`` with its witness when
     the spec confirms it, else ``unknown``."""
+    out.status, out.witness, detail = judge_model(ob, out.semantics, values)
+    out.detail = detail or out.detail
+
+
+def judge_model(ob: Obligation, semantics: str, values: dict) -> tuple[str, dict, str]:
+    """``(status, witness, detail)`` of a model of ``ob``'s negation in ``semantics``, replayed
+    on the concrete spec: ``refuted`` when the spec confirms it, ``unknown`` when it does not."""
     confirmed = replay(ob, values)
-    out.witness = {"values": codec.witness_values(values), "replayed_on_spec": confirmed,
-                   "replayed_in": "rationals (real semantics)" if out.semantics == "real" else "float32 spec"}
+    witness = {"values": codec.witness_values(values), "replayed_on_spec": confirmed,
+               "replayed_in": "rationals (real semantics)" if semantics == "real" else "float32 spec"}
     if confirmed is False:
         # the model satisfies the library-function model but not the real libm: it is not
         # a counterexample of the compiled planner; the question stays open
-        out.status = "unknown"
-        out.detail = "solver model not confirmed by the concrete spec (libm differs from its model)"
-    else:
-        out.status = "refuted"
+        return "unknown", witness, "solver model not confirmed by the concrete spec (libm differs from its model)"
+    return "refuted", witness, ""
 
 
 def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:

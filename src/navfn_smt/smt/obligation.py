@@ -75,20 +75,25 @@ def obligation(predicate, expect: dict, scope: str, bound: Optional[Bound] = Non
     return wrap
 
 
+def load_proof_module(path):
+    """The proof file ``path`` run as a module (one-line errors for a missing or broken file)."""
+    p = Path(path)
+    if not p.is_file():
+        raise NavfnInputError(f"{p}: no such proof file")
+    spec = importlib.util.spec_from_file_location(f"navfn_proofs.{p.stem}", p)
+    mod = importlib.util.module_from_spec(spec)
+    try:
+        spec.loader.exec_module(mod)
+    except (Exception, SystemExit) as e:  # a broken proof file is the user's input
+        raise NavfnInputError(f"{p}: cannot load ({type(e).__name__}: {e})") from None
+    return mod
+
+
 def load_obligations(paths) -> list[Obligation]:
     """Every :class:`Obligation` defined at module level in the given proof files."""
     found: list[Obligation] = []
     for p in paths:
-        p = Path(p)
-        if not p.is_file():
-            raise NavfnInputError(f"{p}: no such proof file")
-        spec = importlib.util.spec_from_file_location(f"navfn_proofs.{p.stem}", p)
-        mod = importlib.util.module_from_spec(spec)
-        try:
-            spec.loader.exec_module(mod)
-        except (Exception, SystemExit) as e:  # a broken proof file is the user's input
-            raise NavfnInputError(f"{p}: cannot load ({type(e).__name__}: {e})") from None
-        found.extend(_module_obligations(p, mod))
+        found.extend(_module_obligations(Path(p), load_proof_module(p)))
     names = [o.name for o in found]
     dup = {n for n in names if names.count(n) > 1}
     if dup:

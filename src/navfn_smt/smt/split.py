@@ -26,6 +26,8 @@ import itertools
 import math
 import time
 from dataclasses import asdict, dataclass, field
+from fractions import Fraction
+from pathlib import Path
 from typing import Callable, Iterable, Optional
 
 import z3
@@ -66,13 +68,21 @@ class Interval:
         return Interval(self.var, self.lo, mid, self.kind), Interval(self.var, mid + 1, self.hi, self.kind)
 
     def formula(self, D):
+        """The interval over the bit-precise domain's variable (ints: signed int32 comparisons)."""
         v = D.variables[self.var]
         if self.kind == "f32":
             lo, hi = fp32_val(from_ordinal(self.lo)), fp32_val(from_ordinal(self.hi))
             return z3.And(z3.fpGEQ(v, lo), z3.fpLEQ(v, hi))
-        if z3.is_bv(v):
-            return z3.And(v >= self.lo, v <= self.hi)  # signed int32 comparisons
         return z3.And(v >= self.lo, v <= self.hi)
+
+    def real_formula(self, D):
+        """The interval over the error model's real variable (a float interval by its values)."""
+        v = D.variables[self.var]
+        if self.kind == "f32":
+            lo, hi = (z3.RealVal(Fraction(from_ordinal(k))) for k in (self.lo, self.hi))
+        else:
+            lo, hi = self.lo, self.hi
+        return z3.And(v >= lo, v <= hi)
 
     def as_json(self) -> dict:
         if self.kind == "f32":
@@ -93,8 +103,9 @@ def int_interval(var: str, lo: int, hi: int) -> Interval:
 Box = tuple  # of Interval, at most one per variable
 
 
-def box_formula(D, box: Box):
-    return z3.And(*(iv.formula(D) for iv in box)) if box else z3.BoolVal(True)
+def box_formula(D, box: Box, real: bool = False):
+    """The box over ``D``'s variables (``real``: the error model's)."""
+    return z3.And(*(iv.real_formula(D) if real else iv.formula(D) for iv in box)) if box else z3.BoolVal(True)
 
 
 def product(*axes: Iterable[Interval]) -> list[Box]:
@@ -162,15 +173,11 @@ def split(obligation, boxes, bisect_along, expect: str, max_depth: int = 12, par
 
 def load_splits(paths) -> list[Split]:
     """Every :class:`Split` defined at module level in the given proof files."""
-    import importlib.util
-    from pathlib import Path
+    from .obligation import load_proof_module
 
     found = []
     for p in paths:
-        spec = importlib.util.spec_from_file_location(f"navfn_splits.{Path(p).stem}", p)
-        mod = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(mod)
-        for v in vars(mod).values():
+        for v in vars(load_proof_module(p)).values():
             if isinstance(v, Split):
                 v.source = str(p)
                 found.append(v)
@@ -254,7 +261,7 @@ def check_part(job: tuple) -> Part:
 
 def _smt(ob, box: Box, timeout: float, solvers) -> tuple:
     """The bit-precise query on the part; a model counts only once the concrete spec confirms it."""
-    from .checking import Outcome, _judge_model, query
+    from .checking import judge_model, query
     from .runner import solve_query
 
     D, assertions = query(ob, "fp32", lambda D: box_formula(D, box))
@@ -262,9 +269,8 @@ def _smt(ob, box: Box, timeout: float, solvers) -> tuple:
     if answer == "unsat":
         return "proved", solver, "", None
     if answer == "sat":
-        judged = Outcome(ob.name, ob.predicate, "fp32", "unknown", "", 0.0, solver, "", "")
-        _judge_model(judged, ob, values)
-        return judged.status, solver, judged.detail, judged.witness
+        status, witness, detail = judge_model(ob, "fp32", values)
+        return status, solver, detail, witness
     return "unknown", solver, detail or "unknown", None
 
 
@@ -273,7 +279,7 @@ def _errmodel(ob, box: Box, timeout: float, solvers) -> tuple:
     from . import errmodel
 
     try:
-        D, assertions = errmodel.query(ob, lambda D: _real_box(D, box))
+        D, assertions = errmodel.query(ob, lambda D: box_formula(D, box, real=True))
     except NotImplementedError as e:
         return "unknown", "z3 (error model)", str(e), None
     # nonlinear real arithmetic is sensitive to the order it explores: a query that takes 6 s with
@@ -303,30 +309,14 @@ def _enumerate(ob, box: Box, timeout: float, solvers) -> tuple:
 _METHOD = {"smt": _smt, "errmodel": _errmodel, "enumerate": _enumerate}
 
 
-def _real_box(D, box: Box):
-    """The box over the error model's real variables (float intervals by their values)."""
-    from fractions import Fraction
-
-    out = []
-    for iv in box:
-        v = D.variables[iv.var]
-        if iv.kind == "f32":
-            lo, hi = Fraction(from_ordinal(iv.lo)), Fraction(from_ordinal(iv.hi))
-        else:
-            lo, hi = iv.lo, iv.hi
-        out.append(z3.And(v >= z3.RealVal(lo) if iv.kind == "f32" else v >= lo,
-                          v <= z3.RealVal(hi) if iv.kind == "f32" else v <= hi))
-    return z3.And(*out) if out else z3.BoolVal(True)
-
-
 def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z3",)) -> dict:
     """The cover obligation: ``pre ==> box_1 or ... or box_n``; ``proved`` when unsatisfiable."""
-    from .checking import query
+    from .checking import domain_of
     from .runner import solve_query
 
     ob = _obligation(source, name)
     t0 = time.perf_counter()
-    D, _ = query(ob, "fp32")
+    D = domain_of(ob, "fp32")
     pre, _ = ob.build(D)
     cover = z3.Or(*(box_formula(D, b) for b in boxes))
     answer, values, solver, detail = solve_query(tuple(solvers))([pre, z3.Not(cover)], D.variables, timeout)
@@ -351,8 +341,6 @@ def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Op
     final: list[Part] = []
     rounds, done = 0, 0
     per_method = tuple((m, s.timeout_of(m, timeout)) for m in s.methods)
-    from pathlib import Path
-
     code = Path(s.source).read_bytes()  # sent with every part: a remote worker needs no copy of the file
     with session(eng) as run:
         while todo:
