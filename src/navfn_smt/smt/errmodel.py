@@ -26,6 +26,7 @@ from fractions import Fraction
 
 import z3
 
+from ..spec.numeric import f32
 from .codec import free_constants
 from .domains import RealDomain
 
@@ -52,17 +53,20 @@ class ErrorModelDomain(RealDomain):
         exact in IEEE arithmetic (no relative error at all)."""
         if z3.is_rational_value(z) and _representable(Fraction(z.as_fraction()), double):
             return z  # an exact constant needs no rounding
-        self.rounded += 1
-        d = z3.Real(f"delta!{self.rounded}")
-        u = z3.RealVal(U64 if double else U32)
-        lo, hi = (NORMAL64, MAX64) if double else (NORMAL32, MAX32)
-        self.assumptions.append(z3.And(d >= -u, d <= u))
-        lo, hi = z3.RealVal(lo), z3.RealVal(hi)
+        d = self._delta(U64 if double else U32)
+        lo, hi = (z3.RealVal(v) for v in ((NORMAL64, MAX64) if double else (NORMAL32, MAX32)))
         if sum_:
             self.side.append(z3.And(z <= hi, z >= -hi))
         else:
             self.side.append(z3.Or(z == 0, z3.And(z >= lo, z <= hi), z3.And(z <= -lo, z >= -hi)))
         return z * (1 + d)
+
+    def _delta(self, u: Fraction):
+        """A fresh relative error ``delta`` with ``|delta| <= u``."""
+        self.rounded += 1
+        d = z3.Real(f"delta!{self.rounded}")
+        self.assumptions.append(z3.And(d >= -z3.RealVal(u), d <= z3.RealVal(u)))
+        return d
 
     def _quotient(self, a, b):
         """``a / b`` as a fresh ``q`` with ``q * b == a``, and the side claim ``b != 0``."""
@@ -117,11 +121,8 @@ class ErrorModelDomain(RealDomain):
             s = self.add64(self.mul64(a, a), self.mul64(b, b))
             return self.narrow(self._round(self._sqrt(s), True))
         exact = self._sqrt(a * a + b * b)
-        if self.hypotf_model == "ulp":
-            self.rounded += 1
-            d = z3.Real(f"delta!{self.rounded}")
-            self.assumptions.append(z3.And(d >= -2 * z3.RealVal(U32), d <= 2 * z3.RealVal(U32)))
-            return exact * (1 + d)
+        if self.hypotf_model == "ulp":  # within one ulp: a relative error of at most 2 * U32
+            return exact * (1 + self._delta(2 * U32))
         # ordering facts only: between the larger magnitude and the sum of magnitudes
         self.rounded += 1
         h = z3.Real(f"hypotf!{self.rounded}")
@@ -140,21 +141,12 @@ class ErrorModelDomain(RealDomain):
 
 
 def _representable(x: Fraction, double: bool) -> bool:
-    """Whether ``x`` is a normal (or zero) value of the format, exactly."""
-    if x == 0:
-        return True
-    p, lo, hi = (53, NORMAL64, MAX64) if double else (24, NORMAL32, MAX32)
-    m = abs(x)
-    if not lo <= m <= hi:
+    """Whether ``x`` is zero or a normal value of the format, exactly (rounding it changes nothing)."""
+    lo, hi = (NORMAL64, MAX64) if double else (NORMAL32, MAX32)
+    if x != 0 and not lo <= abs(x) <= hi:
         return False
-    e = 0
-    while m >= 2:
-        m /= 2
-        e += 1
-    while m < 1:
-        m *= 2
-        e -= 1
-    return (m * 2 ** (p - 1)).denominator == 1
+    rounded = float(x) if double else f32(float(x))  # double rounding is innocuous for a float32 value
+    return Fraction(rounded) == x
 
 
 def query(ob, extra=None):
