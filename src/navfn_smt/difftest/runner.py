@@ -21,7 +21,7 @@ from ..engine import Engine, engine, stream
 from ..errors import NavfnInputError
 from ..spec.extraction import UndefinedBehaviour
 from ..spec.planner import PlanResult, sha256_f32, sha256_i32
-from ..maps.suite import MODES, discover, golden_path_of, load_golden, load_map
+from ..maps.suite import MODES, discover, golden_file, golden_path_of, is_case_line, load_golden, load_map
 
 FIELDS = ("path", "potential", "trace", "start_reached", "cycles", "updates")
 CHUNK = 2000  # cases per task, so that progress moves on large maps
@@ -180,12 +180,12 @@ def run_task(t: Task) -> TaskOutcome:
 
 def case_count(map_dir) -> int:
     """The cases of a map, counted in its ``test.txt`` without parsing them (the lines after
-    the first two that are neither blank nor ``-1`` comments, as :func:`parse_test_txt` reads);
+    the first two that :func:`is_case_line` accepts, as :func:`parse_test_txt` reads them);
     a malformed line is reported by the task that reads it."""
     path = Path(map_dir, "test.txt")
     try:
         with open(path, encoding="ascii") as f:  # line by line: a million cases are not held
-            return sum(1 for no, line in enumerate(f) if no >= 2 and line.strip() and not line.strip().startswith("-1"))
+            return sum(1 for no, line in enumerate(f) if no >= 2 and is_case_line(line))
     except (OSError, UnicodeDecodeError) as e:
         raise NavfnInputError(f"{path}: unreadable test file ({getattr(e, 'strerror', None) or type(e).__name__})") from None
 
@@ -196,8 +196,8 @@ def count_cases(root, modes: Iterable[str]) -> int:
     total = 0
     for d in discover(root):
         for mode in modes:
-            if not (d / f"golden_{mode}.npz").exists():
-                raise NavfnInputError(f"{d / f'golden_{mode}.npz'}: no such golden file")
+            if not golden_file(d, mode).exists():
+                raise NavfnInputError(f"{golden_file(d, mode)}: no such golden file")
         total += case_count(d) * len(modes)
     return total
 

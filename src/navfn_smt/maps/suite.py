@@ -55,7 +55,18 @@ class SuiteMap:
     cases: np.ndarray  # (N, 4) int32: sx sy gx gy
 
     def golden_path(self, mode: str) -> Path:
-        return self.directory / f"golden_{mode}.npz"
+        return golden_file(self.directory, mode)
+
+
+def golden_file(map_dir, mode: str) -> Path:
+    """The golden file of a map directory for one planner mode."""
+    return Path(map_dir) / f"golden_{mode}.npz"
+
+
+def is_case_line(line: str) -> bool:
+    """Whether a line of ``test.txt`` after the first two holds a case (not blank, not a ``-1`` comment)."""
+    s = line.strip()
+    return bool(s) and not s.startswith("-1")
 
 
 def parse_test_txt(path: Path) -> tuple[int, int, str, np.ndarray]:
@@ -84,10 +95,9 @@ def parse_test_txt(path: Path) -> tuple[int, int, str, np.ndarray]:
         raise NavfnInputError(f"{path}:2: expected a map file name in the same directory, got {lines[1]!r}")
     cases = []
     for no, line in enumerate(lines[2:], start=3):
-        s = line.strip()
-        if not s or s.startswith("-1"):
+        if not is_case_line(line):
             continue
-        parts = s.split()
+        parts = line.split()
         try:
             vals = [int(p) for p in parts]
             if len(vals) != 4:
