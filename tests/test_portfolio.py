@@ -320,15 +320,16 @@ def test_timeout_is_unknown_never_unsat():
     assert res.status == "unknown" and not res.proved
     assert {a.status for a in res.answers} <= {"timeout", "unknown"}
     assert len(res.answers) == 3
-    assert elapsed < 0.3 + worker.KILL_GRACE + 2.0
+    assert elapsed < 0.3 + worker.KILL_GRACE + 20.0  # a guard against a hang, with room for a loaded machine
     assert no_children_left()
 
 
 def test_hanging_and_crashing_solvers_do_not_block_the_caller():
     query = smtlib.prepare(Q_MUL_ONE)
     t = time.monotonic()
-    res = P._solve(query, ("_selftest_hang", "_selftest_crash", "z3"), 0.5, confirm=True)
-    assert time.monotonic() - t < 0.5 + worker.KILL_GRACE + 2.0
+    # a limit z3 meets on this trivial query even on a loaded machine; the bound guards against a hang
+    res = P._solve(query, ("_selftest_hang", "_selftest_crash", "z3"), 5.0, confirm=True)
+    assert time.monotonic() - t < 5.0 + worker.KILL_GRACE + 20.0
     by = {a.solver: a for a in res.answers}
     assert by["_selftest_hang"].status == "timeout"
     assert by["_selftest_crash"].status == "error" and "died" in by["_selftest_crash"].detail
@@ -337,7 +338,7 @@ def test_hanging_and_crashing_solvers_do_not_block_the_caller():
     # without confirm the hanging solver is killed as soon as z3 has answered
     t = time.monotonic()
     res = P._solve(query, ("_selftest_hang", "z3"), 30.0, confirm=False)
-    assert time.monotonic() - t < 5.0
+    assert time.monotonic() - t < 25.0  # well before the hanging solver's 30 s limit
     assert (res.status, res.solver) == ("unsat", "z3")
     assert no_children_left()
 

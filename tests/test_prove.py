@@ -1,5 +1,5 @@
-"""The proof run: every obligation in proofs/ gets its expected verdict, the reports are
-complete, and a changed verdict fails the run."""
+"""The proof run: no obligation in proofs/ gets a verdict against what is known of it, the
+reports are complete, and a verdict that contradicts what is known fails the run."""
 
 import json
 import os
@@ -29,16 +29,20 @@ def proof_run(tmp_path_factory):
     return rc, stdout, stderr, out
 
 
-def test_every_obligation_gets_its_expected_verdict(proof_run):
+def test_no_obligation_contradicts_what_is_known(proof_run):
+    """Each verdict is what is known or undecided (a solver slower than usual is no failure);
+    a standing is never weaker than what is known, whatever the solvers managed today."""
     rc, stdout, stderr, out = proof_run
     assert rc == 0, stdout[-3000:] + stderr[-2000:]
     doc = json.loads((out / "r.json").read_text())
     obs = doc["obligations"]
     assert len(obs) >= 20
     for o in obs:
-        for key in ("name", "property", "semantics", "status", "seconds", "solver", "bound", "witness"):
+        for key in ("name", "property", "semantics", "status", "known", "standing", "judgement", "seconds", "solver",
+                    "bound", "witness"):
             assert key in o
-        assert o["semantics"] in ("real", "fp32") and o["status"] == o["expected"], o
+        assert o["semantics"] in ("real", "fp32") and o["status"] in (o["known"], "unknown"), o
+        assert o["judgement"] in ("confirmed", "undecided") and (o["known"] == "unknown" or o["standing"] == o["known"]), o
         if o["status"] == "refuted":
             w = json.loads(Path(o["witness"]).read_text())
             assert w["replayed_on_spec"] is True and w["values"]
@@ -75,10 +79,14 @@ def test_progress_bound_is_found_and_tight(progress_run):
     assert "holds for `l < 1073741824.0`" in (progress_run / "inv.md").read_text()
 
 
-def test_the_default_run_searches_no_bound(proof_run):
+def test_the_default_run_searches_no_bound_and_takes_the_cached_one(proof_run):
+    """No solver call for the bound in the default run: the bound cache (for this code) gives it,
+    so Progress is bounded there as in `prove --all` and on the page."""
     doc = json.loads((proof_run[3] / "r.json").read_text())
     o = next(o for o in doc["obligations"] if o["name"] == "update_keeps_a_lower_neighbour" and o["semantics"] == "fp32")
-    assert o["status"] == "refuted" and o["bound"] is None
+    assert o["status"] in ("refuted", "unknown") and o["standing"] == "refuted"
+    assert o["bound"]["source"] == "bound cache" and o["bound"]["holds_below"] == 2.0**30
+    assert "solver_calls" not in o["bound"]
 
 
 def test_reports_junit_and_markdown(proof_run):
@@ -100,12 +108,12 @@ def test_predicates_in_the_reports(proof_run):
     assert doc["chain_problems"] == [] and doc["unchained_obligations"] == []
     preds = {p["name"]: p for p in doc["predicates"]}
     assert set(preds) == set(EXPECTED)
-    # the default run searches no bound: Progress is refuted in fp32 there (bounded with --all)
-    for name, (real, fp32) in {**EXPECTED, "Progress": ("proved", "refuted")}.items():
+    # the one status per predicate: the same as what is known derives, slow queries left out or not
+    for name, (real, fp32) in EXPECTED.items():
         p = preds[name]
         assert (p["status"]["real"]["status"], p["status"]["fp32"]["status"]) == (real, fp32), name
-        assert p["as_expected"] and p["chain"] and all(set(r["verdicts"]) == {"real", "fp32"} for r in p["chain"])
-    assert preds["Progress"]["status"]["fp32"]["refuted"] == ["update_keeps_a_lower_neighbour"]
+        assert p["changed"] == [] and p["chain"] and all(set(r["verdicts"]) == {"real", "fp32"} for r in p["chain"])
+    assert preds["Progress"]["status"]["fp32"]["bounded"] == ["update_keeps_a_lower_neighbour (l < 1073741824.0)"]
     assert "interpolated_gradient_is_zero_or_not_tiny (assumed)" in preds["FinitePotentialPath"]["status"]["fp32"]["open"]
     assert "the paper's predicates" in stdout and "PendingMatchesBuffers" in stdout
     md = (out / "inv.md").read_text()
@@ -127,9 +135,11 @@ def adding_one_always_increases(D):
     rc, stdout, stderr = run("prove", tmp_path / "wrong.py", "--report", tmp_path / "r.json",
                              "--witness-dir", tmp_path / "w", cwd=tmp_path)
     assert rc == 1, stdout + stderr
-    assert "1 passed, 1 failed" in stdout
+    assert "1 confirmed, 0 undecided, 0 newly decided, 1 contradicted" in stdout
+    assert "CONTRADICTION: adding_one_always_increases[fp32] refuted" in stdout
     o = {x["semantics"]: x for x in json.loads((tmp_path / "r.json").read_text())["obligations"]}
     assert o["real"]["status"] == "proved" and o["fp32"]["status"] == "refuted"
+    assert o["fp32"]["judgement"] == "contradicted"
     x = np.float32(o["fp32"]["witness_values"]["values"]["x"]["value"])
     assert x >= 2.0**24 and x + np.float32(1.0) == x  # the counterexample: 1 is absorbed
 
@@ -180,8 +190,9 @@ def test_bad_proof_files(tmp_path, content, words):
 
 
 def test_committed_invariants_page_matches_the_obligations():
-    """docs/invariants.md is generated by the proof run; it must list every obligation with the
-    verdicts the obligations currently expect (regenerate it with `navfn-smt prove --markdown`)."""
+    """docs/invariants.md is generated from the proof run's report; it must list every
+    obligation with what is known of it now (regenerate it with `navfn-smt docs`)."""
+    from navfn_smt.smt import knowledge
     from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import default_proof_files
 
@@ -189,14 +200,12 @@ def test_committed_invariants_page_matches_the_obligations():
     for line in (REPO / "docs" / "invariants.md").read_text().splitlines():
         parts = [p.strip() for p in line.strip().strip("|").split("|")]
         if len(parts) == 4 and parts[1].startswith("`"):
-            rows[parts[1].strip("`")] = {"real": parts[2], "fp32": parts[3]}
-    from navfn_smt.smt.split import load_splits
-
+            rows[parts[1].strip("`")] = {"real": parts[2].split()[0], "fp32": parts[3].split()[0]}
     obs = load_obligations(default_proof_files())
-    split = {s.obligation: s.expect for s in load_splits(default_proof_files())}
+    known = knowledge.of_files(default_proof_files(), obs)
     assert set(rows) == {o.name for o in obs}
-    for o in obs:  # a split decides its obligation's fp32 verdict on the page
-        assert rows[o.name] == {**o.expect, **({"fp32": split[o.name]} if o.name in split else {})}, o.name
+    for o in obs:  # a split decides its obligation's fp32 verdict: the knowledge says so
+        assert rows[o.name] == {s: known[(o.name, s)].status for s in o.expect}, o.name
 
 
 def test_committed_invariants_page_shows_the_predicates():

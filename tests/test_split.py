@@ -134,7 +134,7 @@ def test_split_command_reports_every_part(tmp_path, capsys):
     doc = json.loads(report.read_text())
     assert [s["obligation"] for s in doc["splits"]] == ["doubling_is_exact", "product_is_close"]
     assert all(s["status"] == "proved" and s["cover"]["status"] == "proved" for s in doc["splits"])
-    assert "2 of 2 splits as expected" in capsys.readouterr().out
+    assert "2 splits: 2 confirmed, 0 undecided, 0 newly decided, 0 contradicted" in capsys.readouterr().out
 
 
 def test_split_command_errors_are_one_line(capsys):

@@ -234,7 +234,7 @@ def _proof_files(names) -> list[Path]:
 
 
 def cmd_prove(args) -> int:
-    """Check the proof obligations; exit 1 when a verdict differs from the expected one."""
+    """Check the proof obligations; exit 1 only when a verdict contradicts what is known."""
     from .engine import engine
     from .report import proof_run
     from .report import proofs as report
@@ -261,10 +261,13 @@ def cmd_prove(args) -> int:
     witness_files = proof_run.write_witnesses(outcomes, witnesses)
     if args.smt2:
         write_smt2(files, semantics, Path(args.smt2))
-    report.table(outcomes)
+    from .smt.knowledge import of_files
+
+    known = of_files(files)
+    report.table(outcomes, known)
     meta = proof_run.meta(args.timeout, solvers, semantics, files)
     if args.report:
-        report.write_json(args.report, outcomes, witness_files, meta)
+        report.write_json(args.report, outcomes, witness_files, meta, known)
     if args.junit:
         report.write_junit(args.junit, outcomes)
     if args.markdown:
@@ -274,7 +277,10 @@ def cmd_prove(args) -> int:
     if left:
         print(f"{len(left)} slow queries left to `navfn-smt prove --all` (splits: `navfn-smt split`): {', '.join(left)}")
     proof_run.closing_line(outcomes)
-    return 0 if all(o.as_expected for o in outcomes) else 1
+    if args.record:
+        for line in proof_run.record_decisions(outcomes, files):
+            print(line)
+    return 1 if any(o.fails for o in outcomes) else 0
 
 
 # --------------------------------------------------------------------------------- mutate
@@ -404,12 +410,17 @@ def cmd_check(args) -> int:
             "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names if n in CR.NOT_INDUCTIVE},
             "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})
     for n, ind in induction.items():
-        print(f"{n}: every map size by induction: {ind['status']} "
-              f"({', '.join(f'{k} {v}' for k, v in ind['obligations'].items())})")
+        print(f"{n}: every map size by induction: {ind['status']} ("
+              + ", ".join(f"{k} {v}" + ("" if ind["this_run"][k] == v else f" [this run: {ind['this_run'][k]}]")
+                          for k, v in ind["obligations"].items()) + ")")
+        for k in ind["contradicted"]:
+            print(f"CONTRADICTION: {k} decided against what is known")
     if skipped:
         print(f"sizes not reached within --budget {args.budget:g} s: " + ", ".join(f"{w}x{h}" for w, h in skipped))
     for n, path in saved.items():
         print(f"{n}: counterexample saved in {path}")
+    if any(ind["contradicted"] for ind in induction.values()):
+        return 1
     return 0 if all(r.status == "proved" for r in results) else 1
 
 
@@ -660,8 +671,11 @@ def build_parser() -> argparse.ArgumentParser:
     pr.add_argument("--markdown", metavar="FILE.md", help="the invariants page (docs/invariants.md)")
     pr.add_argument("--smt2", metavar="DIR", help="also write every query as SMT-LIB2")
     pr.add_argument("--all", action="store_true",
-                    help="also the slow queries (open questions a split decides, long proofs), which the default "
+                    help="also the slow queries (whole queries a split decides, long proofs), which the default "
                          "run leaves out to stay within a minute")
+    pr.add_argument("--record", action="store_true",
+                    help="record every decision made where nothing was known (known.json beside the proof file, "
+                         "keyed by a hash of the proof file, kernels and domains), so later runs judge against it")
     pr.add_argument("--no-bound-search", action="store_true",
                     help="with --all, do not search bounds for properties refuted in fp32 (the default run "
                          "gives verdicts only: the bound search re-verifies its cached bound with two queries)")

@@ -172,19 +172,40 @@ def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> l
     return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), -s[0], s[1]))
 
 
+def induction_status(name: str, verdict_of) -> str:
+    """The every-size status of an inductive property: the worst fp32 status of the predicates
+    that carry it (:func:`~navfn_smt.smt.chains.derive`, from ``verdict_of``), the one status
+    ``check``, ``prove`` and the invariants page give those predicates."""
+    from ..proofs import PREDICATES
+    from ..smt.chains import STATUS_RANK, derive
+
+    statuses = [derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in INDUCTION[name]]
+    return max(statuses, key=STATUS_RANK.index) if statuses else "open"
+
+
 def induction(name: str, timeout: float = 30.0) -> Optional[dict]:
-    """The every-size proof of an inductive property: its predicates' obligations, in fp32."""
+    """The every-size proof of an inductive property: its predicates' obligations checked in
+    fp32 and judged against what is known (:mod:`~navfn_smt.smt.knowledge`); the status is
+    derived from their standings, so a solver slower today than when the proof was found
+    leaves it as known, and only a decision against what is known changes it."""
     if name not in INDUCTION:
         return None
     from ..proofs import PREDICATES
+    from ..smt import knowledge
+    from ..smt.chains import decisions_of, split_link, standing_verdicts
     from ..smt.checking import check
     from ..smt.obligation import load_obligations
     from ..smt.runner import default_proof_files, solve_query
 
     preds = [p for p in PREDICATES if p.name in INDUCTION[name]]
-    wanted = [o for p in preds for o in (*p.base, *p.lemmas)]
-    obligations = {o.name: o for o in load_obligations(default_proof_files())}
-    outcomes = {w: check(obligations[w], "fp32", timeout, solve_query(("z3",))).status for w in wanted}
-    proved = bool(outcomes) and all(s == "proved" for s in outcomes.values())
-    return {"predicates": [p.name for p in preds], "status": "proved" if proved else "not proved",
-            "obligations": outcomes, "trusted": [t for p in preds for t in p.trusted]}
+    wanted = [split_link(x)[1] for p in preds for x in (*p.base, *p.lemmas)]
+    files = default_proof_files()
+    obligations = {o.name: o for o in load_obligations(files)}
+    known = knowledge.of_files(files, list(obligations.values()))
+    runs = [check(obligations[w], "fp32", timeout, solve_query(("z3",)), known=known[(w, "fp32")]) for w in wanted]
+    return {"predicates": [p.name for p in preds],
+            "status": induction_status(name, standing_verdicts(known, decisions_of(runs))),
+            "obligations": {o.name: o.standing for o in runs},
+            "this_run": {o.name: o.status for o in runs},
+            "contradicted": [o.name for o in runs if o.fails],
+            "trusted": [t for p in preds for t in p.trusted]}

@@ -92,8 +92,12 @@ INTRO = ("Each obligation below is a property of the specification's kernels, st
          "in two semantics: `real` (the paper's abstraction: no rounding) and `fp32` (bit-precise IEEE-754 "
          "binary32/binary64 as the compiled C++ computes). `proved` means the solver showed the negation "
          "unsatisfiable; `refuted` means it found a counterexample, which was replayed on the concrete "
-         "specification (*bounded* when a bound found by search still proves it below); `unknown` means no "
-         "solver decided in time (never counted as proved); `not run` means the report has no verdict for it. "
+         "specification (*bounded* when a bound found by search still proves it below); `unknown` means nothing "
+         "is known and no solver decided in time (never counted as proved); `not run` means the report has no "
+         "verdict for it. Each verdict is the obligation's *standing*: the report's decision (or its split's) where "
+         "one was made, otherwise what is known of it, its source named (`declared`, `split`, `chain P`, "
+         "`recorded`: see [proofs.md](proofs.md)); a whole query left undecided is no failure, a decision against "
+         "what is known is. "
          "The whole-planner properties of `navfn-smt check` are decided for every map of a size (a "
          "*bounded-size proof*), in fp32 only, and for every size when an induction carries them. An obligation's counterexample is a set of kernel "
          "inputs (a cell's and its neighbours' values), not a map, so it is given as values; a whole-planner "
@@ -132,7 +136,7 @@ def _read_json(path, what: str) -> dict:
     return doc
 
 
-OBLIGATION_KEYS = ("name", "property", "semantics", "status", "expected", "seconds", "solver")
+OBLIGATION_KEYS = ("name", "property", "semantics", "status", "seconds", "solver")
 
 
 def read_prove_report(path) -> dict:
@@ -165,7 +169,7 @@ def outcomes_of(prove_doc: dict) -> list:
     from ..smt.checking import Outcome
 
     return [Outcome(name=r["name"], predicate=r["property"], semantics=r["semantics"], status=r["status"],
-                    expected=r["expected"], seconds=float(r["seconds"]), solver=r["solver"],
+                    known=r.get("known", r.get("expected", "unknown")), seconds=float(r["seconds"]), solver=r["solver"],
                     scope=r.get("scope", ""), statement=r.get("statement", ""),
                     assumptions=list(r.get("assumptions") or []), bound=r.get("bound"),
                     witness=r.get("witness_values"), detail=r.get("detail", ""))
@@ -241,15 +245,6 @@ def _fmt_seconds(s) -> str:
     return f"{s:.2f} s" if s < 60 else f"{s:.0f} s ({int(s // 60)} min {s % 60:.0f} s)"
 
 
-def _verdict_text(r) -> str:
-    text = r.status
-    if r.bound and r.bound.get("holds_below") is not None:
-        text = f"bounded (refuted; holds for `{r.bound['var']} < {r.bound['holds_below']!r}`)"
-    if not r.as_expected:
-        text += f" (expected {r.expected})"
-    return text
-
-
 def _witness_text(r) -> str:
     vals = ", ".join(f"{k} = {v['value']!r}" for k, v in r.witness["values"].items())
     text = f"counterexample: {vals}"
@@ -258,7 +253,13 @@ def _witness_text(r) -> str:
     return text
 
 
-def _obligation_lines(ob, rows: dict, sems: list) -> list[str]:
+def _not_run(known: dict, name: str, semantics: str) -> str:
+    """An obligation the report has no verdict for: not run, and what is known of it."""
+    k = known.get((name, semantics))
+    return "not run" + (f" (known {k.status}: {k.source})" if k is not None and k.status != "unknown" else "")
+
+
+def _obligation_lines(ob, rows: dict, sems: list, known: dict) -> list[str]:
     """One obligation's subsection: statement, formula, where it applies, verdict per semantics."""
     english, notes, formula = statement_parts(ob.doc)
     out = [f"### `{ob.name}`", "", english or ob.name, ""]
@@ -278,18 +279,18 @@ def _obligation_lines(ob, rows: dict, sems: list) -> list[str]:
     for s in sems:
         r = rows.get(s)
         if r is None:
-            out.append(f"- **{s}**: not run" + (f" (expected {ob.expect[s]})" if s in ob.expect else ""))
+            out.append(f"- **{s}**: {_not_run(known, ob.name, s)}")
             continue
-        line = f"- **{s}**: {r.status} in {r.seconds:.2f} s ({r.solver})"
-        if r.bound and r.bound.get("holds_below") is not None:
+        line = f"- **{s}**: {predicates.standing_text(r)}; the whole query: {r.status} in {r.seconds:.2f} s ({r.solver})"
+        if r.bound and r.bound.get("holds_below") is not None and r.standing == "refuted":
             line += (f"; bounded: holds for `{r.bound['var']} < {r.bound['holds_below']!r}`, found by search "
                      f"(refuted below {r.bound.get('refuted_below')!r})")
         if r.witness:
             line += "; " + _witness_text(r)
         if r.detail:
             line += f"; {r.detail}"
-        if not r.as_expected:
-            line += f"; **expected {r.expected}**"
+        if r.fails:
+            line += f"; **contradicts the known {r.known} ({r.known_source})**"
         out.append(line)
     out.append("")
     return out
@@ -370,12 +371,16 @@ def check_status(prop: str, by_size: dict, induction: dict) -> str:
     return "; ".join(parts)
 
 
-def check_section(checks: list, images: Optional[Path]) -> list[str]:
-    """The whole-planner properties: a summary table, then one subsection per property."""
+def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list[str]:
+    """The whole-planner properties: a summary table, then one subsection per property.  An
+    induction's status is derived from its predicates' standings (``verdict_of``, the page's
+    one status per obligation), not copied from the check report that ran it."""
     from ..check.properties import PROPERTIES
-    from ..check.runner import CHECKABLE, INDUCTION, NOT_INDUCTIVE
+    from ..check.runner import CHECKABLE, INDUCTION, NOT_INDUCTIVE, induction_status
 
     rows, induction, not_inductive = _merge_checks(checks)
+    if verdict_of is not None:
+        induction = {n: {**ind, "status": induction_status(n, verdict_of)} for n, ind in induction.items()}
     out = ["## Whole-planner properties (`navfn-smt check`)", "",
            "Each property below is about the whole planner (setup, propagation with its bounded buffers, "
            "cycle limit, then `calcPath` with every exit) and is decided for every map of a size: lethal "
@@ -411,9 +416,9 @@ def check_section(checks: list, images: Optional[Path]) -> list[str]:
         out += [f"*Judge:* `check/properties.py`, `{PROPERTIES[n].judge.__name__}`.", ""]
         ind = induction.get(n)
         if ind:
-            obs = ", ".join(f"`{k}` {v}" for k, v in ind.get("obligations", {}).items())
+            obs = ", ".join(f"`{k}`" for k in ind.get("obligations", {}))
             out += [f"*Every size:* by induction over {', '.join(ind.get('predicates', []))}: **{ind['status']}** "
-                    f"(fp32: {obs}).", ""]
+                    f"(fp32, the predicates' status above; their links: {obs}).", ""]
         elif n in INDUCTION:
             out += [f"*Every size:* carried by {', '.join(INDUCTION[n])}; no report of the induction.", ""]
         else:
@@ -449,22 +454,35 @@ def check_section(checks: list, images: Optional[Path]) -> list[str]:
 
 
 # --------------------------------------------------------------------------- the page
-def with_splits(outcomes: list, split_doc: Optional[dict]) -> list:
-    """The fp32 verdicts of obligations their splits decide, taken from the split report."""
-    import dataclasses
+def judged(outcomes: list, split_doc: Optional[dict], known: dict) -> list:
+    """The report's outcomes judged against what is known now, the fp32 verdict of an
+    obligation its split decides joining the whole query's (from the split report): each
+    outcome's standing is the one status the page shows."""
+    from ..smt.knowledge import NOTHING
 
-    decided = {sp["obligation"]: sp for sp in (split_doc or {}).get("splits", [])
-               if sp.get("status") in ("proved", "refuted")}
+    decided = {sp["obligation"]: sp for sp in (split_doc or {}).get("splits", [])}
     out = []
     for o in outcomes:
-        sp = decided.get(o.name)
-        if sp is not None and o.semantics == "fp32":
-            o = dataclasses.replace(o, status=sp["status"], expected=sp["expected"], solver="split",
-                                    seconds=float(sp["seconds"]),
-                                    detail=f"decided by its split ({len(sp['parts'])} parts, cover "
-                                           f"{sp['cover']['status']}); whole: {o.status}")
+        sp = decided.get(o.name) if o.semantics == "fp32" else None
+        if sp is None:
+            out.append(o.judge(known.get((o.name, o.semantics), NOTHING)))
+            continue
+        o.judge(known.get((o.name, o.semantics), NOTHING), sp["status"])
+        o.detail = (f"split: {sp['status']} ({len(sp['parts'])} parts, cover {sp['cover']['status']}, "
+                    f"{_fmt_seconds(sp['seconds'])}); whole query: {o.status} in {o.seconds:.2f} s ({o.solver})"
+                    + (f"; {o.detail}" if o.detail else ""))
         out.append(o)
     return out
+
+
+def page_knowledge(declared: list) -> dict:
+    """What is known of the declared obligations: their declarations, the splits of their proof
+    files and the shipped chains (no solver runs)."""
+    from ..smt.knowledge import knowledge
+    from ..smt.split import load_splits
+
+    files = sorted({ob.source for ob in declared if ob.source})
+    return knowledge(declared, load_splits(files), predicates.registry())
 
 
 def split_section(split_doc: Optional[dict], label: str) -> list[str]:
@@ -476,12 +494,12 @@ def split_section(split_doc: Optional[dict], label: str) -> list[str]:
            f"run on {split_doc.get('engine', '?')}): the parts cover the input space (the cover is itself a "
            "solver query) and each part is decided bit-precisely, in the standard rounding-error model (proofs "
            "only) or by enumerating every input.", "",
-           "| obligation | verdict | expected | parts | proved / refuted / unknown | slowest part | cover | wall time |",
+           "| obligation | verdict | known before | parts | proved / refuted / unknown | slowest part | cover | wall time |",
            "|---|---|---|---|---|---|---|---|"]
     for sp in split_doc.get("splits", []):
         c = sp.get("counts", {})
         slow = sp.get("slowest_part") or {}
-        out.append(f"| `{sp['obligation']}` | {sp['status']} | {sp['expected']} | {len(sp['parts'])} | "
+        out.append(f"| `{sp['obligation']}` | {sp['status']} | {sp.get('known', sp.get('expected', '?'))} | {len(sp['parts'])} | "
                    f"{c.get('proved', 0)} / {c.get('refuted', 0)} / {c.get('unknown', 0)} | "
                    f"{_fmt_seconds(slow.get('seconds', 0))} ({slow.get('solver', '-')}) | "
                    f"{sp['cover']['status']} | {_fmt_seconds(sp['seconds'])} |")
@@ -503,9 +521,10 @@ def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Pat
     ``declared``: the obligations to list (default: those shipped in the package);
     ``split``: the ``(label, doc)`` of a split report, whose verdicts replace the whole ones."""
     split_label, split_doc = split or (None, None)
-    outcomes = with_splits(outcomes_of(prove_doc), split_doc)
-    sems = list(prove_doc.get("semantics") or predicates.run_semantics(outcomes)) or ["real", "fp32"]
     declared = declared_obligations() if declared is None else declared
+    known = page_knowledge(declared)
+    outcomes = judged(outcomes_of(prove_doc), split_doc, known)
+    sems = list(prove_doc.get("semantics") or predicates.run_semantics(outcomes)) or ["real", "fp32"]
     by_name: dict = {}
     for o in outcomes:
         by_name.setdefault(o.name, {})[o.semantics] = o
@@ -526,7 +545,7 @@ def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Pat
     if stale:
         out += ["Verdicts of obligations no longer declared (the report is older than the proofs): "
                 + ", ".join(f"`{n}`" for n in stale) + ".", ""]
-    out += predicates.markdown_summary(outcomes)
+    out += predicates.markdown_summary(outcomes, known)
     out += ["## Obligations", "", "| property | obligation | " + " | ".join(sems) + " |",
             "|---" * (len(sems) + 2) + "|"]
     for prop, obs in props.items():
@@ -534,15 +553,15 @@ def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Pat
             st = []
             for s in sems:
                 r = by_name.get(ob.name, {}).get(s)
-                st.append("not run" if r is None else r.status + ("" if r.as_expected else f" (expected {r.expected})"))
+                st.append(_not_run(known, ob.name, s) if r is None else predicates.standing_text(r))
             out.append(f"| {prop} | `{ob.name}` | " + " | ".join(st) + " |")
     out.append("")
     for prop, obs in props.items():
-        out += [f"## {prop}", "", *predicates.markdown_chain(prop, outcomes)]
+        out += [f"## {prop}", "", *predicates.markdown_chain(prop, outcomes, known)]
         for ob in obs:
-            out += _obligation_lines(ob, by_name.get(ob.name, {}), sems)
+            out += _obligation_lines(ob, by_name.get(ob.name, {}), sems, known)
     out += split_section(split_doc, split_label)
-    out += check_section(checks, images)
+    out += check_section(checks, images, predicates.standings(outcomes, known))
     while out and out[-1] == "":
         out.pop()
     return "\n".join(out) + "\n"

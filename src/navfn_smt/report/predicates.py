@@ -4,6 +4,8 @@ what is still open (for the JSON report, the terminal and the invariants page)."
 
 from __future__ import annotations
 
+from typing import Optional
+
 from rich.table import Table
 
 from ..smt.chains import (
@@ -11,8 +13,8 @@ from ..smt.chains import (
     check_chains,
     derive,
     link_owner,
-    outcome_verdicts,
     split_link,
+    standing_verdicts,
 )
 from .tables import console
 
@@ -35,48 +37,89 @@ def in_run(outcomes, predicates=None) -> list:
     return [p for p in (predicates or registry()) if p.name in declared]
 
 
-def link_verdict(outcomes_by_key: dict, name: str, semantics: str) -> str:
-    """One link's verdict as the reports show it: the status, its bound, a changed verdict."""
-    o = outcomes_by_key.get((name, semantics))
-    if o is None:
-        return "not checked"
-    text = o.status
-    if o.bound and o.bound.get("holds_below") is not None:
+def standing_text(o) -> str:
+    """An outcome's standing as the reports show it: the status, its bound, where it is
+    known from when this run did not decide it, and a decision that is news or contradicts."""
+    text = o.standing
+    if o.standing == "refuted" and o.bound and o.bound.get("holds_below") is not None:
         text += f" (holds for {o.bound['var']} < {o.bound['holds_below']!r})"
-    if not o.as_expected:
-        text += f" (expected {o.expected})"
+    if o.judgement == "undecided" and o.standing in ("proved", "refuted"):
+        text += f" (known: {o.known_source}; the whole query: {o.status})"
+    elif o.judgement == "newly decided":
+        text += " (newly decided)"
+    elif o.judgement == "contradicted":
+        text += f" (CONTRADICTS the known {o.known}: this run {o.status})"
     return text
 
 
-def _chain_rows(p, by_key: dict, sems: list) -> list:
+def link_verdict(outcomes_by_key: dict, name: str, semantics: str, known: Optional[dict] = None) -> str:
+    """One link's standing as the reports show it (:func:`standing_text`); for an obligation
+    this run did not check, what is known of it."""
+    o = outcomes_by_key.get((name, semantics))
+    if o is not None:
+        return standing_text(o)
+    k = (known or {}).get((name, semantics))
+    if k is None or k.status not in ("proved", "refuted"):
+        return "not checked"
+    return f"{k.status} (known: {k.source}; not checked in this run)"
+
+
+def _chain_rows(p, by_key: dict, sems: list, known: Optional[dict] = None) -> list:
     """The chain of ``p`` as rows: base case, step, assumptions, limits, then the obligations
     stated whole that the chain decides through finer links."""
     rows = ([("base", x) for x in p.base] + [("step", x) for x in p.lemmas] + [("assumed", x) for x in p.assumes]
             + [("limit", x) for x in p.limits] + [("whole", x) for x in p.whole])
     return [{"role": role, "link": x, "obligation": split_link(x)[1], "declared_for": link_owner(p, x),
-             "verdicts": {s: link_verdict(by_key, split_link(x)[1], s) for s in sems}} for role, x in rows]
+             "verdicts": {s: link_verdict(by_key, split_link(x)[1], s, known) for s in sems}} for role, x in rows]
 
 
-def summary(outcomes, predicates=None) -> dict:
+def standings(outcomes, known: dict):
+    """``verdict_of`` from the outcomes' standings, and for an obligation no outcome is
+    about, from what is known of it."""
+    from ..smt.chains import Verdict
+
+    by_key = {(o.name, o.semantics): o for o in outcomes}
+    otherwise = standing_verdicts(known)
+
+    def verdict_of(name, semantics):
+        o = by_key.get((name, semantics))
+        if o is None:
+            return otherwise(name, semantics)
+        b = o.bound or {}
+        found = o.standing == "refuted" and b.get("holds_below") is not None
+        return Verdict(o.standing, f"{b['var']} < {b['holds_below']!r}" if found else None)
+
+    return verdict_of
+
+
+def summary(outcomes, predicates=None, known: Optional[dict] = None) -> dict:
     """The ``predicates`` section of the JSON report: every predicate of the run with its
-    chain, its status per semantics (derived from the verdicts and from the expected
-    verdicts), the steps it takes from control flow and what is still open; the obligations
-    of predicates without a chain (``unchained_obligations``: those of proof files given by
-    hand); and any inconsistency between chains and obligations (``chain_problems``)."""
+    chain, its status per semantics (derived from the obligations' standings: what is known
+    with the decisions of this run), the status what was known
+    alone derives (``known_status``), the steps it takes from control flow and what is still
+    open; the obligations of predicates without a chain (``unchained_obligations``: those of
+    proof files given by hand); and any inconsistency between chains and obligations
+    (``chain_problems``).  ``known`` (``(name, semantics) -> Known``) defaults to what the
+    outcomes carry; obligations this run did not check count with what is known of them."""
+    from ..smt.knowledge import Known
+
     preds = tuple(predicates or registry())
     names = {p.name for p in preds}
     sems = run_semantics(outcomes)
     by_key = {(o.name, o.semantics): o for o in outcomes}
-    got, wanted = outcome_verdicts(outcomes), outcome_verdicts(outcomes, expected=True)
+    if known is None:
+        known = {(o.name, o.semantics): Known(o.known, o.known_source) for o in outcomes}
+    got = standings(outcomes, known)
+    wanted = standing_verdicts(known)
     out = []
     for p in in_run(outcomes, preds):
         status = {s: derive(p, s, got, preds) for s in sems}
-        expected = {s: derive(p, s, wanted, preds)["status"] for s in sems}
+        before = {s: derive(p, s, wanted, preds)["status"] for s in sems}
         out.append({"name": p.name, "statement": p.statement, "applies": p.applies,
-                    "chain": _chain_rows(p, by_key, sems), "rests_on": list(p.rests_on),
+                    "chain": _chain_rows(p, by_key, sems, known), "rests_on": list(p.rests_on),
                     "trusted": list(p.trusted), "open": list(p.open), "status": status,
-                    "expected_status": expected,
-                    "as_expected": all(status[s]["status"] == expected[s] for s in sems)})
+                    "known_status": before,
+                    "changed": [s for s in sems if status[s]["status"] != before[s]]})
     chained = [o for o in outcomes if o.predicate in names]
     return {"predicates": out,
             "unchained_obligations": sorted({o.name for o in outcomes if o.predicate not in names}),
@@ -89,10 +132,10 @@ def not_proved(st: dict) -> str:
     return "; ".join(parts)
 
 
-def table(outcomes) -> None:
+def table(outcomes, known: Optional[dict] = None) -> None:
     """The terminal summary: one row per predicate, its status per semantics and the links
     that keep it from proved."""
-    doc = summary(outcomes)
+    doc = summary(outcomes, known=known)
     if not doc["predicates"]:
         return
     sems = run_semantics(outcomes)
@@ -100,10 +143,10 @@ def table(outcomes) -> None:
     for c in ("predicate", *sems, "links", "not proved"):
         t.add_column(c, overflow="fold")
     for p in doc["predicates"]:
-        cells = [p["status"][s]["status"] + ("" if p["status"][s]["status"] == p["expected_status"][s]
-                                             else f" (expected {p['expected_status'][s]})") for s in sems]
+        cells = [p["status"][s]["status"] + ("" if s not in p["changed"] else f" (known: {p['known_status'][s]})")
+                 for s in sems]
         gaps = "\n".join(f"{s}: {not_proved(p['status'][s])}" for s in sems if not_proved(p["status"][s]))
-        colour = "green" if p["as_expected"] else "red"
+        colour = "green" if not p["changed"] else "yellow"
         t.add_row(f"[{colour}]{p['name']}[/]", *cells, str(sum(r["role"] != "limit" for r in p["chain"])), gaps)
     console.print(t)
     for problem in doc["chain_problems"]:
@@ -120,9 +163,9 @@ STATUS_NOTE = ("A predicate's status in a semantics is derived from its chain: *
                "needed; the steps the argument takes from the planner's control flow are listed as such.")
 
 
-def markdown_summary(outcomes) -> list:
+def markdown_summary(outcomes, known: Optional[dict] = None) -> list:
     """The table of predicates at the top of the invariants page."""
-    doc = summary(outcomes)
+    doc = summary(outcomes, known=known)
     if not doc["predicates"]:
         return []
     sems = run_semantics(outcomes)
@@ -144,11 +187,11 @@ def markdown_summary(outcomes) -> list:
     return lines
 
 
-def markdown_chain(name: str, outcomes) -> list:
+def markdown_chain(name: str, outcomes, known: Optional[dict] = None) -> list:
     """The head of a predicate's section: statement, where it applies, its chain with each
     link's verdicts, its status and what is still open (nothing for a predicate without a
     chain)."""
-    doc = summary(outcomes)
+    doc = summary(outcomes, known=known)
     p = next((x for x in doc["predicates"] if x["name"] == name), None)
     if p is None:
         return []

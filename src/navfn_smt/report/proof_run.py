@@ -65,7 +65,31 @@ def witness_note(outcomes, directory: Optional[Path]) -> None:
 
 
 def closing_line(outcomes) -> None:
-    """Print ``N passed, M failed`` and every verdict that differs from the expected one."""
-    bad = [o for o in outcomes if not o.as_expected]
-    print(f"{len(outcomes) - len(bad)} passed, {len(bad)} failed"
-          + (": " + ", ".join(f"{o.name}[{o.semantics}] {o.status} (expected {o.expected})" for o in bad) if bad else ""))
+    """Print how the run stands to what is known: ``N confirmed, M undecided, K newly decided,
+    J contradicted``, then every newly decided query (news to record) and every contradiction
+    (the only failure), each named."""
+    from ..smt.knowledge import CONTRADICTED, JUDGEMENTS, NEWLY_DECIDED, UNDECIDED
+
+    n = {j: [o for o in outcomes if o.judgement == j] for j in JUDGEMENTS}
+    known_left = sum(o.known in ("proved", "refuted") for o in n[UNDECIDED])
+    print(", ".join(f"{len(n[j])} {j}" for j in JUDGEMENTS)
+          + (f" ({known_left} of the undecided known from elsewhere)" if known_left else ""))
+    for o in n[NEWLY_DECIDED]:
+        print(f"newly decided: {o.name}[{o.semantics}] {o.status} by {o.solver} in {o.seconds:.1f} s"
+              + (" (witness replayed on the spec)" if o.witness and o.witness.get("replayed_on_spec") else "")
+              + "; nothing was known: record it with --record, or state it in the proof file")
+    for o in n[CONTRADICTED]:
+        print(f"CONTRADICTION: {o.name}[{o.semantics}] {o.status} by {o.solver}, against the known {o.known} "
+              f"({o.known_source})" + (f": {o.detail}" if o.detail else ""))
+
+
+def record_decisions(outcomes, files) -> list[str]:
+    """Record this run's new decisions (where nothing was known) beside their proof files."""
+    from ..smt.knowledge import NEWLY_DECIDED, record
+    from ..smt.obligation import load_obligations
+
+    obs = {o.name: o for o in load_obligations(files)}
+    return record((obs[o.name], o.semantics, o.status,
+                   {"solver": o.solver, "seconds": o.seconds, "when": meta(0, (), (), ())["when"],
+                    **({"witness": o.witness} if o.witness else {})})
+                  for o in outcomes if o.judgement == NEWLY_DECIDED)

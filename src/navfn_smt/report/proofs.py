@@ -15,24 +15,31 @@ from . import predicates
 from .tables import console
 
 
+JUDGEMENT_COLOUR = {"confirmed": "green", "undecided": "dim", "newly decided": "yellow", "contradicted": "bold red"}
+
+
 def _status_markup(o) -> str:
-    colour = "green" if o.as_expected else "red"
-    return f"[{colour}]{o.status}[/]"
+    return f"[{JUDGEMENT_COLOUR.get(o.judgement, 'red')}]{o.status}[/]"
 
 
-def table(outcomes) -> None:
-    t = Table(title="proof obligations")
-    for c in ("obligation", "property", "semantics", "status", "expected", "seconds", "solver"):
+def table(outcomes, known=None) -> None:
+    t = Table(title="proof obligations: this run's verdicts against what is known")
+    for c in ("obligation", "property", "semantics", "this run", "known", "judgement", "seconds", "solver"):
         t.add_column(c, justify="right" if c == "seconds" else "left", overflow="fold")
     for o in outcomes:
-        t.add_row(o.name, o.predicate, o.semantics, _status_markup(o), o.expected, f"{o.seconds:.2f}", o.solver)
+        t.add_row(o.name, o.predicate, o.semantics, _status_markup(o),
+                  o.known if o.known == "unknown" else f"{o.known} ({o.known_source})", o.judgement,
+                  f"{o.seconds:.2f}", o.solver)
     console.print(t)
     for o in outcomes:
-        if o.bound and o.bound.get("holds_below") is not None:
+        if o.bound and o.bound.get("source") == "bound cache":
+            console.print(f"  {o.name} [{o.semantics}]: holds for {o.bound['var']} < {o.bound['holds_below']!r} "
+                          "(the bound cache: found by an earlier search for this code; not searched in this run)")
+        elif o.bound and o.bound.get("holds_below") is not None:
             console.print(f"  {o.name} [{o.semantics}]: holds for {o.bound['var']} < {o.bound['holds_below']!r}"
                           f" (refuted below {o.bound.get('refuted_below')!r}; {o.bound.get('solver_calls')} solver calls)"
                           + (f"; bound {o.bound['cache']}" if o.bound.get("cache") else ""))
-    predicates.table(outcomes)
+    predicates.table(outcomes, known)
 
 
 def to_json(outcomes, witness_files: dict) -> list:
@@ -47,23 +54,28 @@ def to_json(outcomes, witness_files: dict) -> list:
     return rows
 
 
-def write_json(path, outcomes, witness_files: dict, meta: dict) -> None:
-    doc = {**meta, "obligations": to_json(outcomes, witness_files), **predicates.summary(outcomes)}
+def write_json(path, outcomes, witness_files: dict, meta: dict, known=None) -> None:
+    doc = {**meta, "obligations": to_json(outcomes, witness_files), **predicates.summary(outcomes, known=known)}
     atomic_write_text(path, json.dumps(doc, indent=1))
 
 
 def write_junit(path, outcomes) -> None:
-    failures = sum(not o.as_expected for o in outcomes)
+    failures = sum(o.fails for o in outcomes)
     total = sum(o.seconds for o in outcomes)
+    skipped = sum(o.judgement == "undecided" for o in outcomes)
     lines = ['<?xml version="1.0" encoding="UTF-8"?>',
-             f'<testsuite name="navfn-smt prove" tests="{len(outcomes)}" failures="{failures}" time="{total:.3f}">']
+             f'<testsuite name="navfn-smt prove" tests="{len(outcomes)}" failures="{failures}" skipped="{skipped}" '
+             f'time="{total:.3f}">']
     for o in outcomes:
         lines.append(f'  <testcase classname={quoteattr(o.predicate)} name={quoteattr(f"{o.name}[{o.semantics}]")} '
                      f'time="{o.seconds:.3f}">')
-        if not o.as_expected:
-            msg = f"expected {o.expected}, got {o.status}" + (f": {o.detail}" if o.detail else "")
+        if o.fails:
+            msg = f"contradicts what is known: known {o.known} ({o.known_source}), this run {o.status}" + (
+                f": {o.detail}" if o.detail else "")
             lines.append(f"    <failure message={quoteattr(msg)}>{escape(o.statement)}</failure>")
-        lines.append(f"    <system-out>{escape(json.dumps({'status': o.status, 'solver': o.solver, 'bound': o.bound}))}"
+        elif o.judgement == "undecided":
+            lines.append(f"    <skipped message={quoteattr(f'undecided in this run; known: {o.known}')}/>")
+        lines.append(f"    <system-out>{escape(json.dumps({'status': o.status, 'known': o.known, 'standing': o.standing, 'judgement': o.judgement, 'solver': o.solver, 'bound': o.bound}))}"
                      "</system-out>")
         lines.append("  </testcase>")
     lines.append("</testsuite>")

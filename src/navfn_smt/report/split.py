@@ -2,9 +2,11 @@
 
 Every split declared in the proof files (:func:`navfn_smt.smt.split.split`) is run on the
 engine: its parts, refined where undecided, then its cover.  The table gives per split the
-verdict against the expected one, the parts by verdict, the slowest part, the cover and the
-wall time; ``--report`` writes all of it with every part's box, method and time as JSON.
-Exit 1 when a verdict differs from the expected one.
+verdict against what is known of it (:mod:`navfn_smt.smt.knowledge`), the parts by verdict,
+the slowest part, the cover and the wall time; ``--report`` writes all of it with every
+part's box, method and time as JSON.  Exit 1 only when a verdict contradicts what is known:
+a split left undecided (a part out of time) is reported, a decision where nothing was known
+is news (``--record`` keeps it).
 """
 
 from __future__ import annotations
@@ -32,6 +34,8 @@ def register(sub) -> None:
                     help="how often an undecided part may be cut in two (default: what each split declares)")
     sp.add_argument("--report", metavar="FILE.json", help="machine-readable report: every part, the cover, times")
     sp.add_argument("--quiet", action="store_true", help="no line per decided part")
+    sp.add_argument("--record", action="store_true",
+                    help="record every verdict reached where nothing was known (known.json beside the proof file)")
     sp.set_defaults(func=cmd_split)
 
 
@@ -70,10 +74,19 @@ def cmd_split(args) -> int:
     table(outcomes)
     if args.report:
         write_json(args.report, outcomes, time.perf_counter() - t0, eng.describe())
-    bad = [o for o in outcomes if not o.as_expected]
-    print(f"{len(outcomes) - len(bad)} of {len(outcomes)} splits as expected, "
-          f"{_duration(time.perf_counter() - t0)}" + (f"; differing: {', '.join(o.obligation for o in bad)}" if bad else ""))
-    return 1 if bad else 0
+    from ..smt.knowledge import JUDGEMENTS, NEWLY_DECIDED
+
+    n = {j: [o.obligation for o in outcomes if o.judgement == j] for j in JUDGEMENTS}
+    print(f"{len(outcomes)} splits: " + ", ".join(f"{len(n[j])} {j}" + (f" ({', '.join(n[j])})" if n[j] and j != "confirmed" else "")
+                                                   for j in JUDGEMENTS) + f"; {_duration(time.perf_counter() - t0)}")
+    if args.record:
+        from ..smt.knowledge import record
+        from ..smt.split import _obligation
+
+        for line in record((_obligation(s.source, s.obligation), "fp32", o.status, {"by": "split", "seconds": o.seconds})
+                           for s, o in zip(chosen, outcomes) if o.judgement == NEWLY_DECIDED):
+            print(line)
+    return 1 if any(o.fails for o in outcomes) else 0
 
 
 def _part_line(t0: float):
@@ -101,12 +114,12 @@ def table(outcomes) -> None:
     from rich.table import Table
 
     t = Table(title="splits")
-    for col in ("obligation", "verdict", "expected", "parts", "proved", "refuted", "unknown", "slowest part",
+    for col in ("obligation", "verdict", "known", "judgement", "parts", "proved", "refuted", "unknown", "slowest part",
                 "cover", "wall time"):
         t.add_column(col)
     for o in outcomes:
         c, slow = o.counts(), o.slowest()
-        t.add_row(o.obligation, o.status, o.expected, str(len(o.parts)), str(c["proved"]), str(c["refuted"]),
+        t.add_row(o.obligation, o.status, o.known, o.judgement, str(len(o.parts)), str(c["proved"]), str(c["refuted"]),
                   str(c["unknown"]), f"{slow['seconds']:.1f} s" if slow else "-",
                   f"{o.cover['status']} ({o.cover['seconds']:.1f} s)", _duration(o.seconds))
     console.print(t)

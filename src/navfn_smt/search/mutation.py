@@ -7,7 +7,7 @@ source of the arithmetic, so a kernel mutant reaches the reference spec, the com
 backend and the SMT encodings alike.  A mutant runs in a subprocess on a copy of the
 package with the change applied, against these detectors:
 
-* ``prove``: the proof obligations (a verdict that changes catches it);
+* ``prove``: the proof obligations (a verdict that contradicts what is known catches it);
 * ``equality``: the symbolic domains compared with the concrete spec on kernel inputs;
 * ``difftest-reference``, ``difftest-jit``: each backend against the C++ golden outputs
   of the example suite.
@@ -321,22 +321,25 @@ def _detect_difftest(suite: str, backend: str) -> tuple[bool, str]:
 
 
 def _detect_prove(obligations, timeout: float, solvers) -> tuple[bool, list]:
-    """Check the obligations in order; the first verdict that changes catches the mutant.
-    A timeout does not catch it (it says nothing about the mutant), but a solver model the
-    concrete spec refuses does (the domain no longer matches the spec)."""
+    """Check the obligations in order; the first verdict that contradicts what is known
+    catches the mutant.  A timeout does not catch it (it says nothing about the mutant), nor
+    does a decision where nothing was known, but a solver model the concrete spec refuses
+    does (the domain no longer matches the spec)."""
+    from navfn_smt.smt import knowledge
     from navfn_smt.smt.checking import check
     from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import solve_query
 
-    loaded = {}
+    loaded, known = {}, {}
     notes = []
     for path, name, sem in obligations:
         if path not in loaded:
             loaded[path] = {o.name: o for o in load_obligations([Path(path)])}
-        o = check(loaded[path][name], sem, timeout, solve_query(tuple(solvers)), bounds=False)
-        if o.status != o.expected and (o.status != "unknown" or "not confirmed" in (o.detail or "")):
-            return True, notes + [f"{name}[{sem}]: {o.status} (expected {o.expected})"]
-        if o.status != o.expected:
+            known.update(knowledge.of_files([Path(path)], list(loaded[path].values())))
+        o = check(loaded[path][name], sem, timeout, solve_query(tuple(solvers)), bounds=False, known=known[(name, sem)])
+        if o.fails or (o.status == "unknown" and "not confirmed" in (o.detail or "")):
+            return True, notes + [f"{name}[{sem}]: {o.status} (known {o.known})"]
+        if o.judgement == knowledge.UNDECIDED and o.known != "unknown":
             notes.append(f"{name}[{sem}]: unknown (timeout, not counted)")
     return False, notes
 

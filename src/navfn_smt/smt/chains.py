@@ -182,36 +182,39 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
     return {"status": status, **{s: by_status[s] for s in STATUS_RANK[1:]}}
 
 
-def declared_verdicts(obligations, splits=()) -> Callable[[str, str], Optional[Verdict]]:
-    """``verdict_of`` from the declarations: each obligation's expected verdict, a declared
-    bound search counting as a bound (it runs in fp32 only); with ``splits``, the verdict a
-    split is declared to reach stands for its obligation's in fp32."""
-    obs = {o.name: o for o in obligations}
-    decided = {s.obligation: s.expect for s in splits if s.expect in ("proved", "refuted")}
+def declared_verdicts(obligations, splits=(), predicates=()) -> Callable[[str, str], Optional[Verdict]]:
+    """``verdict_of`` from what is known alone (:func:`navfn_smt.smt.knowledge.knowledge` of
+    the declarations, the splits and the chains), no run's decisions."""
+    from .knowledge import knowledge
+
+    return standing_verdicts(knowledge(obligations, splits, predicates))
+
+
+def standing_verdicts(known: dict, decisions: Optional[dict] = None) -> Callable[[str, str], Optional[Verdict]]:
+    """``verdict_of`` giving each obligation's standing (:func:`navfn_smt.smt.knowledge.standing`):
+    what is known (``known``: ``(name, semantics) -> Known``) with the decisions runs made
+    (``decisions``: ``(name, semantics) -> [(status, bound)]``); a bound counts when a run
+    found one or the bound cache holds one."""
+    from .knowledge import standing
+
+    decisions = decisions or {}
 
     def verdict_of(name, semantics):
-        o = obs.get(name)
-        if o is None or semantics not in o.expect:
+        k = known.get((name, semantics))
+        made = decisions.get((name, semantics), [])
+        if k is None and not made:
             return None
-        status = decided[name] if semantics == "fp32" and name in decided else o.expect[semantics]
-        searched = o.bound is not None and semantics == "fp32" and status == "refuted"
-        return Verdict(status, f"{o.bound.var} < a bound found by search" if searched else None)
+        status, _ = standing(k.status if k else "unknown", *(m[0] for m in made))
+        found = [b for st, b in made if st == "refuted" and b and b.get("holds_below") is not None]
+        bound = found[0] if found else (k.bound if k else None)
+        return Verdict(status, f"{bound['var']} < {bound['holds_below']!r}" if status == "refuted" and bound else None)
 
     return verdict_of
 
 
-def outcome_verdicts(outcomes, expected: bool = False) -> Callable[[str, str], Optional[Verdict]]:
-    """``verdict_of`` from a run's outcomes (their verdicts, or with ``expected`` the
-    verdicts they were expected to get; a bound counts when the run found one)."""
-    table = {(o.name, o.semantics): o for o in outcomes}
-
-    def verdict_of(name, semantics):
-        o = table.get((name, semantics))
-        if o is None:
-            return None
-        status = o.expected if expected else o.status
-        b = o.bound or {}
-        found = status == "refuted" == o.status and b.get("holds_below") is not None
-        return Verdict(status, f"{b['var']} < {b['holds_below']!r}" if found else None)
-
-    return verdict_of
+def decisions_of(outcomes) -> dict:
+    """``(name, semantics) -> [(status, bound)]`` of a run's outcomes (for :func:`standing_verdicts`)."""
+    out: dict = {}
+    for o in outcomes:
+        out.setdefault((o.name, o.semantics), []).append((o.status, o.bound))
+    return out

@@ -32,8 +32,8 @@ class Outcome:
     name: str
     predicate: str
     semantics: str
-    status: str  # proved | refuted | unknown
-    expected: str
+    status: str  # what this run decided: proved | refuted | unknown
+    known: str  # what was known before the run (knowledge.Known.status): proved | refuted | unknown
     seconds: float
     solver: str
     scope: str
@@ -42,10 +42,30 @@ class Outcome:
     bound: Optional[dict] = None
     witness: Optional[dict] = None  # values and replay verdict (refuted only)
     detail: str = ""
+    known_source: str = "declared"  # where the knowledge comes from (knowledge.Known.source)
+    standing: str = ""  # the one status the reports show (knowledge.standing)
+    judgement: str = ""  # how this run stands to what is known (knowledge.JUDGEMENTS)
+
+    def judge(self, known, *also: str) -> "Outcome":
+        """Judge this run (and the decisions ``also`` made by others about the same query,
+        such as its split's) against ``known`` (a :class:`~navfn_smt.smt.knowledge.Known`):
+        set what is known, the standing and the judgement; a bound known from an earlier
+        search stands where this run searched none."""
+        from .knowledge import standing
+
+        self.known, self.known_source = known.status, known.source
+        self.standing, self.judgement = standing(known.status, self.status, *also)
+        if self.standing == "refuted" and known.bound is not None and not (self.bound or {}).get("holds_below"):
+            self.bound = {**known.bound, "source": "bound cache",
+                          "note": "bound found by an earlier search (the bound cache); not searched in this run"}
+        return self
 
     @property
-    def as_expected(self) -> bool:
-        return self.status == self.expected
+    def fails(self) -> bool:
+        """Only a decision against what is known fails a run."""
+        from .knowledge import CONTRADICTED
+
+        return self.judgement == CONTRADICTED
 
 
 def domain_of(ob: Obligation, semantics: str):
@@ -79,14 +99,15 @@ def solve_z3(assertions, variables: dict, timeout: float):
     return "unknown", None, "z3", s.reason_unknown()
 
 
-def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3, bounds: bool = True) -> Outcome:
-    """Check one obligation in one semantics."""
+def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3, bounds: bool = True,
+          known=None) -> Outcome:
+    """Check one obligation in one semantics, judged against ``known`` (default: its declaration)."""
     if ob.timeout is not None:
         timeout = min(timeout, ob.timeout)
     t0 = time.perf_counter()
     D, assertions = query(ob, semantics)
     answer, values, solver, detail = solve(assertions, D.variables, timeout)
-    out = Outcome(ob.name, ob.predicate, semantics, "unknown", ob.expect.get(semantics, "proved"),
+    out = Outcome(ob.name, ob.predicate, semantics, "unknown", "unknown",
                   0.0, solver, ob.scope, ob.doc.strip(), sorted(D.assumption_notes), detail=detail)
     if answer == "unsat":
         out.status = "proved"
@@ -95,7 +116,16 @@ def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3,
     if bounds and ob.bound is not None and semantics == "fp32" and out.status == "refuted":
         out.bound = search_bound(ob, timeout, solve)
     out.seconds = round(time.perf_counter() - t0, 3)
-    return out
+    return out.judge(known if known is not None else declared(ob, semantics))
+
+
+def declared(ob: Obligation, semantics: str):
+    """What ``ob``'s declaration alone says is known in ``semantics`` (the runner judges
+    against the whole knowledge: splits, chains and records too)."""
+    from .knowledge import DECIDED, NOTHING, Known
+
+    v = ob.expect.get(semantics, "unknown")
+    return Known(v) if v in DECIDED else NOTHING
 
 
 def _judge_model(out: Outcome, ob: Obligation, values: dict) -> None:
@@ -174,23 +204,22 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
     return out
 
 
+def cached_bound(ob: Obligation) -> Optional[float]:
+    """The bound an earlier search found for ``ob`` and the code as it is now, if cached."""
+    return _BoundCache(ob).get() if ob.bound is not None else None
+
+
 class _BoundCache:
     """Bounds found by search, kept beside the proof file (``.bounds.json``) and keyed by a
     hash of the proof file, the kernels and the domains: a later run only re-verifies that
     the bound is tight (two solver calls) instead of searching again."""
 
     def __init__(self, ob: Obligation):
-        import hashlib
+        from .knowledge import content_key
 
         self.ob = ob
-        src = Path(ob.source) if ob.source else None
-        self.path = src.parent / ".bounds.json" if src else None
-        h = hashlib.sha256()
-        here = Path(__file__).resolve().parent
-        for f in (src, here.parent / "spec" / "kernels.py", here / "domains.py"):
-            if f is not None and f.exists():
-                h.update(f.read_bytes())
-        self.key = f"{ob.name}:{h.hexdigest()[:16]}"
+        self.path = Path(ob.source).parent / ".bounds.json" if ob.source else None
+        self.key = content_key(ob)
 
     def _load(self) -> dict:
         import json

@@ -129,12 +129,13 @@ def bisect(box: Box, along: tuple[str, ...]) -> Optional[tuple[Box, Box]]:
 @dataclass
 class Split:
     """A declared split of ``obligation`` (its name) in float32: the first boxes, the
-    variables refinement may cut, how deep, and the verdict the split is expected to reach."""
+    variables refinement may cut, how deep, and what is known of the verdict it reaches
+    (the whole obligation's fp32 verdict: :mod:`.knowledge`)."""
 
     obligation: str
     boxes: list
     bisect: tuple
-    expect: str  # proved | refuted | unknown
+    expect: str  # known: proved | refuted | unknown (nothing known yet)
     max_depth: int = 12
     part_timeout: float = 60.0
     solvers: tuple = ("bitwuzla",)
@@ -155,16 +156,25 @@ METHODS = ("smt", "errmodel", "enumerate")
 ERRMODEL_SEEDS = 4  # random seeds the error model's time is shared among
 
 
-def split(obligation, boxes, bisect_along, expect: str, max_depth: int = 12, part_timeout: float = 60.0,
-          solvers=("bitwuzla",), note: str = "", methods=("smt",), timeouts=None) -> Split:
+def split(obligation, boxes, bisect_along, expect: Optional[str] = None, max_depth: int = 12,
+          part_timeout: float = 60.0, solvers=("bitwuzla",), note: str = "", methods=("smt",), timeouts=None) -> Split:
     """Declare a split of ``obligation`` (the declared obligation itself) in a proof file.
+
+    What is known of the split's verdict is the obligation's declared fp32 verdict, stated
+    once there; ``expect`` states it here instead, for an obligation that declares nothing
+    known in fp32 (the two may not disagree).
 
     ``methods`` are tried on each part in order until one decides it: ``smt``, the
     bit-precise query (:mod:`.checking`) with ``solvers``; ``errmodel``, the standard
     rounding-error model (:mod:`.errmodel`, proofs only) with Z3's nonlinear real arithmetic;
     ``enumerate``, every input of a part with one float variable (:mod:`.enumerate`)."""
+    declared = obligation.expect.get("fp32", "unknown")
+    if expect is None:
+        expect = declared
     if expect not in ("proved", "refuted", "unknown"):
         raise ValueError(f"{obligation.name}: bad expectation {expect}")
+    if declared != "unknown" and expect != declared:
+        raise ValueError(f"{obligation.name}: the split states {expect}, the obligation {declared} in fp32")
     if not methods or any(m not in METHODS for m in methods):
         raise ValueError(f"{obligation.name}: methods must be among {METHODS}")
     return Split(obligation.name, list(boxes), tuple(bisect_along), expect, max_depth, part_timeout,
@@ -206,7 +216,7 @@ class SplitOutcome:
     name: str
     obligation: str
     status: str
-    expected: str
+    known: str  # what was known before the run (knowledge.Known.status)
     parts: list
     cover: dict
     rounds: int
@@ -214,10 +224,21 @@ class SplitOutcome:
     engine: str
     note: str = ""
     undecided: list = field(default_factory=list)
+    known_source: str = "split"
 
     @property
-    def as_expected(self) -> bool:
-        return self.status == self.expected
+    def judgement(self) -> str:
+        """How this run stands to what is known (:func:`~navfn_smt.smt.knowledge.judge`)."""
+        from .knowledge import judge
+
+        return judge(self.status, self.known)
+
+    @property
+    def fails(self) -> bool:
+        """Only a decision against what is known fails a run."""
+        from .knowledge import CONTRADICTED
+
+        return self.judgement == CONTRADICTED
 
     def counts(self) -> dict:
         out = {"proved": 0, "refuted": 0, "unknown": 0}
@@ -329,6 +350,17 @@ def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z
     return out
 
 
+def known_of(s: Split) -> str:
+    """What is known of the split's verdict: its declaration, or a decision recorded for its
+    obligation where nothing is declared (:mod:`.knowledge`)."""
+    from .knowledge import DECIDED, recorded
+
+    if s.expect in DECIDED:
+        return s.expect
+    rec = recorded(_obligation(s.source, s.obligation), "fp32") if s.source else None
+    return rec["status"] if rec else "unknown"
+
+
 def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Optional[int] = None,
               progress: Optional[Callable[[int, int, Part], None]] = None, stop_at_refutation: bool = True) -> SplitOutcome:
     """Decide the split's parts round by round on ``eng``, then its cover."""
@@ -380,13 +412,14 @@ def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Op
     else:
         status = "unknown"
     parts = [p.as_json() for p in final]
-    return SplitOutcome(s.name, s.obligation, status, s.expect, parts, cover, rounds,
+    return SplitOutcome(s.name, s.obligation, status, known_of(s), parts, cover, rounds,
                         round(time.perf_counter() - t0, 3), eng.describe(), s.note,
                         [p for p in parts if p["status"] == "unknown"] if status != "refuted" else [])
 
 
 def outcome_json(o: SplitOutcome) -> dict:
     d = asdict(o)
+    d["judgement"] = o.judgement
     d["counts"] = o.counts()
     d["slowest_part"] = o.slowest()
     return d
