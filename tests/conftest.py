@@ -1,8 +1,14 @@
-"""Shared fixtures: where the shared suites are, when they are present at all.
+"""Shared fixtures, and the one marker policy of the tests.
 
 The shared suites live beside the checkout (``../shared``) in CI; a fresh clone
 elsewhere has none, and the tests that need them skip.  ``NAVFN_SHARED`` overrides
 the location.
+
+Markers (declared in ``pyproject.toml``) are given here, once, by what a test uses:
+``shared`` and ``large`` for the shared suites' fixtures, ``dask`` for a Dask cluster
+fixture, ``prove`` for a whole proof run; ``slow`` is written on the test itself and such a
+test runs only with ``NAVFN_SLOW=1`` (:data:`SLOW`, read here and nowhere else).  So
+``pytest -m "not dask and not prove"`` gives a quick run.
 """
 
 import os
@@ -15,6 +21,21 @@ SHARED = Path(os.environ.get("NAVFN_SHARED", REPO.parent / "shared"))
 SUITE = SHARED / "navfn-suite"
 SUITE_LARGE = SHARED / "navfn-suite-large"
 DATA = Path(__file__).resolve().parent / "data"
+SLOW = bool(os.environ.get("NAVFN_SLOW"))  # the slow tests and guide commands run only then
+
+# a test using one of these fixtures gets the marker
+FIXTURE_MARKERS = {"shared_suite": "shared", "shared_suite_large": "large", "cluster": "dask",
+                   "local_cluster": "dask", "proof_run": "prove", "progress_run": "prove"}
+
+
+def pytest_collection_modifyitems(config, items):
+    skip_slow = pytest.mark.skip(reason="slow: set NAVFN_SLOW=1")
+    for item in items:
+        for fixture in getattr(item, "fixturenames", ()):
+            if fixture in FIXTURE_MARKERS:
+                item.add_marker(FIXTURE_MARKERS[fixture])
+        if "slow" in item.keywords and not SLOW:
+            item.add_marker(skip_slow)
 
 
 @pytest.fixture

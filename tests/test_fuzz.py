@@ -22,7 +22,6 @@ from navfn_smt.cli import main
 from navfn_smt.errors import NavfnInputError
 
 FAST = [c for c in fuzz.corpus() if c.fast and "accepted" not in c.allow]
-SLOW = pytest.mark.skipif(not os.environ.get("NAVFN_SLOW"), reason="slow: set NAVFN_SLOW=1")
 
 
 def test_corpus_covers_every_command():
@@ -52,7 +51,7 @@ def test_fast_subset_in_process(case, tmp_path, monkeypatch):
     assert lines[-1].startswith("navfn-smt") and "error" in lines[-1] or "refused-1" in case.allow, text
 
 
-@SLOW
+@pytest.mark.slow
 def test_whole_corpus_in_subprocesses():
     bad = [o for o in fuzz.run_corpus(fuzz.corpus(), timeout=10.0) if not fuzz.passed(o)]
     assert not bad, [(o.case.name, o.verdict, o.stderr[-300:]) for o in bad]

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
+from conftest import SLOW
 
 REPO = Path(__file__).resolve().parent.parent
 GUIDE = REPO / "docs" / "guide.md"
@@ -132,7 +133,7 @@ def test_matches_handles_ellipses():
 
 @pytest.mark.parametrize("block", BLOCKS, ids=[f"line{b.line}-{b.command.split()[1]}" for b in BLOCKS])
 def test_guide_command(block: Block, scratch: Path):
-    if block.kind == "slow" and not os.environ.get("NAVFN_SLOW"):
+    if block.kind == "slow" and not SLOW:
         pytest.skip("a slow guide command (NAVFN_SLOW=1 runs it)")
     cx = scratch / "cx"
     argv = shlex.split(block.command.replace("/tmp/cx", str(cx)))

@@ -106,6 +106,14 @@ def _push_and_heuristic(x, ints):
     return out
 
 
+@njit(error_model="numpy")
+def _push_admitted(ints):
+    out = np.empty(ints.shape[0], np.bool_)
+    for i in range(ints.shape[0]):
+        out[i] = K.push_admitted(ND, ints[i, 0], ints[i, 1], ints[i, 2] != 0, ints[i, 3], ints[i, 4], ints[i, 5])
+    return out
+
+
 def _columns(rng, n, k, potentials=True):
     return np.stack([f32_inputs(rng, n, potentials) for _ in range(k)], axis=1)
 
@@ -119,7 +127,8 @@ def test_numba_domain_has_every_operation():
     assert ops <= set(OPERATIONS), f"not compiled: {sorted(ops - set(OPERATIONS))}"
 
 
-@pytest.mark.parametrize("kernel", ["cell_update", "grad_cell", "interpolate", "step", "nearest", "lowest", "push"])
+@pytest.mark.parametrize("kernel", ["cell_update", "grad_cell", "interpolate", "step", "nearest", "lowest", "push",
+                                    "push_admitted"])
 def test_kernel_bit_equal_to_concrete(kernel):
     rng = np.random.default_rng(hash(kernel) % 2**32)
     bad = []
@@ -156,6 +165,14 @@ def test_kernel_bit_equal_to_concrete(kernel):
         x = _columns(rng, N, 9)
         got = _lowest(x)
         bad = [(x[i], got[i]) for i in range(N) if got[i] != K.lowest_of_eight(C, float(x[i, 0]), _py(x[i, 1:]))]
+    elif kernel == "push_admitted":  # cell n of ns, pending, cost, fill, capacity: on and off the map, full and not
+        ns = rng.integers(1, 40000, N)
+        ints = np.stack([rng.integers(-3, ns + 3), ns, rng.integers(0, 2, N), rng.integers(0, 256, N),
+                         rng.integers(0, 12, N), rng.integers(0, 12, N)], axis=1)
+        got = _push_admitted(ints)
+        bad = [(ints[i], got[i]) for i in range(N)
+               if bool(got[i]) != K.push_admitted(C, *(int(v) for v in ints[i, :2]), bool(ints[i, 2]),
+                                                  *(int(v) for v in ints[i, 3:]))]
     elif kernel == "push":
         x = _columns(rng, N, 4)
         ints = np.stack([rng.integers(-3000, 3000, N), rng.integers(-3000, 3000, N), rng.integers(0, 256, N)], axis=1)

@@ -8,7 +8,6 @@ is cheap on it too.  A short search at the committed size finds a counterexample
 from __future__ import annotations
 
 import json
-import os
 from pathlib import Path
 
 import numpy as np
@@ -84,7 +83,6 @@ def test_no_drop_no_counterexample():
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(not os.environ.get("NAVFN_SLOW"), reason="a search of up to 2 minutes (NAVFN_SLOW=1 runs it)")
 def test_search_finds_one_at_the_committed_size():
     doc, costs, _, _ = _case(SAVED[0])
     found = search_overflow("dijkstra", size=tuple(doc["size"]), timeout=120, seed=doc.get("seed", 0))

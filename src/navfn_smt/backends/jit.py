@@ -62,15 +62,16 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
     k = gx + gy * nx
     pot[k] = ND.f32const(0.0)
     # push_cur; the push is written out at both sites: a helper taking arrays would pay
-    # reference-count updates on every call (7x slower in the update loop)
+    # reference-count updates on every call (7x slower in the update loop).  Its guard is the
+    # kernel push_admitted; a push it refuses only for a full buffer is counted as dropped.
     for n in (k + 1, k - 1, k - nx, k + nx):
-        if n >= 0 and n < ns and not pending[n] and costs[n] < COST_OBS:
-            if fill[cur] < cap:
-                pb[cur, fill[cur]] = n
-                fill[cur] += 1
-                pending[n] = True
-            else:
-                ndrop += 1
+        j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard tests n against the map
+        if K.push_admitted(ND, n, ns, pending[j], costs[j], fill[cur], cap):
+            pb[cur, fill[cur]] = n
+            fill[cur] += 1
+            pending[n] = True
+        elif K.push_admitted(ND, n, ns, pending[j], costs[j], 0, 1):
+            ndrop += 1
     start_cell = sy * nx + sx
     if astar:
         cur_t = ND.add(K.astar_heuristic(ND, gx - sx, gy - sy), cur_t)
@@ -135,13 +136,12 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
                     m = n + nx
                     pm = d
                 if K.push_wanted(ND, pm, key, K.edge_weight(ND, ND.int_to_f32(costs[m]))):
-                    if m >= 0 and m < ns and not pending[m] and costs[m] < COST_OBS:
-                        if fill[dest] < cap:
-                            pb[dest, fill[dest]] = m
-                            fill[dest] += 1
-                            pending[m] = True
-                        else:
-                            ndrop += 1
+                    if K.push_admitted(ND, m, ns, pending[m], costs[m], fill[dest], cap):
+                        pb[dest, fill[dest]] = m
+                        fill[dest] += 1
+                        pending[m] = True
+                    elif K.push_admitted(ND, m, ns, pending[m], costs[m], 0, 1):
+                        ndrop += 1
         # swap: the next buffer becomes current; an empty one pulls in the overflow
         fill[cur] = 0
         t = cur

@@ -170,12 +170,12 @@ def _sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fil
         k = rx + ry * nx
         pot[k] = ND.f32const(0.0)
         cur = 0
-        for n in (k + 1, k - 1, k - nx, k + nx):
-            if n >= 0 and n < ns and not pending[n] and costs[n] < COST_OBS:
-                if fill[cur] < cap:
-                    pb[cur, fill[cur]] = n
-                    fill[cur] += 1
-                    pending[n] = True
+        for n in (k + 1, k - 1, k - nx, k + nx):  # push_cur, its guard the kernel push_admitted
+            j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard tests n against the map
+            if K.push_admitted(ND, n, ns, pending[j], costs[j], fill[cur], cap):
+                pb[cur, fill[cur]] = n
+                fill[cur] += 1
+                pending[n] = True
         if goal_of[k] >= 0:  # the robot's own cell: finite before the first cycle
             newly[0] = goal_of[k]
             st[NNEW] = 1
@@ -229,11 +229,10 @@ def _sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fil
                     m = n + nx
                     pm = d
                 if K.push_wanted(ND, pm, key, K.edge_weight(ND, ND.int_to_f32(costs[m]))):
-                    if m >= 0 and m < ns and not pending[m] and costs[m] < COST_OBS:
-                        if fill[dest] < cap:
-                            pb[dest, fill[dest]] = m
-                            fill[dest] += 1
-                            pending[m] = True
+                    if K.push_admitted(ND, m, ns, pending[m], costs[m], fill[dest], cap):
+                        pb[dest, fill[dest]] = m
+                        fill[dest] += 1
+                        pending[m] = True
         fill[cur] = 0
         t = cur
         cur = nxt

@@ -24,7 +24,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..spec import kernels as K
-from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC
+from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from ..spec.extraction import ExtractionExit
 from ..spec.numeric import CONCRETE
 from ..spec.propagation import cycle_limit
@@ -93,7 +93,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
     cur, nxt, over = empty, empty, empty
     for n in (k + 1, k - 1, k - nx, k + nx):
         if n in cost_int:
-            g = D.and_(D.not_(pending[n]), D.lt(cost_int[n], COST_OBS))
+            g = K.push_admitted(D, n, nx * ny, pending[n], cost_int[n], cur.fill, PRIORITYBUFSIZE)
             cur = _push(D, cur, g, n)
             pending[n] = D.or_(pending[n], g)
     cur_t = D.f32const(COST_OBS)
@@ -130,8 +130,10 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
                 for m, pm in ((n - 1, l), (n + 1, r), (n - nx, u), (n + nx, d)):
                     if m not in cost_int:
                         continue  # the border: lethal, never pushed
+                    fill = D.ite(low, new_nxt.fill, new_over.fill)
                     g = _fix(D, D.and_(D.and_(upd, K.push_wanted(D, pm, key, K.edge_weight(D, hf[m]))),
-                                       D.and_(D.not_(pending[m]), D.lt(cost_int[m], COST_OBS))))
+                                       K.push_admitted(D, m, nx * ny, pending[m], cost_int[m], fill,
+                                                       PRIORITYBUFSIZE)))
                     new_nxt = _push(D, new_nxt, D.and_(g, low), m)
                     new_over = _push(D, new_over, D.and_(g, D.not_(low)), m)
                     pending[m] = D.or_(pending[m], g)

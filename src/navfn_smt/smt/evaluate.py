@@ -140,6 +140,13 @@ def compare_kernel(kernel: str, seed: int, n: int) -> list:
                 fp = [f32_input(D, v) for v in (p, key, w, t)]
                 got = (value(K.push_wanted(D, fp[0], fp[1], fp[2])), value(K.to_low_buffer(D, fp[1], fp[3])))
                 args = (p, key, w, t)
+            elif kernel == "push_admitted":
+                ns = int(rng.integers(1, 40000))
+                n, fill, cap = int(rng.integers(-3, ns + 3)), int(rng.integers(0, 12)), int(rng.integers(0, 12))
+                pend, c = bool(rng.integers(2)), int(rng.integers(0, 256))
+                conc = (K.push_admitted(C, n, ns, pend, c, fill, cap),)
+                got = (value(K.push_admitted(D, n, ns, pend, D.cost_int(cost_input(D, c)), fill, cap)),)
+                args = (n, ns, pend, c, fill, cap)
             elif kernel == "heuristic":
                 ddx, ddy = (int(v) for v in rng.integers(-3000, 3000, size=2))
                 conc = (K.astar_heuristic(C, ddx, ddy),)
@@ -184,7 +191,7 @@ def compare_kernel(kernel: str, seed: int, n: int) -> list:
 
 
 # evaluations per kernel in the equality test (about 100,000 in all)
-KERNELS = {"cell_update": 16000, "edge_weight": 3000, "push": 12000, "heuristic": 8000, "grad_cell": 12000,
+KERNELS = {"cell_update": 16000, "edge_weight": 3000, "push": 12000, "push_admitted": 3000, "heuristic": 8000, "grad_cell": 12000,
            "interpolate": 14000, "step": 12000, "nearest": 12000, "lowest": 12000}
 
 

@@ -71,13 +71,17 @@ def check_capacity(capacity) -> int:
 
 
 def _push(st: PropagationState, buf: list, n: int) -> None:
-    """The ``push_cur/push_next/push_over`` macros."""
-    if 0 <= n < st.nx * st.ny and not st.pending[n] and st.costs[n] < COST_OBS:
-        if len(buf) < st.capacity:  # PRIORITYBUFSIZE unless the caller chose another
-            buf.append(n)
-            st.pending[n] = True
-        else:
-            st.dropped += 1
+    """The ``push_cur/push_next/push_over`` macros: their guard is :func:`kernels.push_admitted`
+    (capacity PRIORITYBUFSIZE unless the caller chose another); a push the guard refuses only
+    for want of room is counted as dropped (C++ drops it silently)."""
+    ns = st.nx * st.ny
+    j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard itself tests n against the map
+    pending, cost = st.pending[j], st.costs[j]
+    if K.push_admitted(D, n, ns, pending, cost, len(buf), st.capacity):
+        buf.append(n)
+        st.pending[n] = True
+    elif K.push_admitted(D, n, ns, pending, cost, 0, 1):  # admitted but for the full buffer
+        st.dropped += 1
 
 
 def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
