@@ -1,7 +1,7 @@
 """Malformed inputs end in one line ``navfn-smt: error: ...`` and a non-zero exit, never a traceback.
 
-The fast subset of :func:`navfn_smt.fuzz.corpus` runs in process through ``navfn_smt.cli.main``;
-the whole corpus through real subprocesses is ``python -m navfn_smt.fuzz`` (docs/fuzz-table.md)
+The fast subset of the corpus (``tests/fuzz_corpus.py``) runs in process through ``navfn_smt.cli.main``;
+the whole corpus through real subprocesses is ``python tests/fuzz_corpus.py`` (docs/fuzz-table.md)
 and, with NAVFN_SLOW=1, ``test_whole_corpus``.  Hypothesis feeds random bytes to the loaders:
 only NavfnInputError may escape.
 """
@@ -17,7 +17,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from navfn_smt import fuzz
+import fuzz_corpus as fuzz
 from navfn_smt.cli import main
 from navfn_smt.errors import NavfnInputError
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from navfn_smt.errors import NavfnInputError
-from navfn_smt.fuzz import _npy_header_claiming, _pgm, _png_header_only, MAP_YAML
+from fuzz_corpus import _npy_header_claiming, _pgm, _png_header_only, MAP_YAML
 from navfn_smt.inputs import MAX_CELLS, check_cells
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "src" / "navfn_smt" / "examples" / "suite"

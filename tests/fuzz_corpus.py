@@ -11,7 +11,7 @@ subprocess, one at a time, with a time limit, and classifies what happened:
 ``hang``        the time limit was reached
 ``accepted``    exit 0: the input was not refused
 
-``python -m navfn_smt.fuzz [--out docs/fuzz-table.md] [--only SUBSTRING] [--timeout S]`` writes
+``python tests/fuzz_corpus.py [--out docs/fuzz-table.md] [--only SUBSTRING] [--timeout S]`` writes
 the table (docs/fuzz-table.md).  :func:`corpus` is also what ``tests/test_fuzz.py`` runs a fast
 subset of, in process.
 """
@@ -34,7 +34,9 @@ from typing import Callable, Optional
 
 import numpy as np
 
-PACKAGE = Path(__file__).resolve().parent
+import navfn_smt
+
+PACKAGE = Path(navfn_smt.__file__).resolve().parent  # the package's example files are the inputs to corrupt
 EXAMPLES = PACKAGE / "examples"
 TEMPLATE_MAP = EXAMPLES / "suite" / "free" / "3x3_free"  # 5x5 cells, 81 cases, both goldens
 ROOM_PGM = EXAMPLES / "mapserver" / "room.pgm"
@@ -726,9 +728,9 @@ def run_corpus(cases: list[FuzzCase], timeout: float = 10.0, progress=None) -> l
 
 HEADER = """# Fuzz table
 
-Every malformed input of `navfn_smt.fuzz.corpus()` run through the real command line
+Every malformed input of `tests/fuzz_corpus.py`'s `corpus()` run through the real command line
 (`python -m navfn_smt ...` in a subprocess, one at a time, {timeout:g} s limit), as
-`python -m navfn_smt.fuzz --out docs/fuzz-table.md` writes it.  Verdicts: **ok** = exit 2 and
+`python tests/fuzz_corpus.py --out docs/fuzz-table.md` writes it.  Verdicts: **ok** = exit 2 and
 exactly one stderr line `navfn-smt: error: ...`; **usage** = argparse's refusal of the command
 line (its `usage:` line and one error line, exit 2); **refused-1** = exit 1 with a one-line
 planning failure, the right answer for that input; **accepted** = exit 0 where the input is
@@ -742,7 +744,7 @@ read fine and are listed as what they do.
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m navfn_smt.fuzz", description="run the malformed-input corpus")
+    ap = argparse.ArgumentParser(prog="python tests/fuzz_corpus.py", description="run the malformed-input corpus")
     ap.add_argument("--out", help="write the markdown table here (default: print it)")
     ap.add_argument("--only", help="run only cases whose name or loader contains this")
     ap.add_argument("--timeout", type=float, default=10.0)
@@ -762,7 +764,7 @@ def main(argv=None) -> int:
     outcomes = run_corpus(cases, args.timeout, progress)
     text = HEADER.format(timeout=args.timeout) + table(outcomes)
     if args.out:
-        from .fileio import atomic_write_text
+        from navfn_smt.fileio import atomic_write_text
 
         atomic_write_text(args.out, text)
     else:
