@@ -1,7 +1,4 @@
-"""``navfn-smt split``: decide the obligations no solver decides whole, part by part.
-
-Every split declared in the proof files (:func:`navfn_smt.smt.split.split`) is run on the
-engine: its parts, refined where undecided, then its cover.  The table gives per split the
+"""The report of ``navfn-smt split`` (:mod:`navfn_smt.commands.split`): the table gives per split the
 verdict against what is known of it (:mod:`navfn_smt.smt.knowledge`), the parts by verdict,
 the slowest part, the cover and the wall time; ``--report`` writes all of it with every
 part's box, method and time as JSON.  Exit 1 only when a verdict contradicts what is known:
@@ -12,98 +9,12 @@ is news (``--record`` keeps it).
 from __future__ import annotations
 
 import json
-import time
 
-from ..errors import NavfnInputError
-from .tables import _duration, console
+from .tables import console, duration
 
 
-def register(sub) -> None:
-    from ..engine import add_arguments
-
-    sp = sub.add_parser("split", help="decide the obligations no solver decides whole: parts that cover the input "
-                                      "space, each decided, and the cover proved")
-    sp.add_argument("names", nargs="*", metavar="OBLIGATION",
-                    help="the obligations whose splits to run (default: every split declared)")
-    sp.add_argument("--files", nargs="+", metavar="FILE|DIR",
-                    help="proof files declaring the splits (default: the package's navfn_smt/proofs)")
-    add_arguments(sp, "parts")
-    sp.add_argument("--part-timeout", type=float, default=None, metavar="S",
-                    help="seconds per part and method (default: what each split declares)")
-    sp.add_argument("--max-depth", type=int, default=None, metavar="N",
-                    help="how often an undecided part may be cut in two (default: what each split declares)")
-    sp.add_argument("--report", metavar="FILE.json", help="machine-readable report: every part, the cover, times")
-    sp.add_argument("--quiet", action="store_true", help="no line per decided part")
-    sp.add_argument("--record", action="store_true",
-                    help="record every verdict reached where nothing was known (known.json beside the proof file)")
-    sp.set_defaults(func=cmd_split)
-
-
-def cmd_split(args) -> int:
-    import math
-
-    from ..engine import engine
-    from ..fileio import check_writable
-    from ..smt.runner import default_proof_files, proof_files
-    from ..smt.split import load_splits, run_split
-
-    files = proof_files(args.files) if args.files else default_proof_files()
-    if args.part_timeout is not None and not (math.isfinite(args.part_timeout) and args.part_timeout > 0):
-        raise NavfnInputError(f"--part-timeout {args.part_timeout:g}: must be a positive number of seconds")
-    if args.max_depth is not None and not 0 <= args.max_depth <= 64:
-        raise NavfnInputError(f"--max-depth {args.max_depth}: must be between 0 and 64")
-    if args.report:
-        check_writable(args.report)
-    eng = engine(args.jobs, args.scheduler)
-    splits = load_splits(files)
-    unknown = set(args.names) - {s.obligation for s in splits}
-    if unknown:
-        raise NavfnInputError(f"no split declared for {', '.join(sorted(unknown))} "
-                              f"(declared: {', '.join(s.obligation for s in splits) or 'none'})")
-    chosen = [s for s in splits if not args.names or s.obligation in args.names]
-    if not chosen:
-        raise NavfnInputError("no split declared in the proof files")
-    t0 = time.perf_counter()
-    outcomes = []
-    for s in chosen:
-        used = eng.for_work(len(s.boxes), 2)
-        print(f"{s.obligation}: {len(s.boxes)} parts to start with, methods {', '.join(s.methods)}, on "
-              f"{used.describe()}", flush=True)
-        outcomes.append(run_split(s, used, args.part_timeout, args.max_depth,
-                                  progress=None if args.quiet else _part_line(time.perf_counter())))
-    table(outcomes)
-    if args.report:
-        write_json(args.report, outcomes, time.perf_counter() - t0, eng.describe())
-    from ..smt.knowledge import JUDGEMENTS, NEWLY_DECIDED
-
-    n = {j: [o.obligation for o in outcomes if o.judgement == j] for j in JUDGEMENTS}
-    print(f"{len(outcomes)} splits: " + ", ".join(f"{len(n[j])} {j}" + (f" ({', '.join(n[j])})" if n[j] and j != "confirmed" else "")
-                                                   for j in JUDGEMENTS) + f"; {_duration(time.perf_counter() - t0)}")
-    if args.record:
-        from ..smt.knowledge import record
-        from ..smt.split import _obligation
-
-        for line in record((_obligation(s.source, s.obligation), "fp32", o.status, {"by": "split", "seconds": o.seconds})
-                           for s, o in zip(chosen, outcomes) if o.judgement == NEWLY_DECIDED):
-            print(line)
-    return 1 if any(o.fails for o in outcomes) else 0
-
-
-def _part_line(t0: float):
-    """``progress(done, total, part)``: a line per decided part with done/total, the time so far
-    and an estimate of the time left for the parts known (refinement may add more)."""
-
-    def line(done: int, total: int, part) -> None:
-        box = ", ".join(_interval(iv.as_json()) for iv in part.box)
-        elapsed = time.perf_counter() - t0
-        left = f", about {_duration(elapsed * (total - done) / done)} left" if done < total else ""
-        print(f"  part {done}/{total} {part.status} in {part.seconds:.1f} s by {part.solver or '-'} "
-              f"({_duration(elapsed)}{left}): {box}", flush=True)
-
-    return line
-
-
-def _interval(iv: dict) -> str:
+def interval_text(iv: dict) -> str:
+    """One variable's interval of a part's box, as the terminal shows it."""
     if "lo_hex" in iv:
         lo, hi = iv["lo"], iv["hi"]
         return f"{iv['var']} = {lo:g}" if lo == hi else f"{iv['var']} in [{lo:g}, {hi:g}]"
@@ -121,13 +32,13 @@ def table(outcomes) -> None:
         c, slow = o.counts(), o.slowest()
         t.add_row(o.obligation, o.status, o.known, o.judgement, str(len(o.parts)), str(c["proved"]), str(c["refuted"]),
                   str(c["unknown"]), f"{slow['seconds']:.1f} s" if slow else "-",
-                  f"{o.cover['status']} ({o.cover['seconds']:.1f} s)", _duration(o.seconds))
+                  f"{o.cover['status']} ({o.cover['seconds']:.1f} s)", duration(o.seconds))
     console.print(t)
     for o in outcomes:
         if o.undecided:
             print(f"{o.obligation}: undecided parts:")
             for p in o.undecided[:10]:
-                print(f"  {', '.join(_interval(iv) for iv in p['box'])} ({p['detail']})")
+                print(f"  {', '.join(interval_text(iv) for iv in p['box'])} ({p['detail']})")
         for p in o.parts:
             if p["status"] == "refuted" and p.get("witness"):
                 vals = ", ".join(f"{k}={v['value'] if isinstance(v, dict) else v!r}"

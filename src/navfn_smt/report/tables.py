@@ -34,7 +34,7 @@ console = _console()
 err_console = _console(stderr=True)
 
 
-def _duration(seconds: float) -> str:
+def duration(seconds: float) -> str:
     """``42 s``, ``3 min 20 s`` or ``1 h 05 min``."""
     s = int(round(seconds))
     if s < 60:
@@ -56,8 +56,8 @@ def heartbeat(total: int, description: str, every: float = HEARTBEAT, stream=Non
         pct = f" ({100 * done // total}%)" if total else ""
         left = ""
         if 0 < done < total:
-            left = f", about {_duration(elapsed * (total - done) / done)} left"
-        return f"{description}: {done}/{total}{pct}, {_duration(elapsed)}{left}"
+            left = f", about {duration(elapsed * (total - done) / done)} left"
+        return f"{description}: {done}/{total}{pct}, {duration(elapsed)}{left}"
 
     def advance(n: int) -> None:
         if state.get("finished"):

@@ -250,7 +250,7 @@ class SplitOutcome:
         return max(self.parts, key=lambda p: p["seconds"], default=None)
 
 
-def _obligation(source: str, name: str, code: Optional[bytes] = None):
+def obligation_named(source: str, name: str, code: Optional[bytes] = None):
     """The obligation ``name`` of proof file ``source``; with ``code`` (the file's contents, sent
     with a task) loaded from those where the file is missing or differs (a remote worker)."""
     from .obligation import load_obligations, load_obligations_from
@@ -264,7 +264,7 @@ def check_part(job: tuple) -> Part:
     solvers)`` with ``code`` the proof file's contents and ``timeouts`` the seconds of each
     method, tried in turn until one decides the part."""
     source, code, name, part, timeouts, solvers = job
-    ob = _obligation(source, name, code)
+    ob = obligation_named(source, name, code)
     t0 = time.perf_counter()
     out = Part(part.box, part.depth)
     notes = []
@@ -335,7 +335,7 @@ def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z
     from .checking import domain_of
     from .runner import solve_query
 
-    ob = _obligation(source, name)
+    ob = obligation_named(source, name)
     t0 = time.perf_counter()
     D = domain_of(ob, "fp32")
     pre, _ = ob.build(D)
@@ -357,7 +357,7 @@ def known_of(s: Split) -> str:
 
     if s.expect in DECIDED:
         return s.expect
-    rec = recorded(_obligation(s.source, s.obligation), "fp32") if s.source else None
+    rec = recorded(obligation_named(s.source, s.obligation), "fp32") if s.source else None
     return rec["status"] if rec else "unknown"
 
 

@@ -13,14 +13,14 @@ import argparse
 
 from ..backends import BACKENDS
 from ..errors import NavfnInputError
-from .runner import MODE_CHOICES, modes_of
+from ..difftest.runner import MODE_CHOICES, modes_of
 
 
 def cmd_suite_record(args) -> int:
     """Record every map of the suite in the chosen modes and print one summary line."""
     from ..maps.suite import discover, load_map
     from ..report.tables import progress_bar
-    from .record import record_suite
+    from ..difftest.record import record_suite
 
     modes = modes_of(args.mode)
     if args.full_first < 0:

@@ -5,19 +5,19 @@
 
 Wire it into the ``suite`` command with ``register(suite_subparsers)``; the handler raises
 :class:`~navfn_smt.errors.NavfnInputError` on bad input, which ``main`` prints as one line.
-(``suite record`` lives with the difftest code: :mod:`navfn_smt.difftest.record_cli`.)
+(``suite record``: :mod:`navfn_smt.commands.suite_record`; the ``suite`` command: :mod:`navfn_smt.commands.suite`.)
 """
 
 from __future__ import annotations
 
 import argparse
 
-from .generators import CATEGORIES, CATEGORY_INFO, DEFAULT_PATHS
+from ..maps.generators import CATEGORIES, CATEGORY_INFO, DEFAULT_PATHS
 
 
 def cmd_suite_generate(args) -> int:
     """Generate the maps of one category and print one summary line."""
-    from .generators import generate_suite
+    from ..maps.generators import generate_suite
 
     maps = generate_suite(args.out, args.category, count=args.count, seed=args.seed,
                           size=tuple(args.size) if args.size else None, paths=args.paths,

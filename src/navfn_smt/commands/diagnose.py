@@ -58,8 +58,8 @@ class _Progress:
 
 def cmd_diagnose(args) -> int:
     from ..report import diagnose as report
-    from .core import diagnose
-    from .inputs import load_inputs, parse_goals, pose_arg
+    from ..diagnose.core import diagnose
+    from ..diagnose.inputs import load_inputs, parse_goals, pose_arg
 
     given = [o for o, v in (("--goal", args.goal), ("--goals", args.goals), ("--sweep", args.sweep)) if v]
     if len(given) != 1:
@@ -101,15 +101,15 @@ def _sweep(args, start) -> int:
     import json
 
     from ..report.sweep import render_sweep, write_summary_json
-    from .inputs import load_inputs
-    from .sweep import summary, sweep
+    from ..diagnose.inputs import load_inputs
+    from ..diagnose.sweep import summary, sweep
 
     n = None if args.sweep == "all" else _sample_size(args.sweep)
     setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
                         tuple(args.origin))
     cm = setup.costmap
     from ..report.tables import progress_bar
-    from .sweep import select_goals
+    from ..diagnose.sweep import select_goals
 
     goals = select_goals(cm, n, args.seed)
     seen = [0]

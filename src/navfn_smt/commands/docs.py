@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..errors import NavfnInputError
 from ..fileio import atomic_write_text, check_writable
-from . import invariants_page as page
+from ..report import invariants_page as page
 
 
 def _excerpt(line: str, col: int, width: int = 60) -> str:

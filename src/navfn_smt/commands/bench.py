@@ -1,0 +1,67 @@
+"""``navfn-smt bench``: timing of a suite, of generated maps, or of the whole-map sweep."""
+
+from __future__ import annotations
+
+from ..errors import NavfnInputError
+from .common import MODE_HELP, check_files, suite_or_example
+
+
+def cmd_bench(args) -> int:
+    """Time the planner on a whole suite, or on generated maps with ``--size``."""
+    from ..bench import SEED, bench_sizes, bench_suite, check_sizes
+    from ..report import bench as report
+
+    if args.sweep is not None:  # whole-map sweep benchmark
+        from ..bench import bench_sweep
+
+        goals = args.sweep_astar_goals
+        if goals != "all":
+            try:
+                goals = int(goals)
+            except ValueError:
+                goals = 0
+            if goals < 1:
+                raise NavfnInputError(f"--sweep-astar-goals {args.sweep_astar_goals}: a number of goals "
+                                      "(at least 1) or 'all'")
+        check_files(args.json)
+        rows = bench_sweep(args.sweep, args.mode, goals)
+        report.sweep_table(rows)
+        if args.json:
+            report.write_sweep_json(args.json, 0, rows)
+        return 0
+    if args.size:
+        check_sizes(args.size, args.repeat)
+        check_files(args.json)
+        rows = bench_sizes(args.size, args.backend, args.repeat, args.mode)
+        report.sizes_table(rows)
+        if args.json:
+            report.write_sizes_json(args.json, SEED, rows)
+        return 0
+    suite = suite_or_example(args.suite)
+    check_files(args.json)
+    rows = bench_suite(suite, args.backend, args.mode)
+    report.suite_table(suite, rows)
+    if args.json:
+        report.write_suite_json(args.json, suite, rows)
+    return 0
+
+
+def register(sub) -> None:
+    """The command's parser, its options and its handler."""
+    from ..backends import BACKENDS
+    from ..difftest.runner import MODE_CHOICES
+
+    be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
+    be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
+    be.add_argument("--size", nargs="+", type=int, metavar="N",
+                    help="instead of a suite, plan on generated NxN open and random-cost maps")
+    be.add_argument("--backend", choices=(*BACKENDS, "all"), default="all", help="planner implementations timed")
+    be.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
+    be.add_argument("--repeat", type=int, default=3, metavar="K", help="plans per map and mode with --size (best is kept)")
+    be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
+    be.add_argument("--sweep", nargs="?", type=int, const=400, metavar="N",
+                    help="instead, time the whole-map sweep (every free cell a goal of one robot pose) on a "
+                         "generated NxN rooms costmap (default 400)")
+    be.add_argument("--sweep-astar-goals", default="2000", metavar="K|all",
+                    help="goals sampled for the A* sweep (one propagation each; default 2000)")
+    be.set_defaults(func=cmd_bench)

@@ -1,0 +1,152 @@
+"""``navfn-smt check``: whole-planner properties proved or refuted on every map of a size."""
+
+from __future__ import annotations
+
+from ..fileio import check_writable_dir
+from .common import MODE_HELP, check_files, check_positive, vars_of
+
+
+def cmd_check(args) -> int:
+    """Bounded whole-planner checks; exit 0 only when every property is proved for every size asked."""
+    import time
+
+    from ..check import runner as CR
+    from ..engine import engine
+    from ..report import check as report
+    from ..search.runner import modes_list
+
+    names = CR.CHECKABLE if args.property == "all" else (args.property,)
+    from ..search.hunt import parse_costs
+
+    lo, hi = parse_costs(args.costs)
+    check_positive("--timeout", args.timeout)
+    check_positive("--exhaustive", args.exhaustive, allow_zero=True)
+    check_positive("--budget", args.budget, allow_zero=True)
+    eng = engine(args.jobs, args.scheduler)
+    check_files(args.json)
+    if args.out:
+        check_writable_dir(args.out)
+    modes = [m == "astar" for m in modes_list(args.mode)]
+    if args.max_size:
+        sizes = CR.sizes_up_to(*args.max_size)
+    else:
+        sizes = [tuple(args.size or (4, 4))]
+    t0 = time.perf_counter()
+    try:
+        results, skipped = _check_sizes(args, names, sizes, modes, lo, hi, t0, eng)
+    finally:
+        report.stop_progress()
+    report.table(results)
+    saved = {}
+    if args.out:
+        from ..search.counterexamples import save_counterexample
+        import numpy as np
+
+        for r in results:
+            cx = r.counterexample
+            if cx and r.property not in saved:
+                saved[r.property] = str(save_counterexample(
+                    args.out, np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]),
+                    cx["mode"] == "astar", r.property, {"reason": cx["reason"], "exit": cx["exit"]},
+                    extra={"found_by": "check", "size_proved_below": _proved_sizes(results, r.property)}))
+    induction = {n: CR.induction(n) for n in names if n in CR.INDUCTION}
+    if args.json:
+        report.write_json(args.json, {
+            "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": args.semantics,
+            "ends": args.ends,
+            "results": [report.row(r) for r in results], "sizes_not_reached": skipped,
+            "largest_size_proved": {n: _largest(results, n) for n in names},
+            "smallest_counterexample": {n: next((r.counterexample for r in results if r.property == n
+                                                 and r.counterexample), None) for n in names},
+            "every_size_by_induction": induction,
+            "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names if n in CR.NOT_INDUCTIVE},
+            "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})
+    for n, ind in induction.items():
+        print(f"{n}: every map size by induction: {ind['status']} ("
+              + ", ".join(f"{k} {v}" + ("" if ind["this_run"][k] == v else f" [this run: {ind['this_run'][k]}]")
+                          for k, v in ind["obligations"].items()) + ")")
+        for k in ind["contradicted"]:
+            print(f"CONTRADICTION: {k} decided against what is known")
+    if skipped:
+        print(f"sizes not reached within --budget {args.budget:g} s: " + ", ".join(f"{w}x{h}" for w, h in skipped))
+    for n, path in saved.items():
+        print(f"{n}: counterexample saved in {path}")
+    if any(ind["contradicted"] for ind in induction.values()):
+        return 1
+    return 0 if all(r.status == "proved" for r in results) else 1
+
+
+def _check_sizes(args, names, sizes, modes, lo, hi, t0, eng):
+    """Check each size in turn on ``eng`` until --budget runs out; the results and the sizes skipped."""
+    import time
+
+    from ..check import runner as CR
+    from ..report import check as report
+
+    results, skipped = [], []
+    open_names = list(names)
+    for nx, ny in sizes:
+        if args.budget and time.perf_counter() - t0 > args.budget:
+            skipped.append([nx, ny])
+            continue
+        if not open_names:
+            break
+        got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, eng,
+                                args.start, args.goal, args.ends, int(args.exhaustive),
+                                progress=report.progress(f"{nx}x{ny}"))
+        for n in list(open_names):
+            results.append(got[n])
+            if got[n].status == "refuted" and args.max_size:
+                open_names.remove(n)  # the smallest counterexample of this property is found
+    return results, skipped
+
+
+def _proved_sizes(results, name) -> list:
+    return [list(r.size) for r in results if r.property == name and r.status == "proved"]
+
+
+def _largest(results, name):
+    proved = [r.size for r in results if r.property == name and r.status == "proved"]
+    return list(max(proved, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))) if proved else None
+
+
+def register(sub) -> None:
+    """The command's parser, its options and its handler."""
+    from ..check.bounded import CHECKABLE as CHECK_PROPERTIES
+    from ..difftest.runner import MODE_CHOICES
+    from ..engine import add_arguments as add_engine_arguments
+
+    ck = sub.add_parser("check", help="prove or refute a whole-planner property on every map of a size "
+                        "(bounded: symbolic costs, enumerated layouts, start and goal)")
+    ck.add_argument("property", choices=(*CHECK_PROPERTIES, "all"), metavar="PROPERTY",
+                    help=f"one of {', '.join(CHECK_PROPERTIES)}, or all")
+    csz = ck.add_mutually_exclusive_group()
+    csz.add_argument("--size", nargs=2, type=int, metavar=("W", "H"),
+                     help="map size, lethal border included (default: 4 4)")
+    csz.add_argument("--max-size", nargs=2, type=int, metavar=("W", "H"),
+                     help="every size up to W x H, smallest interior first, until --budget runs out; "
+                     "a refuted property stops at its smallest counterexample")
+    ck.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
+    ck.add_argument("--costs", default="50..253", metavar="LO..HI",
+                    help="range of every passable cell's cost (50..253: what setCostmap produces; 0..253 for "
+                    "NavFn's raw API); lethal cells are enumerated")
+    ck.add_argument("--semantics", choices=("fp32", "real"), default="fp32",
+                    help="fp32: bit-precise float32 and float64, as the C++ computes (real: not available for check)")
+    ck.add_argument("--timeout", type=float, default=60.0, metavar="S",
+                    help="seconds per solver query; a query bitwuzla and cvc5 leave undecided is split (its cost box "
+                    "cut in four, twice) or evaluated at every point of its box (--exhaustive); what stays "
+                    "undecided is unknown")
+    ck.add_argument("--exhaustive", type=float, default=1e7, metavar="POINTS",
+                    help="evaluate an undecided query at every point of its cost box when the box has at most this "
+                    "many points (numpy, about 5 million points a second)")
+    ck.add_argument("--budget", type=float, metavar="S", help="with --max-size: stop starting new sizes after this many seconds")
+    add_engine_arguments(ck, "cases")
+    ck.add_argument("--start", nargs=2, type=int, metavar=("X", "Y"), help="fix the start cell (default: every one)")
+    ck.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"), help="fix the goal cell (default: every one)")
+    ck.add_argument("--ends", choices=("any", "passable"), default="any",
+                    help="start and goal range over every interior cell, or only over passable ones (Nav2 clears "
+                    "the robot's cell, NavFn's goal)")
+    ck.add_argument("--out", metavar="DIR", help="save each property's smallest counterexample under DIR as a "
+                    "suite map directory with goldens and picture (default: nothing written)")
+    ck.add_argument("--json", metavar="FILE", help="write the verdicts, what was enumerated and solved, as JSON")
+    ck.set_defaults(func=cmd_check)

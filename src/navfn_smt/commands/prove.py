@@ -1,0 +1,100 @@
+"""``navfn-smt prove``: the proof obligations, each verdict judged against what is known."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..fileio import check_writable_dir
+from .common import check_files, check_positive
+
+
+def _proof_files(names) -> list[Path]:
+    """The proof files the command line names (:func:`navfn_smt.smt.runner.proof_files`)."""
+    from ..smt.runner import proof_files
+
+    return proof_files(names)
+
+
+def cmd_prove(args) -> int:
+    """Check the proof obligations; exit 1 only when a verdict contradicts what is known."""
+    from ..engine import engine
+    from ..report import proof_run
+    from ..report import proofs as report
+    from ..report.tables import progress_bar
+    from ..smt.obligation import load_obligations
+    from ..smt.solvers import SOLVERS
+    from ..smt.runner import SEMANTICS, default_proof_files, run, slow_queries, write_smt2
+
+    files = _proof_files(args.files) if args.files else default_proof_files()
+    semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
+    check_positive("--timeout", args.timeout)
+    eng = engine(args.jobs, args.scheduler)
+    check_files(args.report, args.junit, args.markdown)
+    witnesses = proof_run.witness_dir(args.witness_dir, (args.report, args.junit, args.markdown))
+    for d in (args.smt2, witnesses):
+        if d:
+            check_writable_dir(d)
+    solvers = tuple(args.solver) if args.solver else SOLVERS
+    n = sum(len([s for s in semantics if s in o.expect and (args.all or s not in o.slow)])
+            for o in load_obligations(files))
+    with progress_bar(n, "prove") as advance:
+        outcomes = run(files, semantics, args.timeout, eng, solvers, progress=lambda o: advance(1),
+                       bounds=args.all and not args.no_bound_search, everything=args.all)
+    witness_files = proof_run.write_witnesses(outcomes, witnesses)
+    if args.smt2:
+        write_smt2(files, semantics, Path(args.smt2))
+    from ..smt.knowledge import of_files
+
+    known = of_files(files)
+    report.table(outcomes, known)
+    meta = proof_run.meta(args.timeout, solvers, semantics, files)
+    if args.report:
+        report.write_json(args.report, outcomes, witness_files, meta, known)
+    if args.junit:
+        report.write_junit(args.junit, outcomes)
+    if args.markdown:
+        report.write_markdown(args.markdown, outcomes, meta)
+    proof_run.witness_note(outcomes, witnesses)
+    left = [] if args.all else slow_queries(files, semantics)
+    if left:
+        print(f"{len(left)} slow queries left to `navfn-smt prove --all` (splits: `navfn-smt split`): {', '.join(left)}")
+    proof_run.closing_line(outcomes)
+    if args.record:
+        for line in proof_run.record_decisions(outcomes, files):
+            print(line)
+    return 1 if any(o.fails for o in outcomes) else 0
+
+
+def register(sub) -> None:
+    """The command's parser, its options and its handler."""
+    from ..engine import add_arguments as add_engine_arguments
+    from ..smt.runner import SEMANTICS
+    from ..smt.solvers import SOLVERS
+
+    pr = sub.add_parser("prove", help="check the proof obligations shipped in the package (or the given files)")
+    pr.add_argument("files", nargs="*", metavar="FILE|DIR",
+                    help="proof files (Python files declaring obligations) or folders of them "
+                    "(default: every proof file of the package's navfn_smt/proofs)")
+    pr.add_argument("--semantics", choices=(*SEMANTICS, "both"), default="both",
+                    help="real (no rounding), fp32 (bit-precise IEEE-754) or both")
+    pr.add_argument("--timeout", type=float, default=30.0, metavar="S", help="seconds per solver query")
+    add_engine_arguments(pr, "obligations (each in each semantics)")
+    pr.add_argument("--solver", action="append", choices=SOLVERS,
+                    help="solvers of the portfolio (repeatable; default: all)")
+    pr.add_argument("--report", metavar="FILE.json", help="machine-readable report")
+    pr.add_argument("--junit", metavar="FILE.xml", help="JUnit XML, one test case per obligation and semantics")
+    pr.add_argument("--markdown", metavar="FILE.md", help="the invariants page (docs/invariants.md)")
+    pr.add_argument("--smt2", metavar="DIR", help="also write every query as SMT-LIB2")
+    pr.add_argument("--all", action="store_true",
+                    help="also the slow queries (whole queries a split decides, long proofs), which the default "
+                         "run leaves out to stay within a minute")
+    pr.add_argument("--record", action="store_true",
+                    help="record every decision made where nothing was known (known.json beside the proof file, "
+                         "keyed by a hash of the proof file, kernels and domains), so later runs judge against it")
+    pr.add_argument("--no-bound-search", action="store_true",
+                    help="with --all, do not search bounds for properties refuted in fp32 (the default run "
+                         "gives verdicts only: the bound search re-verifies its cached bound with two queries)")
+    pr.add_argument("--witness-dir", metavar="DIR",
+                    help="where counterexamples are written (default: STEM-witnesses next to the first of "
+                    "--report, --junit, --markdown given; none written without any of them)")
+    pr.set_defaults(func=cmd_prove)

@@ -1,0 +1,75 @@
+"""``navfn-smt search``: counterexample hunts, or the count of every kind on a suite."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..errors import NavfnInputError
+from ..fileio import check_writable_dir
+from .common import MODE_HELP, check_files, check_positive, vars_of
+
+
+def cmd_search(args) -> int:
+    """Hunt counterexamples of one kind (``--summary SUITE``: count every kind on a suite)."""
+    from ..engine import engine
+    from ..report import search as report
+    from ..search.runner import modes_list, run_search
+
+    eng = engine(args.jobs, args.scheduler)
+    check_files(args.json)
+    if args.summary:
+        if args.kind:
+            raise NavfnInputError("give either a KIND or --summary SUITE, not both")
+        from ..search.summary import summarize
+
+        s = summarize(Path(args.summary), modes_list(args.mode), progress=report.progress_line, eng=eng)
+        report.summary_table(s)
+        if args.json:
+            report.write_summary_json(args.json, s)
+        return 0
+    if not args.kind:
+        raise NavfnInputError("give a KIND to search for (or --summary SUITE)")
+    from ..search.hunt import parse_costs
+
+    costs_range = parse_costs(args.costs)
+    check_positive("--timeout", args.timeout)
+    if args.out:
+        check_writable_dir(args.out)
+    findings, tried = run_search(args.kind, args.mode, args.size, args.max_size, args.timeout, args.seed,
+                                 costs_range, progress=report.progress_line, eng=eng)
+    rows = [report.finding_row(f, s) for f, s in zip(findings, report.save_findings(findings, args.out))]
+    report.table(args.kind, rows, modes_list(args.mode))
+    if args.json:
+        report.write_json(args.json, args.kind, vars_of(args), rows, tried)
+    report.saved_note(args.out, rows)
+    return 0
+
+
+def register(sub) -> None:
+    """The command's parser, its options and its handler."""
+    from ..difftest.runner import MODE_CHOICES
+    from ..engine import add_arguments as add_engine_arguments
+    from ..search.kinds import SEARCH_KINDS
+
+    se = sub.add_parser("search", help="hunt counterexamples (random maps, hill climbing, shrinking; replayed "
+                        "on the spec), or count each kind on a suite with --summary")
+    se.add_argument("kind", nargs="?", choices=SEARCH_KINDS, metavar="KIND",
+                    help=f"what to hunt: {', '.join(SEARCH_KINDS)}")
+    sz = se.add_mutually_exclusive_group()
+    sz.add_argument("--size", nargs=2, type=int, metavar=("W", "H"),
+                    help="map size, lethal border included (default: 5 7 for cost, else hunt on 8 8 and shrink)")
+    sz.add_argument("--max-size", nargs=2, type=int, metavar=("W", "H"),
+                    help="grow the size from 3x3 to W x H (smallest interior first); report the first size "
+                    "with a counterexample")
+    se.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
+    se.add_argument("--timeout", type=float, default=60.0, metavar="S", help="seconds for the whole search, split between modes")
+    se.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (same seed and budget: same hunt)")
+    se.add_argument("--costs", metavar="LO..HI", help="passable costs of the maps (default 50..253, what "
+                    "setCostmap produces); lethal 254 is always allowed")
+    se.add_argument("--out", metavar="DIR", help="save each counterexample as a suite map directory under DIR "
+                    "(default: nothing written)")
+    se.add_argument("--json", metavar="FILE", help="write the findings (or the summary) as JSON")
+    se.add_argument("--summary", metavar="SUITE",
+                    help="instead of hunting, count how often each kind occurs on a suite (JIT backend)")
+    add_engine_arguments(se, "the modes' hunts (the maps of --summary)")
+    se.set_defaults(func=cmd_search)
