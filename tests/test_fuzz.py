@@ -124,7 +124,7 @@ YAMLISH = st.one_of(
 @FUZZ
 @given(YAMLISH)
 def test_map_yaml(tmp_path_factory, data):
-    from navfn_smt.maps.mapserver import load_map_yaml
+    from navfn_smt.nav2.mapserver import load_map_yaml
 
     d = tmp_path_factory.mktemp("y")
     (d / "m.yaml").write_bytes(data)
@@ -144,7 +144,7 @@ IMAGES = st.one_of(
 @FUZZ
 @given(IMAGES, st.sampled_from(["m.pgm", "m.png"]))
 def test_images(tmp_path_factory, data, name):
-    from navfn_smt.maps.mapserver import load_map_yaml
+    from navfn_smt.nav2.mapserver import load_map_yaml
 
     d = tmp_path_factory.mktemp("i")
     (d / "m.yaml").write_text(fuzz.MAP_YAML.replace("m.pgm", name))

@@ -14,7 +14,7 @@ import pytest
 
 from conftest import DATA
 from navfn_smt.errors import NavfnInputError
-from navfn_smt.maps.mapserver import load_map_yaml
+from navfn_smt.nav2.mapserver import load_map_yaml
 from navfn_smt.nav2 import costmap as cm
 from navfn_smt.nav2.footprint import (
     c_hypot,

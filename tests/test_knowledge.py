@@ -71,7 +71,9 @@ def test_a_split_gives_its_obligation_what_is_known_and_may_not_disagree():
     from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import default_proof_files
 
-    known = K.of_files(default_proof_files())
+    from navfn_smt.proofs import PREDICATES
+
+    known = S.known_of_files(default_proof_files(), predicates=PREDICATES)
     assert known[("interpolated_gradient_is_zero_or_not_tiny", "fp32")] == K.Known("refuted", "split")
     assert known[("grad_is_unit_or_zero", "fp32")] == K.Known("proved", "split")
     assert known[("next_point_stays_near_the_cell", "fp32")].source == "chain FinitePotentialPath"

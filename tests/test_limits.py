@@ -38,7 +38,7 @@ def test_test_txt_claiming_a_huge_map(tmp_path):
                                        ("m.pgm", _pgm(12000, 10000, data=b"\0" * 10)),
                                        ("m.png", _png_header_only(100000, 100000))])
 def test_image_header_claiming_a_huge_map(tmp_path, name, data):
-    from navfn_smt.maps.mapserver import load_map_yaml
+    from navfn_smt.nav2.mapserver import load_map_yaml
 
     (tmp_path / "m.yaml").write_text(MAP_YAML.replace("m.pgm", name))
     (tmp_path / name).write_bytes(data)

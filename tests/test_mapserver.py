@@ -1,4 +1,4 @@
-"""ROS map_server maps (YAML + image) loaded as Nav2 loads them: navfn_smt.maps.mapserver.
+"""ROS map_server maps (YAML + image) loaded as Nav2 loads them: navfn_smt.nav2.mapserver.
 
 Expected values are derived from Nav2's C++ by hand, not from the loader's output:
 
@@ -36,7 +36,7 @@ from hypothesis import strategies as st
 from PIL import Image
 
 from navfn_smt.errors import NavfnInputError
-from navfn_smt.maps.mapserver import (
+from navfn_smt.nav2.mapserver import (
     MapServerMap,
     interpret_value,
     load_map_yaml,

@@ -21,7 +21,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from PIL import Image
 
-from navfn_smt.maps.mapserver import load_map_yaml
+from navfn_smt.nav2.mapserver import load_map_yaml
 from navfn_smt.nav2.params import PlannerParams
 from navfn_smt.nav2.plugin import (
     Costmap,

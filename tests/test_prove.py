@@ -192,7 +192,7 @@ def test_bad_proof_files(tmp_path, content, words):
 def test_committed_invariants_page_matches_the_obligations():
     """docs/invariants.md is generated from the proof run's report; it must list every
     obligation with what is known of it now (regenerate it with `navfn-smt docs`)."""
-    from navfn_smt.smt import knowledge
+    from navfn_smt.proofs import PREDICATES
     from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import default_proof_files
 
@@ -202,7 +202,9 @@ def test_committed_invariants_page_matches_the_obligations():
         if len(parts) == 4 and parts[1].startswith("`"):
             rows[parts[1].strip("`")] = {"real": parts[2].split()[0], "fp32": parts[3].split()[0]}
     obs = load_obligations(default_proof_files())
-    known = knowledge.of_files(default_proof_files(), obs)
+    from navfn_smt.smt.split import known_of_files
+
+    known = known_of_files(default_proof_files(), obs, PREDICATES)
     assert set(rows) == {o.name for o in obs}
     for o in obs:  # a split decides its obligation's fp32 verdict: the knowledge says so
         assert rows[o.name] == {s: known[(o.name, s)].status for s in o.expect}, o.name

@@ -8,7 +8,7 @@ import pytest
 
 from navfn_smt.diagnose.sweep import (EXIT_NAMES, OUTCOMES, goal_pose, outcome_of_run, rooms_costmap,
                                       select_goals, summary, sweep)
-from navfn_smt.maps.mapserver import load_map_yaml
+from navfn_smt.nav2.mapserver import load_map_yaml
 from navfn_smt.nav2.params import PlannerParams
 from navfn_smt.nav2.plugin import Costmap, Pose, costmap_from_map, create_plan, plugin_world_to_map
 from navfn_smt.spec.propagation import cycle_limit

@@ -191,17 +191,17 @@ def induction(name: str, timeout: float = 30.0) -> Optional[dict]:
     if name not in INDUCTION:
         return None
     from ..proofs import PREDICATES
-    from ..smt import knowledge
     from ..smt.chains import decisions_of, split_link, standing_verdicts
     from ..smt.checking import check
     from ..smt.obligation import load_obligations
     from ..smt.runner import default_proof_files, solve_query
+    from ..smt.split import known_of_files
 
     preds = [p for p in PREDICATES if p.name in INDUCTION[name]]
     wanted = [split_link(x)[1] for p in preds for x in (*p.base, *p.lemmas)]
     files = default_proof_files()
     obligations = {o.name: o for o in load_obligations(files)}
-    known = knowledge.of_files(files, list(obligations.values()))
+    known = known_of_files(files, list(obligations.values()), PREDICATES)
     runs = [check(obligations[w], "fp32", timeout, solve_query(("z3",)), known=known[(w, "fp32")]) for w in wanted]
     return {"predicates": [p.name for p in preds],
             "status": induction_status(name, standing_verdicts(known, decisions_of(runs))),

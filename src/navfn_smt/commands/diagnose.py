@@ -145,7 +145,7 @@ def _sample_size(v) -> int:
 
 def register(sub) -> None:
     from ..backends import BACKENDS
-    from ..maps.mapserver import DEFAULT_DISTRO, DISTROS
+    from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
 
     d = sub.add_parser("diagnose", help="explain why a Nav2 NavFn plan fails and what fixes it")
     d.add_argument("map", help="a map_server YAML map, or a costmap file (.npy, .pgm) with --resolution")

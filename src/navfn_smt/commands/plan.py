@@ -52,7 +52,7 @@ def cmd_plan(args) -> int:
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..maps.mapserver import DEFAULT_DISTRO, DISTROS
+    from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
 
     pl = sub.add_parser("plan", help="plan on one map and print the path")
     pl.add_argument("map", help="a suite map directory (test.txt gives the size), a map_server YAML, "

@@ -35,17 +35,18 @@ def cmd_prove(args) -> int:
         if d:
             check_writable_dir(d)
     solvers = tuple(args.solver) if args.solver else SOLVERS
+    from ..proofs import PREDICATES
+    from ..smt.split import known_of_files
+
+    known = known_of_files(files, predicates=PREDICATES)
     n = sum(len([s for s in semantics if s in o.expect and (args.all or s not in o.slow)])
             for o in load_obligations(files))
     with progress_bar(n, "prove") as advance:
         outcomes = run(files, semantics, args.timeout, eng, solvers, progress=lambda o: advance(1),
-                       bounds=args.all and not args.no_bound_search, everything=args.all)
+                       bounds=args.all and not args.no_bound_search, everything=args.all, known=known)
     witness_files = proof_run.write_witnesses(outcomes, witnesses)
     if args.smt2:
         write_smt2(files, semantics, Path(args.smt2))
-    from ..smt.knowledge import of_files
-
-    known = of_files(files)
     report.table(outcomes, known)
     meta = proof_run.meta(args.timeout, solvers, semantics, files)
     if args.report:

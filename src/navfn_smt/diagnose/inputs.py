@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
-from ..maps.mapserver import DEFAULT_DISTRO
+from ..nav2.mapserver import DEFAULT_DISTRO
 from ..nav2.plugin import Pose, check_pose
 from ..nav2.setup import Setup, check_params_file, load_setup
 

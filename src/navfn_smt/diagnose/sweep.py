@@ -34,7 +34,7 @@ from ..nav2.plugin import (
     Costmap,
     PluginRun,
     Pose,
-    _rounded_cells,
+    rounded_cells,
     costmap_world_to_map,
     create_plan,
     max_cycles,
@@ -184,7 +184,7 @@ def _tolerance_tables(values: np.ndarray, tolerance: float, origin: float, res: 
             refused[k] = True
             rows.append((np.zeros(0), np.zeros(0, np.int64), e))
             continue
-        rows.append((w, _rounded_cells(w, origin, res, size), None))
+        rows.append((w, rounded_cells(w, origin, res, size), None))
     width = max([len(r[0]) for r in rows] + [1])
     pts = np.zeros((len(uniq), width))
     cells = np.full((len(uniq), width), -1, np.int64)

@@ -320,7 +320,7 @@ def _partial_note(summary: Summary, total: int) -> None:
         pass
 
 
-def _map_cells(map_dir: str) -> int:
+def map_cells(map_dir: str) -> int:
     try:
         first = Path(map_dir, "test.txt").read_text().split("\n", 1)[0].split()
         return int(first[0]) * int(first[1])

@@ -10,7 +10,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
-from .mapserver import DEFAULT_DISTRO
+from ..nav2.mapserver import DEFAULT_DISTRO
 
 
 def is_yaml(path) -> bool:
@@ -27,7 +27,7 @@ def load_costs(path, size: Optional[tuple[int, int]] = None, allow_outside: bool
     if is_yaml(m):
         if size:
             raise NavfnInputError(f"{m}: --size is for a raw map file; a map_server map has its own size")
-        from .mapserver import load_map_yaml
+        from ..nav2.mapserver import load_map_yaml
 
         return load_map_yaml(m, allow_outside, distro=distro).navfn_costs
     if m.is_dir():
@@ -59,7 +59,7 @@ def load_case_map(path, allow_outside: bool = False) -> CaseMap:
 
     m = Path(path)
     if is_yaml(m):
-        from .mapserver import load_map_yaml
+        from ..nav2.mapserver import load_map_yaml
 
         return CaseMap(m.stem, load_map_yaml(m, allow_outside).navfn_costs)
     if not m.is_dir():

@@ -59,7 +59,7 @@ from typing import Mapping, Optional, Union
 import numpy as np
 
 from ..errors import NavfnInputError
-from ..maps.mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
+from .mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
 from .footprint import robot_footprint
 from .params import load_params_yaml
 from .inflation import NO_INFORMATION, FREE_SPACE, inflate_current, inflate_legacy

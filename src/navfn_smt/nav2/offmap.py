@@ -340,7 +340,7 @@ def _pose_from_json(d: dict) -> Pose:
 
 
 def load_case(d) -> tuple[Costmap, Pose, Pose, object, dict]:
-    from ..maps.mapserver import load_map_yaml
+    from .mapserver import load_map_yaml
     from .params import planner_params
     from .plugin import costmap_from_map
 

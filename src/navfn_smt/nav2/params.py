@@ -42,11 +42,11 @@ _TYPES = {"tolerance": float, "use_astar": bool, "allow_unknown": bool, "max_cyc
 
 def load_params_yaml(path) -> dict:
     """A params file as a mapping; unreadable or malformed files raise NavfnInputError."""
-    from ..maps.mapserver import _load_yaml
+    from .mapserver import load_yaml
 
     p = Path(path)
     try:
-        doc = _load_yaml(p)
+        doc = load_yaml(p)
     except NavfnInputError as e:
         raise NavfnInputError(str(e).replace("map YAML file", "params file")) from None
     if not isinstance(doc, dict):

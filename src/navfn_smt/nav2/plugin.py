@@ -313,7 +313,7 @@ def _legal_pose(cm: Costmap, goal: Pose, tolerance: float, run: PluginRun) -> Op
     run.used_tolerance = True
     xs = tolerance_steps(goal.x - tolerance, goal.x + tolerance, cm.resolution)
     ys = tolerance_steps(goal.y - tolerance, goal.y + tolerance, cm.resolution)
-    cols, rows = _rounded_cells(xs, cm.origin_x, cm.resolution, cm.size_x), _rounded_cells(ys, cm.origin_y,
+    cols, rows = rounded_cells(xs, cm.origin_x, cm.resolution, cm.size_x), rounded_cells(ys, cm.origin_y,
                                                                                              cm.resolution, cm.size_y)
     xi, yi = np.nonzero(cols >= 0)[0], np.nonzero(rows >= 0)[0]
     if len(xi) == 0 or len(yi) == 0:
@@ -351,7 +351,7 @@ def _stalled(lo: float, step: float):
                           f"move it past the goal (Nav2's loop would not terminate)")
 
 
-def _rounded_cells(w: np.ndarray, origin: float, res: float, size: int) -> np.ndarray:
+def rounded_cells(w: np.ndarray, origin: float, res: float, size: int) -> np.ndarray:
     """``NavfnPlanner::worldToMap`` per axis on many points: the rounded cell, or -1 when the call fails."""
     f = (w - origin) / res
     fl = np.floor(f)
@@ -442,7 +442,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool) -> None
 
 
 def costmap_from_map(m, inflated: Optional[np.ndarray] = None) -> Costmap:
-    """The plugin's view of a :class:`~navfn_smt.maps.mapserver.MapServerMap` (its static layer, or
+    """The plugin's view of a :class:`~navfn_smt.nav2.mapserver.MapServerMap` (its static layer, or
     ``inflated`` when an inflation layer ran)."""
     costs = m.ros_costmap if inflated is None else inflated
     return Costmap(np.ascontiguousarray(costs, dtype=np.uint8), float(m.origin[0]), float(m.origin[1]),

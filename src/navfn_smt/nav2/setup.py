@@ -15,7 +15,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
-from ..maps.mapserver import DEFAULT_DISTRO, MapServerMap, load_map_yaml
+from .mapserver import DEFAULT_DISTRO, MapServerMap, load_map_yaml
 from .params import PlannerParams, load_params_yaml, planner_params
 from .plugin import Costmap, costmap_from_map
 
@@ -42,7 +42,7 @@ def load_costmap_file(path, resolution: Optional[float], origin=(0.0, 0.0), dist
     the grid's bottom row, as ``Costmap2D`` indexes it) or an 8-bit PGM whose pixels are the values
     (image row 0 at the top, as map_server images are).  ``resolution`` (metres per cell) is
     narrowed to float32 as a map message would carry it."""
-    from ..maps.mapserver import read_image_quanta
+    from .mapserver import read_image_quanta
     from ..spec.costs import set_costmap
 
     p = Path(path)

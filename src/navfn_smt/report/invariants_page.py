@@ -478,11 +478,10 @@ def judged(outcomes: list, split_doc: Optional[dict], known: dict) -> list:
 def page_knowledge(declared: list) -> dict:
     """What is known of the declared obligations: their declarations, the splits of their proof
     files and the shipped chains (no solver runs)."""
-    from ..smt.knowledge import knowledge
-    from ..smt.split import load_splits
+    from ..smt.split import known_of_files
 
     files = sorted({ob.source for ob in declared if ob.source})
-    return knowledge(declared, load_splits(files), predicates.registry())
+    return known_of_files(files, declared, predicates.registry())
 
 
 def split_section(split_doc: Optional[dict], label: str) -> list[str]:

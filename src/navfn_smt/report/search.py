@@ -30,17 +30,17 @@ def finding_row(f, saved: Optional[str] = None) -> dict:
         "kind": _get(f, "kind"), "mode": _get(f, "mode"), "size": [int(v) for v in size],
         "interior_cells": int(max(size[0] - 2, 0) * max(size[1] - 2, 0)) if len(size) == 2 else None,
         "start": list(_get(f, "start") or []), "goal": list(_get(f, "goal") or []),
-        "detail": _jsonable(_get(f, "detail", {})),
+        "detail": jsonable(_get(f, "detail", {})),
         "seconds": _get(f, "seconds"), "evaluations": _get(f, "evaluations"), "plans": _get(f, "plans"),
         "found_size": list(_get(f, "found_size") or []) or None, "seed": _get(f, "seed"),
-        "history": _jsonable(_get(f, "history", [])),
+        "history": jsonable(_get(f, "history", [])),
         "saved": saved,
     }
     return row
 
 
-def _jsonable(v):
-    from ..search.counterexamples import _jsonable as j
+def jsonable(v):
+    from ..search.counterexamples import jsonable as j
 
     return j(v)
 
@@ -87,7 +87,7 @@ def table(kind: str, rows: list[dict], modes) -> None:
 
 
 def write_json(path, kind: str, args: dict, rows: list[dict], tried: list) -> None:
-    doc = {"kind": kind, "arguments": _jsonable(args), "findings": rows, "sizes_tried": tried}
+    doc = {"kind": kind, "arguments": jsonable(args), "findings": rows, "sizes_tried": tried}
     atomic_write_text(path, json.dumps(doc, indent=2) + "\n")
 
 
@@ -132,4 +132,4 @@ def summary_table(s: dict) -> None:
 
 
 def write_summary_json(path, s: dict) -> None:
-    atomic_write_text(path, json.dumps(_jsonable(s), indent=2) + "\n")
+    atomic_write_text(path, json.dumps(jsonable(s), indent=2) + "\n")

@@ -38,11 +38,11 @@ def directory_name(kind: str, mode: str, costs: np.ndarray) -> str:
     return f"{kind}-{mode}-{w}x{h}"
 
 
-def _jsonable(v):
+def jsonable(v):
     if isinstance(v, dict):
-        return {str(k): _jsonable(x) for k, x in v.items()}
+        return {str(k): jsonable(x) for k, x in v.items()}
     if isinstance(v, (list, tuple)):
-        return [_jsonable(x) for x in v]
+        return [jsonable(x) for x in v]
     if isinstance(v, np.generic):
         return v.item()
     if isinstance(v, np.ndarray):
@@ -82,7 +82,7 @@ def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, ki
                     title=_title(kind, astar, w, h, detail),
                     arrows=True)
         doc = {"kind": kind, "mode": mode, "size": [w, h], "start": list(start), "goal": list(goal),
-               "detail": _jsonable(detail), **_jsonable(extra or {})}
+               "detail": jsonable(detail), **jsonable(extra or {})}
         (tmp / JSON_NAME).write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
         if final.exists():
             os.replace(final, old)

@@ -307,9 +307,9 @@ def _detect_equality(kernels) -> tuple[bool, dict]:
 
 def _detect_difftest(suite: str, backend: str) -> tuple[bool, str]:
     """The suite's cases, smallest maps first; the first disagreeing case catches the mutant."""
-    from navfn_smt.difftest.runner import _map_cells, plan_tasks, run_task
+    from navfn_smt.difftest.runner import map_cells, plan_tasks, run_task
 
-    tasks = sorted(plan_tasks(Path(suite), ("astar", "dijkstra"), backend), key=lambda t: _map_cells(t.map_dir))
+    tasks = sorted(plan_tasks(Path(suite), ("astar", "dijkstra"), backend), key=lambda t: map_cells(t.map_dir))
     runs = 0
     for t in tasks:
         o = run_task(t)
@@ -325,8 +325,10 @@ def _detect_prove(obligations, timeout: float, solvers) -> tuple[bool, list]:
     catches the mutant.  A timeout does not catch it (it says nothing about the mutant), nor
     does a decision where nothing was known, but a solver model the concrete spec refuses
     does (the domain no longer matches the spec)."""
+    from navfn_smt.proofs import PREDICATES
     from navfn_smt.smt import knowledge
     from navfn_smt.smt.checking import check
+    from navfn_smt.smt.split import known_of_files
     from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import solve_query
 
@@ -335,7 +337,7 @@ def _detect_prove(obligations, timeout: float, solvers) -> tuple[bool, list]:
     for path, name, sem in obligations:
         if path not in loaded:
             loaded[path] = {o.name: o for o in load_obligations([Path(path)])}
-            known.update(knowledge.of_files([Path(path)], list(loaded[path].values())))
+            known.update(known_of_files([Path(path)], list(loaded[path].values()), PREDICATES))
         o = check(loaded[path][name], sem, timeout, solve_query(tuple(solvers)), bounds=False, known=known[(name, sem)])
         if o.fails or (o.status == "unknown" and "not confirmed" in (o.detail or "")):
             return True, notes + [f"{name}[{sem}]: {o.status} (known {o.known})"]

@@ -184,10 +184,11 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
 
 def declared_verdicts(obligations, splits=(), predicates=()) -> Callable[[str, str], Optional[Verdict]]:
     """``verdict_of`` from what is known alone (:func:`navfn_smt.smt.knowledge.knowledge` of
-    the declarations, the splits and the chains), no run's decisions."""
+    the declarations, the splits, the chains and the bound cache), no run's decisions."""
+    from .checking import cached_bound
     from .knowledge import knowledge
 
-    return standing_verdicts(knowledge(obligations, splits, predicates))
+    return standing_verdicts(knowledge(obligations, splits, predicates, bound_of=cached_bound))
 
 
 def standing_verdicts(known: dict, decisions: Optional[dict] = None) -> Callable[[str, str], Optional[Verdict]]:

@@ -109,10 +109,10 @@ def recorded(ob, semantics: str) -> Optional[dict]:
     return rec if isinstance(rec, dict) and rec.get("status") in DECIDED else None
 
 
-def knowledge(obligations, splits=(), predicates=()) -> dict:
-    """``(name, semantics) -> Known`` for every obligation and semantics it declares."""
-    from .checking import cached_bound
-
+def knowledge(obligations, splits=(), predicates=(), bound_of=None) -> dict:
+    """``(name, semantics) -> Known`` for every obligation and semantics it declares, from the
+    declarations, the ``splits``, the ``predicates``' chains and the recorded decisions;
+    ``bound_of(ob)`` gives the bound cached for an obligation refuted in fp32 (none without it)."""
     by_split = {}
     for s in splits:
         if s.expect in DECIDED:
@@ -133,26 +133,11 @@ def knowledge(obligations, splits=(), predicates=()) -> dict:
                 rec = recorded(ob, sem)
                 if rec:
                     k = Known(rec["status"], "recorded")
-            if k.status == "refuted" and sem == "fp32" and cached_bound(ob) is not None:
-                k = Known(k.status, k.source, {"var": ob.bound.var, "holds_below": cached_bound(ob)})
+            cached = bound_of(ob) if bound_of is not None and k.status == "refuted" and sem == "fp32" else None
+            if cached is not None:
+                k = Known(k.status, k.source, {"var": ob.bound.var, "holds_below": cached})
             out[(ob.name, sem)] = k
     return out
-
-
-def of_files(paths, obligations=None) -> dict:
-    """:func:`knowledge` of the proof files ``paths`` (their obligations, or ``obligations``
-    already loaded from them, their splits and the shipped predicates' chains)."""
-    from .obligation import load_obligations
-    from .split import load_splits
-
-    obs = load_obligations(paths) if obligations is None else obligations
-    return knowledge(obs, load_splits(paths), _predicates())
-
-
-def _predicates() -> tuple:
-    from ..proofs import PREDICATES
-
-    return PREDICATES
 
 
 def record(decisions: Iterable[tuple]) -> list[str]:

@@ -90,23 +90,22 @@ def slow_queries(paths, semantics=SEMANTICS) -> list[str]:
 
 def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: Union[Engine, int] = 1, solvers=("z3",),
         progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True,
-        everything: bool = True) -> list[Outcome]:
+        everything: bool = True, known: Optional[dict] = None) -> list[Outcome]:
     """The outcome of every obligation of ``paths`` in every semantics it declares, judged
-    against what is known (:mod:`.knowledge`), in the order of :func:`tasks` whatever the
-    order they finish in.  ``jobs``: an
+    against what is ``known`` (:func:`navfn_smt.smt.split.known_of_files`; default: each
+    obligation's declaration), in the order of :func:`tasks` whatever the order they finish in.  ``jobs``: an
     :class:`~navfn_smt.engine.Engine` (``auto`` resolved here), or a number of local workers."""
     if not (timeout > 0 and timeout < float("inf")):
         raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
     work = tasks(paths, semantics, timeout, solvers, bounds, everything)
     if not work:
         raise NavfnInputError("no obligation to check in the requested semantics")
-    from . import knowledge
-
-    known = knowledge.of_files(paths)
     eng = as_engine(jobs)
     got: dict[int, Outcome] = {}
     for i, o in stream(_job, work, auto_engine(eng, len(work), solvers)):
-        got[i] = o.judge(known[(o.name, o.semantics)])
+        if known is not None:
+            o.judge(known[(o.name, o.semantics)])
+        got[i] = o
         if progress:
             progress(o)
     return [got[i] for i in range(len(work))]

@@ -181,6 +181,18 @@ def split(obligation, boxes, bisect_along, expect: Optional[str] = None, max_dep
                  tuple(solvers), note, tuple(methods), dict(timeouts or {}))
 
 
+def known_of_files(paths, obligations=None, predicates=()) -> dict:
+    """What is known (:func:`navfn_smt.smt.knowledge.knowledge`) of the obligations of the proof
+    files ``paths`` (or ``obligations`` already loaded from them): their declarations, the
+    splits of those files, the chains of ``predicates`` and the bound cache."""
+    from .checking import cached_bound
+    from .knowledge import knowledge
+    from .obligation import load_obligations
+
+    obs = load_obligations(paths) if obligations is None else obligations
+    return knowledge(obs, load_splits(paths), predicates, bound_of=cached_bound)
+
+
 def load_splits(paths) -> list[Split]:
     """Every :class:`Split` defined at module level in the given proof files."""
     from .obligation import load_proof_module

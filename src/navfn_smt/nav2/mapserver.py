@@ -132,7 +132,7 @@ class MapServerMap:
 
 
 # ------------------------------------------------------------------------------ the YAML
-def _load_yaml(path: Path):
+def load_yaml(path: Path):
     import yaml
 
     try:
@@ -194,7 +194,7 @@ class _YamlParams:
 def read_map_yaml(yaml_path, allow_outside: bool = False) -> _YamlParams:
     """Parse and validate a map_server YAML (``loadMapYaml``); the image is not read."""
     path = Path(yaml_path)
-    doc = _load_yaml(path)
+    doc = load_yaml(path)
     if not isinstance(doc, dict):
         raise NavfnInputError(f"{path}: a map YAML must be a mapping of keys to values, got {_type_name(doc)}")
     missing = [k for k in REQUIRED_KEYS if k not in doc]
