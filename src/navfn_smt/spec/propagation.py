@@ -80,7 +80,7 @@ def _push(st: PropagationState, buf: list, n: int) -> None:
     if K.push_admitted(D, n, ns, pending, cost, len(buf), st.capacity):
         buf.append(n)
         st.pending[n] = True
-    elif K.push_admitted(D, n, ns, pending, cost, 0, 1):  # admitted but for the full buffer
+    elif K.push_admitted(D, n, ns, pending, cost, 0, 1):  # admitted but for the full buffer (PRIORITYBUFSIZE)
         st.dropped += 1
 
 
