@@ -191,7 +191,7 @@ def induction(name: str, timeout: float = 30.0) -> Optional[dict]:
     if name not in INDUCTION:
         return None
     from ..proofs import PREDICATES
-    from ..smt.chains import decisions_of, split_link, standing_verdicts
+    from ..smt.chains import outcome_verdicts, split_link
     from ..smt.checking import check
     from ..smt.obligation import load_obligations
     from ..smt.runner import default_proof_files, solve_query
@@ -204,7 +204,7 @@ def induction(name: str, timeout: float = 30.0) -> Optional[dict]:
     known = known_of_files(files, list(obligations.values()), PREDICATES)
     runs = [check(obligations[w], "fp32", timeout, solve_query(("z3",)), known=known[(w, "fp32")]) for w in wanted]
     return {"predicates": [p.name for p in preds],
-            "status": induction_status(name, standing_verdicts(known, decisions_of(runs))),
+            "status": induction_status(name, outcome_verdicts(runs, known)),
             "obligations": {o.name: o.standing for o in runs},
             "this_run": {o.name: o.status for o in runs},
             "contradicted": [o.name for o in runs if o.fails],

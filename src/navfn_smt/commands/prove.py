@@ -38,9 +38,9 @@ def cmd_prove(args) -> int:
     from ..proofs import PREDICATES
     from ..smt.split import known_of_files
 
-    known = known_of_files(files, predicates=PREDICATES)
-    n = sum(len([s for s in semantics if s in o.expect and (args.all or s not in o.slow)])
-            for o in load_obligations(files))
+    obligations = load_obligations(files)
+    known = known_of_files(files, obligations, PREDICATES)
+    n = sum(len([s for s in semantics if s in o.expect and (args.all or s not in o.slow)]) for o in obligations)
     with progress_bar(n, "prove") as advance:
         outcomes = run(files, semantics, args.timeout, eng, solvers, progress=lambda o: advance(1),
                        bounds=args.all and not args.no_bound_search, everything=args.all, known=known)
@@ -61,7 +61,7 @@ def cmd_prove(args) -> int:
         print(f"{len(left)} slow queries left to `navfn-smt prove --all` (splits: `navfn-smt split`): {', '.join(left)}")
     proof_run.closing_line(outcomes)
     if args.record:
-        for line in proof_run.record_decisions(outcomes, files):
+        for line in proof_run.record_decisions(outcomes, obligations, meta["when"]):
             print(line)
     return 1 if any(o.fails for o in outcomes) else 0
 

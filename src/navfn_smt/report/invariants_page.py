@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
+from ..smt.chains import outcome_verdicts
 from . import predicates
 
 DEFAULT_OUT = Path("docs") / "invariants.md"
@@ -560,7 +561,7 @@ def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Pat
         for ob in obs:
             out += _obligation_lines(ob, by_name.get(ob.name, {}), sems, known)
     out += split_section(split_doc, split_label)
-    out += check_section(checks, images, predicates.standings(outcomes, known))
+    out += check_section(checks, images, outcome_verdicts(outcomes, known))
     while out and out[-1] == "":
         out.pop()
     return "\n".join(out) + "\n"

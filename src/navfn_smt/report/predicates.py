@@ -4,17 +4,16 @@ what is still open (for the JSON report, the terminal and the invariants page)."
 
 from __future__ import annotations
 
-from typing import Optional
-
 from rich.table import Table
 
 from ..smt.chains import (
     STATUS_RANK,
     check_chains,
     derive,
+    known_verdicts,
     link_owner,
+    outcome_verdicts,
     split_link,
-    standing_verdicts,
 )
 from .tables import console
 
@@ -52,19 +51,19 @@ def standing_text(o) -> str:
     return text
 
 
-def link_verdict(outcomes_by_key: dict, name: str, semantics: str, known: Optional[dict] = None) -> str:
+def link_verdict(outcomes_by_key: dict, name: str, semantics: str, known: dict) -> str:
     """One link's standing as the reports show it (:func:`standing_text`); for an obligation
     this run did not check, what is known of it."""
     o = outcomes_by_key.get((name, semantics))
     if o is not None:
         return standing_text(o)
-    k = (known or {}).get((name, semantics))
+    k = known.get((name, semantics))
     if k is None or k.status not in ("proved", "refuted"):
         return "not checked"
     return f"{k.status} (known: {k.source}; not checked in this run)"
 
 
-def _chain_rows(p, by_key: dict, sems: list, known: Optional[dict] = None) -> list:
+def _chain_rows(p, by_key: dict, sems: list, known: dict) -> list:
     """The chain of ``p`` as rows: base case, step, assumptions, limits, then the obligations
     stated whole that the chain decides through finer links."""
     rows = ([("base", x) for x in p.base] + [("step", x) for x in p.lemmas] + [("assumed", x) for x in p.assumes]
@@ -73,44 +72,21 @@ def _chain_rows(p, by_key: dict, sems: list, known: Optional[dict] = None) -> li
              "verdicts": {s: link_verdict(by_key, split_link(x)[1], s, known) for s in sems}} for role, x in rows]
 
 
-def standings(outcomes, known: dict):
-    """``verdict_of`` from the outcomes' standings, and for an obligation no outcome is
-    about, from what is known of it."""
-    from ..smt.chains import Verdict
-
-    by_key = {(o.name, o.semantics): o for o in outcomes}
-    otherwise = standing_verdicts(known)
-
-    def verdict_of(name, semantics):
-        o = by_key.get((name, semantics))
-        if o is None:
-            return otherwise(name, semantics)
-        b = o.bound or {}
-        found = o.standing == "refuted" and b.get("holds_below") is not None
-        return Verdict(o.standing, f"{b['var']} < {b['holds_below']!r}" if found else None)
-
-    return verdict_of
-
-
-def summary(outcomes, predicates=None, known: Optional[dict] = None) -> dict:
+def summary(outcomes, known: dict, predicates=None) -> dict:
     """The ``predicates`` section of the JSON report: every predicate of the run with its
     chain, its status per semantics (derived from the obligations' standings: what is known
     with the decisions of this run), the status what was known
     alone derives (``known_status``), the steps it takes from control flow and what is still
     open; the obligations of predicates without a chain (``unchained_obligations``: those of
     proof files given by hand); and any inconsistency between chains and obligations
-    (``chain_problems``).  ``known`` (``(name, semantics) -> Known``) defaults to what the
-    outcomes carry; obligations this run did not check count with what is known of them."""
-    from ..smt.knowledge import Known
-
+    (``chain_problems``).  ``known`` (``(name, semantics) -> Known``): what the outcomes were
+    judged against; obligations this run did not check count with what is known of them."""
     preds = tuple(predicates or registry())
     names = {p.name for p in preds}
     sems = run_semantics(outcomes)
     by_key = {(o.name, o.semantics): o for o in outcomes}
-    if known is None:
-        known = {(o.name, o.semantics): Known(o.known, o.known_source) for o in outcomes}
-    got = standings(outcomes, known)
-    wanted = standing_verdicts(known)
+    got = outcome_verdicts(outcomes, known)
+    wanted = known_verdicts(known)
     out = []
     for p in in_run(outcomes, preds):
         status = {s: derive(p, s, got, preds) for s in sems}
@@ -132,10 +108,10 @@ def not_proved(st: dict) -> str:
     return "; ".join(parts)
 
 
-def table(outcomes, known: Optional[dict] = None) -> None:
+def table(outcomes, known: dict) -> None:
     """The terminal summary: one row per predicate, its status per semantics and the links
     that keep it from proved."""
-    doc = summary(outcomes, known=known)
+    doc = summary(outcomes, known)
     if not doc["predicates"]:
         return
     sems = run_semantics(outcomes)
@@ -163,9 +139,9 @@ STATUS_NOTE = ("A predicate's status in a semantics is derived from its chain: *
                "needed; the steps the argument takes from the planner's control flow are listed as such.")
 
 
-def markdown_summary(outcomes, known: Optional[dict] = None) -> list:
+def markdown_summary(outcomes, known: dict) -> list:
     """The table of predicates at the top of the invariants page."""
-    doc = summary(outcomes, known=known)
+    doc = summary(outcomes, known)
     if not doc["predicates"]:
         return []
     sems = run_semantics(outcomes)
@@ -187,11 +163,11 @@ def markdown_summary(outcomes, known: Optional[dict] = None) -> list:
     return lines
 
 
-def markdown_chain(name: str, outcomes, known: Optional[dict] = None) -> list:
+def markdown_chain(name: str, outcomes, known: dict) -> list:
     """The head of a predicate's section: statement, where it applies, its chain with each
     link's verdicts, its status and what is still open (nothing for a predicate without a
     chain)."""
-    doc = summary(outcomes, known=known)
+    doc = summary(outcomes, known)
     p = next((x for x in doc["predicates"] if x["name"] == name), None)
     if p is None:
         return []

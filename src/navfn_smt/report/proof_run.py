@@ -83,13 +83,13 @@ def closing_line(outcomes) -> None:
               f"({o.known_source})" + (f": {o.detail}" if o.detail else ""))
 
 
-def record_decisions(outcomes, files) -> list[str]:
-    """Record this run's new decisions (where nothing was known) beside their proof files."""
+def record_decisions(outcomes, obligations, when: str) -> list[str]:
+    """Record this run's new decisions (where nothing was known) beside their proof files, with
+    the solver, its time and the run's time stamp ``when`` (and the witness of a refutation)."""
     from ..smt.knowledge import NEWLY_DECIDED, record
-    from ..smt.obligation import load_obligations
 
-    obs = {o.name: o for o in load_obligations(files)}
+    obs = {o.name: o for o in obligations}
     return record((obs[o.name], o.semantics, o.status,
-                   {"solver": o.solver, "seconds": o.seconds, "when": meta(0, (), (), ())["when"],
+                   {"solver": o.solver, "seconds": o.seconds, "when": when,
                     **({"witness": o.witness} if o.witness else {})})
                   for o in outcomes if o.judgement == NEWLY_DECIDED)

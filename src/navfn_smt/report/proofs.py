@@ -22,7 +22,7 @@ def _status_markup(o) -> str:
     return f"[{JUDGEMENT_COLOUR.get(o.judgement, 'red')}]{o.status}[/]"
 
 
-def table(outcomes, known=None) -> None:
+def table(outcomes, known: dict) -> None:
     t = Table(title="proof obligations: this run's verdicts against what is known")
     for c in ("obligation", "property", "semantics", "this run", "known", "judgement", "seconds", "solver"):
         t.add_column(c, justify="right" if c == "seconds" else "left", overflow="fold")
@@ -54,8 +54,8 @@ def to_json(outcomes, witness_files: dict) -> list:
     return rows
 
 
-def write_json(path, outcomes, witness_files: dict, meta: dict, known=None) -> None:
-    doc = {**meta, "obligations": to_json(outcomes, witness_files), **predicates.summary(outcomes, known=known)}
+def write_json(path, outcomes, witness_files: dict, meta: dict, known: dict) -> None:
+    doc = {**meta, "obligations": to_json(outcomes, witness_files), **predicates.summary(outcomes, known)}
     atomic_write_text(path, json.dumps(doc, indent=1))
 
 

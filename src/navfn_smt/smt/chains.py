@@ -188,34 +188,40 @@ def declared_verdicts(obligations, splits=(), predicates=()) -> Callable[[str, s
     from .checking import cached_bound
     from .knowledge import knowledge
 
-    return standing_verdicts(knowledge(obligations, splits, predicates, bound_of=cached_bound))
+    return known_verdicts(knowledge(obligations, splits, predicates, bound_of=cached_bound))
 
 
-def standing_verdicts(known: dict, decisions: Optional[dict] = None) -> Callable[[str, str], Optional[Verdict]]:
-    """``verdict_of`` giving each obligation's standing (:func:`navfn_smt.smt.knowledge.standing`):
-    what is known (``known``: ``(name, semantics) -> Known``) with the decisions runs made
-    (``decisions``: ``(name, semantics) -> [(status, bound)]``); a bound counts when a run
-    found one or the bound cache holds one."""
-    from .knowledge import standing
+def _bound_text(status: str, bound: Optional[dict]) -> Optional[str]:
+    """``"l < 1073741824.0"`` for a refutation below which a bound holds (a verdict's bound)."""
+    found = status == "refuted" and bound and bound.get("holds_below") is not None
+    return f"{bound['var']} < {bound['holds_below']!r}" if found else None
 
-    decisions = decisions or {}
+
+def known_verdicts(known: dict) -> Callable[[str, str], Optional[Verdict]]:
+    """``verdict_of`` from what is known alone (``known``: ``(name, semantics) -> Known``,
+    :func:`navfn_smt.smt.knowledge.knowledge`), a bound counting when the bound cache holds one."""
 
     def verdict_of(name, semantics):
         k = known.get((name, semantics))
-        made = decisions.get((name, semantics), [])
-        if k is None and not made:
+        if k is None:
             return None
-        status, _ = standing(k.status if k else "unknown", *(m[0] for m in made))
-        found = [b for st, b in made if st == "refuted" and b and b.get("holds_below") is not None]
-        bound = found[0] if found else (k.bound if k else None)
-        return Verdict(status, f"{bound['var']} < {bound['holds_below']!r}" if status == "refuted" and bound else None)
+        status = k.status if k.status in ("proved", "refuted") else "unknown"
+        return Verdict(status, _bound_text(status, k.bound))
 
     return verdict_of
 
 
-def decisions_of(outcomes) -> dict:
-    """``(name, semantics) -> [(status, bound)]`` of a run's outcomes (for :func:`standing_verdicts`)."""
-    out: dict = {}
-    for o in outcomes:
-        out.setdefault((o.name, o.semantics), []).append((o.status, o.bound))
-    return out
+def outcome_verdicts(outcomes, known: dict) -> Callable[[str, str], Optional[Verdict]]:
+    """``verdict_of`` from the standings of a run's judged outcomes
+    (:meth:`~navfn_smt.smt.checking.Outcome.judge`), and for an obligation no outcome is about,
+    from what is ``known`` of it (:func:`known_verdicts`)."""
+    by_key = {(o.name, o.semantics): o for o in outcomes}
+    otherwise = known_verdicts(known)
+
+    def verdict_of(name, semantics):
+        o = by_key.get((name, semantics))
+        if o is None:
+            return otherwise(name, semantics)
+        return Verdict(o.standing, _bound_text(o.standing, o.bound))
+
+    return verdict_of

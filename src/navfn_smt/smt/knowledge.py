@@ -122,10 +122,7 @@ def knowledge(obligations, splits=(), predicates=(), bound_of=None) -> dict:
     for ob in obligations:
         for sem, declared in ob.expect.items():
             k = Known(declared, "declared") if declared in DECIDED else NOTHING
-            if sem == "fp32" and ob.name in by_split:
-                if declared in DECIDED and declared != by_split[ob.name]:
-                    raise NavfnInputError(f"{ob.name}: declared {declared} in fp32, but its split is declared "
-                                          f"{by_split[ob.name]}")
+            if sem == "fp32" and ob.name in by_split:  # split() refuses a verdict the declaration contradicts
                 k = Known(by_split[ob.name], "split")
             elif declared in DECIDED and sem == "fp32" and ob.name in whole:
                 k = Known(declared, f"chain {whole[ob.name]}")

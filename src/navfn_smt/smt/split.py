@@ -236,7 +236,7 @@ class SplitOutcome:
     engine: str
     note: str = ""
     undecided: list = field(default_factory=list)
-    known_source: str = "split"
+    known_source: str = "split"  # where the knowledge comes from (knowledge.Known.source)
 
     @property
     def judgement(self) -> str:
@@ -362,17 +362,6 @@ def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z
     return out
 
 
-def known_of(s: Split) -> str:
-    """What is known of the split's verdict: its declaration, or a decision recorded for its
-    obligation where nothing is declared (:mod:`.knowledge`)."""
-    from .knowledge import DECIDED, recorded
-
-    if s.expect in DECIDED:
-        return s.expect
-    rec = recorded(obligation_named(s.source, s.obligation), "fp32") if s.source else None
-    return rec["status"] if rec else "unknown"
-
-
 def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Optional[int] = None,
               progress: Optional[Callable[[int, int, Part], None]] = None, stop_at_refutation: bool = True) -> SplitOutcome:
     """Decide the split's parts round by round on ``eng``, then its cover."""
@@ -424,9 +413,11 @@ def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Op
     else:
         status = "unknown"
     parts = [p.as_json() for p in final]
-    return SplitOutcome(s.name, s.obligation, status, known_of(s), parts, cover, rounds,
+    known = known_of_files([s.source])[(s.obligation, "fp32")]  # the declaration, or a recorded decision
+    return SplitOutcome(s.name, s.obligation, status, known.status, parts, cover, rounds,
                         round(time.perf_counter() - t0, 3), eng.describe(), s.note,
-                        [p for p in parts if p["status"] == "unknown"] if status != "refuted" else [])
+                        [p for p in parts if p["status"] == "unknown"] if status != "refuted" else [],
+                        known_source=known.source)
 
 
 def outcome_json(o: SplitOutcome) -> dict:
