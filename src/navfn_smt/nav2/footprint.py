@@ -240,8 +240,10 @@ def min_max_distances(points) -> tuple[float, float]:
 
 
 def float32_padding(footprint_padding: float) -> float:
-    """``float footprint_padding_``: the parameter narrowed to float32, returned as a double."""
-    return float(np.float32(footprint_padding))
+    """``float footprint_padding_``: the parameter narrowed to float32, returned as a double.  As
+    the C++ conversion (``cvtsd2ss``), a double beyond float's range becomes infinite, silently."""
+    with np.errstate(over="ignore"):
+        return float(np.float32(footprint_padding))
 
 
 def robot_footprint(
