@@ -932,7 +932,7 @@ def test_calc_path_gradcell_reads_past_potarr_is_undefined(start):
     from navfn_smt.backends import jit as J
 
     n = 25
-    code, _ = J._calc_path(np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10,
+    code, _ = J.calc_path_zeroed(np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10,
                            np.zeros(n, np.float32), np.zeros(n, np.float32), np.zeros((11, 2), np.float32))
     assert code == J.EXIT_UB
 

@@ -105,7 +105,7 @@ class JitRunner:
 
     def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
             cycles: Optional[int] = None) -> PlanResult:
-        from .jit import EXIT_UB, EXITS
+        from . import jit as J
 
         check_inputs(self.costs, start, goal)
         p = self.planner
@@ -113,31 +113,31 @@ class JitRunner:
         goal = (int(goal[0]), int(goal[1]))
         n = self.path_cycles if path_cycles is None else int(path_cycles)
         reached, code, npath = p.run(start, goal, astar, self.cycles if cycles is None else int(cycles), n, trace)
-        if code == EXIT_UB:
+        if code == J.EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         pot = p.pot.reshape(self.ny, self.nx).copy()
-        exit_ = EXITS[code]
+        exit_ = J.EXITS[code]
         return PlanResult(
             start_reached=reached,
             start_potential=pot[start[1], start[0]],
             path=p.path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32),
             potential=pot,
-            trace=p.trace[: p.counters[3]].copy() if trace else None,
-            cycles=int(p.counters[0]),
-            updates=int(p.counters[1]),
-            dropped=int(p.counters[2]),
+            trace=p.trace[: p.counters[J.TRACE_LEN]].copy() if trace else None,
+            cycles=int(p.counters[J.CYCLES]),
+            updates=int(p.counters[J.UPDATES]),
+            dropped=int(p.counters[J.DROPPED]),
             exit=exit_,
         )
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential, compiled."""
-        from .jit import EXIT_UB, EXITS, _calc_path
+        from .jit import EXIT_UB, EXITS, calc_path_zeroed
 
         pot = np.ascontiguousarray(potential, dtype=np.float32).ravel()
         n = int(path_cycles)
         path = np.empty((max(n, 0) + 1, 2), np.float32)
         p = self.planner
-        code, npath = _calc_path(pot, self.nx, self.ny, int(start[0]), int(start[1]), int(goal[0]), int(goal[1]),
+        code, npath = calc_path_zeroed(pot, self.nx, self.ny, int(start[0]), int(start[1]), int(goal[0]), int(goal[1]),
                                  n, p.gradx, p.grady, path)
         if code == EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")

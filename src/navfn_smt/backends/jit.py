@@ -17,13 +17,13 @@ from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from ..spec.extraction import ExtractionExit
 from ..spec.planner import path_cycle_limit
-from .numba_domain import ND, jit
+from .numba_domain import ND, jit, jit_inline
 
 # maps up to this many cells keep the A* heuristic of every (dx, dy) offset once computed
 # (a float per offset: 4 * (2nx-1)(2ny-1) bytes, 16 MiB at the limit); larger maps call it
 HEURISTIC_MEMO_CELLS = 1 << 20
 
-# exit codes of _calc_path: the index of the ExtractionExit, and one more for the reads
+# exit codes of calcPath here: the index of the ExtractionExit, and one more for the reads
 # outside the potential array that the spec refuses as undefined behaviour
 EXITS = tuple(ExtractionExit)
 EXIT_NEAR_GOAL = EXITS.index(ExtractionExit.NEAR_GOAL)
@@ -34,51 +34,88 @@ EXIT_EXHAUSTED = EXITS.index(ExtractionExit.EXHAUSTED)
 EXIT_UB = len(EXITS)
 
 
-@jit
-def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, trace, counters, memo):
-    """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
+# the propagation's state between cycles: ``role`` = which of the three priority buffers
+# (rows of ``pb``) is current, next and overflow; ``fill`` = how many cells each holds;
+# ``curt`` = [curT], the threshold between the next and the overflow buffer
+CUR, NXT, OVER = range(3)
+# ``counters``: C++'s loop variable ``cycle``, the cycles run, cells updated, pushes dropped
+# for want of room, trace entries wanted (more than ``len(trace)`` when it was too short),
+# watched cells newly reached
+CYCLE, CYCLES, UPDATES, DROPPED, TRACE_LEN, NEWLY = range(6)
+NCOUNTERS = 6
 
-    ``pb`` is a (3, capacity) int array for the three buffers (its width is the capacity of
-    each: PRIORITYBUFSIZE as in C++, or what the planner was given); ``trace`` receives the white-box
-    trace (stops recording when full; ``counters[3]`` then exceeds ``len(trace)``).
-    ``counters`` = [cycles, updates, dropped, trace_len]; returns start_reached.
+
+@jit_inline
+def start_propagation(costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt):
+    """setupNavFn + initCost(goal) + the ``push_cur`` of the goal's four neighbours.
+
+    Every potential POT_HIGH, nothing pending, the goal's potential 0, curT = COST_OBS
+    (float), the buffers empty and in their first roles.  Returns the pushes the kernel
+    ``push_admitted`` refused only for want of room (counted as dropped).
     """
     ns = nx * ny
     high = ND.f32const(POT_HIGH)
     for i in range(ns):
         pot[i] = high
         pending[i] = False
-    cur = 0
-    nxt = 1
-    over = 2
-    fill = np.zeros(3, np.int64)
-    ncyc = 0
-    nupd = 0
-    ndrop = 0
-    tlen = 0
-    tcap = trace.shape[0]
-    cur_t = ND.f32const(COST_OBS)
+    for b in range(3):
+        fill[b] = 0
+        role[b] = b
+    curt[0] = ND.f32const(COST_OBS)
     cap = pb.shape[1]
     k = gx + gy * nx
     pot[k] = ND.f32const(0.0)
-    # push_cur; the push is written out at both sites: a helper taking arrays would pay
-    # reference-count updates on every call (7x slower in the update loop).  Its guard is the
-    # kernel push_admitted; a push it refuses only for a full buffer is counted as dropped.
+    dropped = 0
     for n in (k + 1, k - 1, k - nx, k + nx):
         j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard tests n against the map
-        if K.push_admitted(ND, n, ns, pending[j], costs[j], fill[cur], cap):
-            pb[cur, fill[cur]] = n
-            fill[cur] += 1
+        if K.push_admitted(ND, n, ns, pending[j], costs[j], fill[0], cap):
+            pb[0, fill[0]] = n
+            fill[0] += 1
             pending[n] = True
         elif K.push_admitted(ND, n, ns, pending[j], costs[j], 0, 1):
-            ndrop += 1
-    start_cell = sy * nx + sx
-    if astar:
-        cur_t = ND.add(K.astar_heuristic(ND, gx - sx, gy - sy), cur_t)
+            dropped += 1
+    return dropped
+
+
+@jit_inline
+def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pending, pb, fill, role, curt, trace,
+               counters, memo, watch, newly):
+    """The loop of ``propNavFnAstar`` / ``propNavFnDijkstra(cycles, atStart)``, resumable.
+
+    Runs from cycle ``counters[CYCLE]`` (0 after :func:`start_propagation`): each cycle is
+    ``updateCell`` (A*: with the heuristic toward NavFn start ``(sx, sy)``) on every cell of
+    the current buffer, then the swap (an empty next buffer pulls in the overflow, curT +=
+    PRI_INC, float).  Returns True when the loop is over as in C++ (``cycle == cycles``,
+    both buffers empty, or with ``at_start`` the start's potential below POT_HIGH), False
+    when it paused: after ``budget`` cycles, or at the end of a cycle that ran with watched
+    cells in ``newly[:counters[NEWLY]]`` (a cell ``n`` with ``watch[n] >= 0``, ``watch``
+    empty: none, that leaves POT_HIGH appends ``watch[n]``).  The state is in ``pot, pending, pb, fill, role, curt,
+    counters``.  ``trace`` receives the white-box trace while it has room (empty: none).
+    """
+    ns = nx * ny
+    high = ND.f32const(POT_HIGH)
+    cap = pb.shape[1]
     inc = ND.int_to_f32(PRI_INC)
-    cycle = 0
-    while cycle < cycles:
-        if fill[cur] == 0 and fill[nxt] == 0:
+    cur = role[CUR]
+    nxt = role[NXT]
+    over = role[OVER]
+    cur_t = curt[0]
+    tcap = trace.shape[0]
+    tlen = counters[TRACE_LEN]
+    ncyc = counters[CYCLES]
+    nupd = counters[UPDATES]
+    ndrop = counters[DROPPED]
+    nnew = counters[NEWLY]
+    watching = watch.shape[0] > 0
+    start_cell = sy * nx + sx
+    cycle = counters[CYCLE]
+    stop = cycle + budget
+    finished = False
+    while True:
+        if cycle >= cycles or (fill[cur] == 0 and fill[nxt] == 0):
+            finished = True
+            break
+        if cycle >= stop:
             break
         ncur = fill[cur]
         ncyc += 1
@@ -101,15 +138,19 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
             r = pot[n + 1]
             u = pot[n - nx]
             d = pot[n + nx]
-            new, changed = K.cell_update(ND, pot[n], l, r, u, d, cost, ND.int_to_f32(cost))
+            old = pot[n]
+            new, changed = K.cell_update(ND, old, l, r, u, d, cost, ND.int_to_f32(cost))
             if not changed:
                 continue
             pot[n] = new
+            if watching and watch[n] >= 0 and not ND.lt(old, high):
+                newly[nnew] = watch[n]
+                nnew += 1
             key = new
             if astar:
                 # the heuristic of this offset, remembered (NaN: not yet computed) when the map
-                # keeps a memo; written out here: a helper taking the array would pay
-                # reference-count updates on every call
+                # keeps a memo; written out here, as the pushes below: a helper taking arrays
+                # would pay reference-count updates on every call (7x slower in this loop)
                 ddx = n % nx - sx
                 ddy = n // nx - sy
                 if memo.shape[0] == 0:
@@ -152,20 +193,50 @@ def _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, t
             t = cur
             cur = over
             over = t
-        if ND.lt(pot[start_cell], high):
+        if at_start and ND.lt(pot[start_cell], high):
+            finished = True
             break
         cycle += 1
-    counters[0] = ncyc
-    counters[1] = nupd
-    counters[2] = ndrop
-    counters[3] = tlen
-    if astar:
-        return ND.lt(pot[start_cell], high)
-    return cycle < cycles
+        if nnew > 0:  # a pause at the end of the cycle, for the caller to see the watched cells
+            break
+    role[CUR] = cur
+    role[NXT] = nxt
+    role[OVER] = over
+    curt[0] = cur_t
+    counters[CYCLE] = cycle
+    counters[CYCLES] = ncyc
+    counters[TRACE_LEN] = tlen
+    counters[UPDATES] = nupd
+    counters[DROPPED] = ndrop
+    counters[NEWLY] = nnew
+    return finished
 
 
 @jit
-def _calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, touched):
+def propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters, memo):
+    """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
+
+    ``pb`` is a (3, capacity) int array for the three buffers (its width is the capacity of
+    each: PRIORITYBUFSIZE as in C++, or what the planner was given); ``fill, role, curt`` the
+    loop's state (:func:`start_propagation`); ``trace`` receives the white-box trace (stops
+    recording when full; ``counters[TRACE_LEN]`` then exceeds ``len(trace)``).  ``counters``
+    has NCOUNTERS entries (CYCLE ... NEWLY); returns start_reached.
+    """
+    for i in range(counters.shape[0]):
+        counters[i] = 0
+    counters[DROPPED] = start_propagation(costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt)
+    if astar:
+        curt[0] = ND.add(K.astar_heuristic(ND, gx - sx, gy - sy), curt[0])
+    no_watch = pb[0, :0]
+    run_cycles(costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace, counters,
+               memo, no_watch, no_watch)
+    if astar:
+        return ND.lt(pot[sy * nx + sx], ND.f32const(POT_HIGH))
+    return counters[CYCLE] < cycles
+
+
+@jit
+def calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, touched):
     """calcPath(nmax); ``path`` is (nmax + 1, 2) float32.  Returns (exit code, npath, ntouched).
 
     The gradient arrays must be all zero on entry (``setupNavFn`` leaves them so; gradCell's
@@ -234,13 +305,13 @@ def _calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, to
 
 
 @jit
-def _calc_path(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
+def calc_path_zeroed(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
     """calcPath(nmax) on gradient arrays in any state (zeroed first, O(cells)).  Returns (exit code, npath)."""
     zero = ND.f32const(0.0)
     for i in range(nx * ny):
         gradx[i] = zero
         grady[i] = zero
-    code, npath, _ = _calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, np.empty(0, np.int64))
+    code, npath, _ = calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, np.empty(0, np.int64))
     return code, npath
 
 
@@ -259,11 +330,14 @@ class JitPlanner:
         # a buffer never holds more than ns cells (pending flags), so a width of ns drops
         # exactly what any larger capacity drops: nothing
         self.pb = np.zeros((3, min(self.capacity, ns)), np.int64)
+        self.fill = np.zeros(3, np.int64)  # the propagation's state between cycles (start_propagation)
+        self.role = np.zeros(3, np.int64)
+        self.curt = np.zeros(1, np.float32)
         self.gradx = np.zeros(ns, np.float32)
         self.grady = np.zeros(ns, np.float32)
         self.trace = np.empty(max(4 * ns, 1 << 12), np.int32)
         self.no_trace = np.empty(0, np.int32)
-        self.counters = np.zeros(4, np.int64)
+        self.counters = np.zeros(NCOUNTERS, np.int64)
         memo = (2 * self.nx - 1) * (2 * self.ny - 1) if ns <= HEURISTIC_MEMO_CELLS else 0
         self.memo = np.full(memo, np.nan, np.float32)
         self.path = np.empty((path_cycle_limit(self.nx) + 1, 2), np.float32)
@@ -274,24 +348,24 @@ class JitPlanner:
         sx, sy = start
         gx, gy = goal
         while True:
-            reached = _propagate(
+            reached = propagate(
                 self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
-                self.pot, self.pending, self.pb, self.trace if record_trace else self.no_trace, self.counters,
-                self.memo,
+                self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
+                self.trace if record_trace else self.no_trace, self.counters, self.memo,
             )
-            if not record_trace or self.counters[3] <= self.trace.shape[0]:
+            if not record_trace or self.counters[TRACE_LEN] <= self.trace.shape[0]:
                 break
-            self.trace = np.empty(int(self.counters[3]) * 2, np.int32)
+            self.trace = np.empty(int(self.counters[TRACE_LEN]) * 2, np.int32)
         if self.path.shape[0] < path_cycles + 1:
             self.path = np.empty((path_cycles + 1, 2), np.float32)
-        code, npath = _calc_path(
+        code, npath = calc_path_zeroed(
             self.pot, self.nx, self.ny, sx, sy, gx, gy, path_cycles, self.gradx, self.grady, self.path
         )
         return bool(reached), int(code), int(npath)
 
 
 @jit
-def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, memo, gradx, grady,
+def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
                reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     """Plan every case of one map in one call (no trace); results go to the output arrays.
 
@@ -299,18 +373,19 @@ def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, p
     ``path_pts[path_off[i]:path_off[i + 1]]`` (empty unless the exit is NEAR_GOAL).
     """
     no_trace = np.empty(0, np.int32)
-    counters = np.zeros(4, np.int64)
+    counters = np.zeros(NCOUNTERS, np.int64)
     buf = np.empty((path_cycles + 1, 2), np.float32)
     off = 0
     path_off[0] = 0
     for i in range(cases.shape[0]):
         sx, sy, gx, gy = cases[i, 0], cases[i, 1], cases[i, 2], cases[i, 3]
-        reached[i] = _propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, no_trace, counters, memo)
+        reached[i] = propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt,
+                               no_trace, counters, memo)
         start_pot[i] = pot[sy * nx + sx]
-        ncycles[i] = counters[0]
-        nupdates[i] = counters[1]
-        ndropped[i] = counters[2]
-        code, npath = _calc_path(pot, nx, ny, sx, sy, gx, gy, path_cycles, gradx, grady, buf)
+        ncycles[i] = counters[CYCLES]
+        nupdates[i] = counters[UPDATES]
+        ndropped[i] = counters[DROPPED]
+        code, npath = calc_path_zeroed(pot, nx, ny, sx, sy, gx, gy, path_cycles, gradx, grady, buf)
         exits[i] = code
         if code == EXIT_NEAR_GOAL:
             for k in range(npath):
@@ -335,7 +410,7 @@ def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int
         "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
     }
     _run_cases(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
-               planner.pending, planner.pb, planner.memo, planner.gradx, planner.grady, out["start_reached"],
+               planner.pending, planner.pb, planner.fill, planner.role, planner.curt, planner.memo, planner.gradx, planner.grady, out["start_reached"],
                out["start_potential"], out["cycles"], out["updates"], out["dropped"], out["exit"],
                out["path_offsets"], out["path"])
     out["path"] = out["path"][: out["path_offsets"][-1]]

@@ -93,6 +93,13 @@ def jit(fn):
         return njit(cache=True, **JIT_OPTIONS)(fn)
 
 
+def jit_inline(fn):
+    """:func:`jit`, its body inlined into every compiled caller (no call, no reference
+    counting of its array arguments): for a loop that several compiled loops share."""
+    with _cache_dir():
+        return njit(cache=True, inline="always", **JIT_OPTIONS)(fn)
+
+
 # --------------------------------------------------------------------------------------
 # The domain value and its type
 # --------------------------------------------------------------------------------------

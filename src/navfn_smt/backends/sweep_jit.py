@@ -3,7 +3,8 @@ every goal cell planned as ``NavfnPlanner::createPlan`` would plan it alone.
 
 Dijkstra: ``propNavFnDijkstra(cycles, atStart=true)`` for NavFn start ``t`` (a goal's cell)
 runs the very same cycles as the loop with ``atStart=false``, up to the end of the cycle in
-which ``potarr[t]`` first drops below POT_HIGH; it then stops.  So one loop serves every goal:
+which ``potarr[t]`` first drops below POT_HIGH; it then stops.  So one loop serves every goal
+(the backend's own cycle, :func:`.jit.propagation_cycle`, run with a budget and resumed):
 at the end of each cycle the goals whose potential became finite in that cycle see exactly
 their single-goal potential, and are extracted there (``calcPath``, in the middle of the
 propagation).  A goal never reached sees the loop's final state: the single-goal run ends
@@ -11,9 +12,9 @@ for the same reason the full loop does (buffers empty, or the cycle limit with `
 cycles``), after the same cycles.  The robot's own cell is finite before the first cycle, so
 its run stops at the end of cycle 0 (or never starts when the buffers are empty).
 
-A*: the heuristic depends on the goal, so every goal is planned alone (:func:`.jit._propagate`).
+A*: the heuristic depends on the goal, so every goal is planned alone (:func:`.jit.propagate`).
 
-``calcPath`` here is :func:`.jit._calc_path_touched`, the body of :func:`.jit._calc_path`
+``calcPath`` here is :func:`.jit.calc_path_touched`, the body of :func:`.jit.calc_path_zeroed`
 without its reset of the whole gradient arrays: the cells it writes are recorded and zeroed
 after the call, which leaves the arrays as the reset would (all zero) at the next call;
 ``gradCell``'s cache is a pure function of the potential, so the results are bit-identical at
@@ -29,9 +30,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..spec import kernels as K
-from ..spec.constants import COST_OBS, POT_HIGH, PRI_INC
-from .jit import EXIT_NEAR_GOAL, EXIT_UB, _calc_path_touched, _propagate
+from ..spec.constants import POT_HIGH
+from . import jit as J
+from .jit import EXIT_NEAR_GOAL, EXIT_UB, NCOUNTERS, calc_path_touched, propagate, run_cycles, start_propagation
 from .numba_domain import ND, jit
 
 # per-goal integer columns of the compiled result (``out_i``); CYCLE: the cycles the goal's
@@ -43,9 +44,10 @@ LENGTH, GOAL_POT = range(2)
 NF = 2
 # statuses written by the compiled loops (0: not planned yet)
 S_PENDING, S_PATH, S_NO_LEGAL, S_NO_PLAN, S_UB = range(5)
-# the resumable Dijkstra loop's integer state (``st``)
-CUR, NXT, OVER, CYC, DONE, NPTS, NNEW = range(7)
-NSTATE = 7
+# the sweep's integer state (``st``): whether the Dijkstra loop has started and is over; the
+# points kept so far
+STARTED, DONE, NPTS = range(3)
+NSTATE = 3
 
 
 @jit
@@ -106,7 +108,7 @@ def _finish_goal(pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touche
             out_f[g, LENGTH] = out_f[h, LENGTH]
             return pts
         memo_cell[by * nx + bx] = g
-    code, npath, nt = _calc_path_touched(pot, nx, ny, bx, by, rx, ry, nmax, gradx, grady, buf, touched)
+    code, npath, nt = calc_path_touched(pot, nx, ny, bx, by, rx, ry, nmax, gradx, grady, buf, touched)
     zero = ND.f32const(0.0)
     for i in range(nt):
         gradx[touched[i]] = zero
@@ -141,126 +143,44 @@ def _finish_goal(pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touche
 
 
 @jit
-def _sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill, st, curt, goal_of, newly,
-                    tcell, nmax, gradx, grady, buf, touched, out_i, out_f, pts, keep,
-                    col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
+def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill, role, curt, counters, st, goal_of,
+                   newly, tcell, nmax, gradx, grady, buf, touched, out_i, out_f, pts, keep,
+                   col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
     """Up to ``budget`` cycles of ``propNavFnDijkstra(cycles, atStart=false)`` from the robot
-    cell, resumable (state in ``pot, pending, pb, fill, st, curt``; ``st[CYC] < 0`` before the
-    first call runs ``setupNavFn`` + ``initCost``).  At the end of each cycle every goal whose
-    NavFn start became finite in it is finished on the potential as it is then; when the loop
-    is over (``st[DONE]``), every goal still pending is finished on the final potential.
-    ``goal_of[n]`` is the goal planned from cell ``n`` (-1: none), ``tcell[g]`` its cell.
-    Returns ``pts``."""
-    ns = nx * ny
-    high = ND.f32const(POT_HIGH)
-    cap = pb.shape[1]
-    if st[CYC] < 0:
-        for i in range(ns):
-            pot[i] = high
-            pending[i] = False
-        fill[0] = 0
-        fill[1] = 0
-        fill[2] = 0
-        st[CUR] = 0
-        st[NXT] = 1
-        st[OVER] = 2
-        st[CYC] = 0
-        st[NNEW] = 0
-        curt[0] = ND.f32const(COST_OBS)
+    cell, by :func:`.jit.run_cycles` (its state in ``pot, pending, pb, fill, role, curt,
+    counters``; before the first call, ``st[STARTED]`` 0, it runs :func:`.jit.start_propagation`).
+    At the end of each cycle every goal whose NavFn start became finite in it is finished on
+    the potential as it is then; when the loop is over (``st[DONE]``), every goal still
+    pending is finished on the final potential.  ``goal_of[n]`` is the goal planned from
+    cell ``n`` (-1: none), ``tcell[g]`` its cell.  Returns ``pts``."""
+    no_trace = np.empty(0, np.int32)
+    no_memo = np.empty(0, np.float32)
+    no_memo_cell = np.empty(0, np.int64)
+    if not st[STARTED]:
+        start_propagation(costs, nx, ny, rx, ry, pot, pending, pb, fill, role, curt)
+        st[STARTED] = 1
         k = rx + ry * nx
-        pot[k] = ND.f32const(0.0)
-        cur = 0
-        for n in (k + 1, k - 1, k - nx, k + nx):  # push_cur, its guard the kernel push_admitted
-            j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard tests n against the map
-            if K.push_admitted(ND, n, ns, pending[j], costs[j], fill[cur], cap):
-                pb[cur, fill[cur]] = n
-                fill[cur] += 1
-                pending[n] = True
         if goal_of[k] >= 0:  # the robot's own cell: finite before the first cycle
             newly[0] = goal_of[k]
-            st[NNEW] = 1
-    cur = st[CUR]
-    nxt = st[NXT]
-    over = st[OVER]
-    cur_t = curt[0]
-    inc = ND.int_to_f32(PRI_INC)
-    cycle = st[CYC]
-    done = False
-    stop = cycle + budget
-    while True:
-        if cycle >= cycles or (fill[cur] == 0 and fill[nxt] == 0):
-            done = True
+            counters[J.NEWLY] = 1
+    stop = counters[J.CYCLE] + budget
+    while counters[J.CYCLE] < stop:
+        if run_cycles(costs, nx, ny, rx, ry, False, False, cycles, stop - counters[J.CYCLE], pot, pending, pb, fill,
+                      role, curt, no_trace, counters, no_memo, goal_of, newly):
+            st[DONE] = 1
             break
-        if cycle >= stop:
-            break
-        ncur = fill[cur]
-        for i in range(ncur):
-            pending[pb[cur, i]] = False
-        for i in range(ncur):
-            n = pb[cur, i]
-            cost = costs[n]
-            if not K.is_passable(ND, cost):
-                continue
-            l = pot[n - 1]
-            r = pot[n + 1]
-            u = pot[n - nx]
-            d = pot[n + nx]
-            old = pot[n]
-            new, changed = K.cell_update(ND, old, l, r, u, d, cost, ND.int_to_f32(cost))
-            if not changed:
-                continue
-            pot[n] = new
-            if not ND.lt(old, high) and goal_of[n] >= 0:
-                newly[st[NNEW]] = goal_of[n]
-                st[NNEW] += 1
-            key = new
-            dest = nxt if K.to_low_buffer(ND, key, cur_t) else over
-            for j in range(4):
-                if j == 0:
-                    m = n - 1
-                    pm = l
-                elif j == 1:
-                    m = n + 1
-                    pm = r
-                elif j == 2:
-                    m = n - nx
-                    pm = u
-                else:
-                    m = n + nx
-                    pm = d
-                if K.push_wanted(ND, pm, key, K.edge_weight(ND, ND.int_to_f32(costs[m]))):
-                    if K.push_admitted(ND, m, ns, pending[m], costs[m], fill[dest], cap):
-                        pb[dest, fill[dest]] = m
-                        fill[dest] += 1
-                        pending[m] = True
-        fill[cur] = 0
-        t = cur
-        cur = nxt
-        nxt = t
-        if fill[cur] == 0:
-            cur_t = ND.add(cur_t, inc)
-            t = cur
-            cur = over
-            over = t
-        # the end of the cycle: here a single-goal run of each newly reached goal stops
-        for i in range(st[NNEW]):
+        # the end of a cycle: here a single-goal run of each newly reached goal stops
+        for i in range(counters[J.NEWLY]):
             g = newly[i]
-            out_i[g, CYCLE] = cycle + 1
+            out_i[g, CYCLE] = counters[J.CYCLE]
             pts = _finish_goal(pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf, touched,
                                out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen,
-                               wx, wy, np.empty(0, np.int64))
-        st[NNEW] = 0
-        cycle += 1
-    st[CUR] = cur
-    st[NXT] = nxt
-    st[OVER] = over
-    st[CYC] = cycle
-    curt[0] = cur_t
-    if done:
-        st[DONE] = 1
+                               wx, wy, no_memo_cell)
+        counters[J.NEWLY] = 0
+    if st[DONE]:
         for g in range(out_i.shape[0]):
             if out_i[g, ST] == S_PENDING and goal_of[tcell[g, 1] * nx + tcell[g, 0]] == g:
-                out_i[g, CYCLE] = cycle
+                out_i[g, CYCLE] = counters[J.CYCLE]
                 pts = _finish_goal(pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf,
                                    touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys,
                                    ycells, ylen, wx, wy, memo_cell)
@@ -268,19 +188,20 @@ def _sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fil
 
 
 @jit
-def _sweep_astar(costs, nx, ny, rx, ry, cycles, goals, pot, pending, pb, memo, tcell, nmax, gradx, grady, buf,
-                 touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy):
+def sweep_astar(costs, nx, ny, rx, ry, cycles, goals, pot, pending, pb, fill, role, curt, memo, tcell, nmax, gradx,
+                grady, buf, touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy):
     """``calcNavFnAstar`` + ``_legal_pose`` + ``getPlanFromPotential`` for each goal in ``goals``
     alone (NavFn start its cell, NavFn goal the robot's).  Returns ``pts``."""
     no_trace = np.empty(0, np.int32)
-    counters = np.zeros(4, np.int64)
+    counters = np.zeros(NCOUNTERS, np.int64)
     no_memo = np.empty(0, np.int64)
     for i in range(goals.shape[0]):
         g = goals[i]
         tx = tcell[g, 0]
         ty = tcell[g, 1]
-        _propagate(costs, nx, ny, tx, ty, rx, ry, True, cycles, pot, pending, pb, no_trace, counters, memo)
-        out_i[g, CYCLE] = counters[0]
+        propagate(costs, nx, ny, tx, ty, rx, ry, True, cycles, pot, pending, pb, fill, role, curt, no_trace, counters,
+                  memo)
+        out_i[g, CYCLE] = counters[J.CYCLES]
         pts = _finish_goal(pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts,
                            st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, no_memo)
     return pts

@@ -266,25 +266,23 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         if params.use_astar:
             for lo in range(0, len(planned), ASTAR_GOALS_PER_CALL):
                 chunk = planned[lo:lo + ASTAR_GOALS_PER_CALL]
-                pts = S._sweep_astar(costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.pot, planner.pending,
-                                     planner.pb, planner.memo, tcell, n_cycles, planner.gradx, planner.grady, buf,
-                                     touched, out_i, out_f, pts, st, keep_paths, col_of, row_of, xs, xcells, xlen,
-                                     ys, ycells, ylen, wx, wy)
+                pts = S.sweep_astar(costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.pot, planner.pending,
+                                    planner.pb, planner.fill, planner.role, planner.curt, planner.memo, tcell,
+                                    n_cycles, planner.gradx, planner.grady, buf, touched, out_i, out_f, pts, st,
+                                    keep_paths, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
                 report(done + lo + len(chunk), G)
         else:
             goal_of = np.full(nx * ny, -1, np.int64)
             goal_of[tcell[planned, 1] * nx + tcell[planned, 0]] = planned
             newly = np.empty(G + 1, np.int64)
-            fill = np.zeros(3, np.int64)
-            curt = np.zeros(1, np.float32)
+            counters = np.zeros(S.NCOUNTERS, np.int64)
             memo_cell = np.full(nx * ny, -1, np.int64)
-            st[S.CYC] = -1
             while not st[S.DONE]:
-                pts = S._sweep_dijkstra(costs, nx, ny, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL,
-                                        planner.pot, planner.pending, planner.pb, fill, st, curt, goal_of, newly,
-                                        tcell, n_cycles, planner.gradx, planner.grady, buf, touched, out_i, out_f,
-                                        pts, keep_paths, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy,
-                                        memo_cell)
+                pts = S.sweep_dijkstra(costs, nx, ny, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL,
+                                       planner.pot, planner.pending, planner.pb, planner.fill, planner.role,
+                                       planner.curt, counters, st, goal_of, newly, tcell, n_cycles, planner.gradx,
+                                       planner.grady, buf, touched, out_i, out_f, pts, keep_paths, col_of, row_of,
+                                       xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell)
                 report(done + int(np.count_nonzero(out_i[planned, S.ST] != S.S_PENDING)), G)
         _refused(out_i, planned, col_of, row_of, xerr, yerr)
         p = planned
