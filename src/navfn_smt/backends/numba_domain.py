@@ -38,15 +38,17 @@ from ..spec import numeric
 JIT_OPTIONS = {"error_model": "numpy"}  # float division by zero gives inf/nan, as in C++
 
 _PACKAGE = Path(__file__).resolve().parents[1]
-_SOURCES = ("spec", "backends")
+# every source compiled code is built from: the spec, the backends, and the plugin's sweep
+# with the plugin's rules it compiles
+_SOURCES = ("spec/*.py", "backends/*.py", "nav2/plugin.py", "nav2/sweep_loops.py")
 
 
 def _source_digest() -> str:
-    """SHA-256 over every source the compiled planner is built from (spec/ and backends/)."""
+    """SHA-256 over every source the compiled code is built from (:data:`_SOURCES`)."""
     h = hashlib.sha256()
-    for part in _SOURCES:
-        for p in sorted((_PACKAGE / part).glob("*.py")):
-            h.update(p.name.encode())
+    for pattern in _SOURCES:
+        for p in sorted(_PACKAGE.glob(pattern)):
+            h.update(p.relative_to(_PACKAGE).as_posix().encode())
             h.update(p.read_bytes())
     return h.hexdigest()[:16]
 

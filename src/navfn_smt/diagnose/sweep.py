@@ -5,7 +5,7 @@ would plan it alone, in one pass.
 Dijkstra: NavFn's propagation source is the robot's cell whatever the goal, and
 ``propNavFnDijkstra(atStart=true)`` only stops the same loop earlier, at the end of the cycle
 in which the goal's cell gets a finite potential; so one propagation serves every goal, each
-goal extracted at the end of its cycle (:mod:`navfn_smt.backends.sweep_jit`).  A*: the
+goal extracted at the end of its cycle (:mod:`navfn_smt.nav2.sweep_loops`).  A*: the
 heuristic depends on the goal; each goal is propagated alone (compiled, no shortcut).
 
 A goal cell ``(i, j)`` is planned with the goal pose the plugin's own ``mapToWorld`` gives
@@ -202,7 +202,7 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
     goal_pose(cm, cell), params)`` would, one propagation for Dijkstra (``params.use_astar``
     false), one per goal for A*.  ``progress(done, total)`` is called as goals finish.
     ``keep_paths`` keeps every NavFn path (:meth:`SweepResult.path`)."""
-    from ..backends import sweep_jit as S
+    from ..nav2 import sweep_loops as S
     from ..backends.jit import JitPlanner
 
     t0 = time.perf_counter()
@@ -314,7 +314,7 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
 def _refused(out_i, planned, col_of, row_of, xerr, yerr) -> None:
     """A goal that needed a tolerance search the plugin refuses (``tolerance_steps`` raised)
     raises the same error here."""
-    from ..backends.sweep_jit import USED_TOL
+    from ..nav2.sweep_loops import USED_TOL
 
     for g in planned[out_i[planned, USED_TOL] == 1].tolist():
         e = xerr[col_of[g]] or yerr[row_of[g]]

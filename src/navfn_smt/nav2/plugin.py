@@ -174,8 +174,12 @@ def plugin_map_to_world(cm: Costmap, px: float, py: float) -> tuple[float, float
 
 def squared_distance(a: Pose, b: Pose) -> float:
     """``squared_distance`` of ``navfn_planner.hpp`` (double)."""
-    dx = a.x - b.x
-    dy = a.y - b.y
+    return squared_offset(a.x - b.x, a.y - b.y)
+
+
+def squared_offset(dx, dy):
+    """The arithmetic of :func:`squared_distance` on ``dx = a.x - b.x``, ``dy = a.y - b.y``:
+    ``dx * dx + dy * dy`` in double (on floats, numpy arrays, or compiled)."""
     return dx * dx + dy * dy
 
 
@@ -318,13 +322,23 @@ def _legal_pose(cm: Costmap, goal: Pose, tolerance: float, run: PluginRun) -> Op
     xi, yi = np.nonzero(cols >= 0)[0], np.nonzero(rows >= 0)[0]
     if len(xi) == 0 or len(yi) == 0:
         return None
-    legal = run.potential[rows[yi][:, None], cols[xi][None, :]].astype(np.float64) < POT_HIGH  # (y, x) loop order
-    if not legal.any():
+    pot = run.potential[rows[yi][:, None], cols[xi][None, :]].astype(np.float64)  # (y, x): the loop's order
+    sdist = squared_offset((xs[xi] - goal.x)[None, :], (ys[yi] - goal.y)[:, None])
+    taken = tolerance_prefers(pot, sdist, DBL_MAX)  # the points the loop could take at all
+    if not taken.any():
         return None
-    dx, dy = xs[xi] - goal.x, ys[yi] - goal.y
-    sdist = np.where(legal, (dx * dx)[None, :] + (dy * dy)[:, None], np.inf)
-    k = int(np.argmin(sdist))  # strict '<' in the loop: the first minimum in (y, x) order wins
+    # the loop's strict '<' keeps the first of the nearest it could take
+    k = int(np.argmin(np.where(taken, sdist, np.inf)))
     return goal.with_position(float(xs[xi[k % len(xi)]]), float(ys[yi[k // len(xi)]]))
+
+
+def tolerance_prefers(potential, sdist, best_sdist):
+    """The choice of makePlan's tolerance loop at one point: ``potential < POT_HIGH && sdist <
+    best_sdist`` (double compares).  ``best_sdist`` starts at DBL_MAX and becomes each chosen
+    point's distance, so the first of the nearest legal points in the loop's (y, x) order wins,
+    and a point at DBL_MAX never does.  Operators only: the same rule runs on floats, on numpy
+    arrays (elementwise, here) and compiled in the sweep's loop (:mod:`.sweep_loops`)."""
+    return (potential < POT_HIGH) & (sdist < best_sdist)
 
 
 MAX_TOLERANCE_STEPS = 10**8

@@ -1,10 +1,11 @@
 """Compiled loops of the whole-map sweep (:mod:`navfn_smt.diagnose.sweep`): one robot cell,
-every goal cell planned as ``NavfnPlanner::createPlan`` would plan it alone.
+every goal cell planned as ``NavfnPlanner::createPlan`` would plan it alone, by the backend's
+compiled NavFn (:mod:`navfn_smt.backends.jit`) and the plugin's own rules.
 
 Dijkstra: ``propNavFnDijkstra(cycles, atStart=true)`` for NavFn start ``t`` (a goal's cell)
 runs the very same cycles as the loop with ``atStart=false``, up to the end of the cycle in
 which ``potarr[t]`` first drops below POT_HIGH; it then stops.  So one loop serves every goal
-(the backend's own cycle, :func:`.jit.propagation_cycle`, run with a budget and resumed):
+(the backend's resumable loop, :func:`~navfn_smt.backends.jit.run_cycles`, paused there):
 at the end of each cycle the goals whose potential became finite in that cycle see exactly
 their single-goal potential, and are extracted there (``calcPath``, in the middle of the
 propagation).  A goal never reached sees the loop's final state: the single-goal run ends
@@ -12,28 +13,32 @@ for the same reason the full loop does (buffers empty, or the cycle limit with `
 cycles``), after the same cycles.  The robot's own cell is finite before the first cycle, so
 its run stops at the end of cycle 0 (or never starts when the buffers are empty).
 
-A*: the heuristic depends on the goal, so every goal is planned alone (:func:`.jit.propagate`).
+A*: the heuristic depends on the goal, so every goal is planned alone (:func:`~navfn_smt.backends.jit.propagate`).
 
-``calcPath`` here is :func:`.jit.calc_path_touched`, the body of :func:`.jit.calc_path_zeroed`
-without its reset of the whole gradient arrays: the cells it writes are recorded and zeroed
+``calcPath`` here is :func:`~navfn_smt.backends.jit.calc_path_touched`, the body of
+:func:`~navfn_smt.backends.jit.calc_path_zeroed` without its reset of the whole gradient arrays: the cells it writes are recorded and zeroed
 after the call, which leaves the arrays as the reset would (all zero) at the next call;
 ``gradCell``'s cache is a pure function of the potential, so the results are bit-identical at
 O(path) instead of O(cells) per goal.
 
-The tolerance search is ``_legal_pose`` of the plugin over tables of its own world points:
-the plugin's ``tolerance_steps`` and rounding ``worldToMap`` computed once per goal column and
-row (they depend only on the goal's x, resp. y), scanned here in the loop's (y, x) order,
-first strict minimum of the double squared distance.
+The tolerance search is ``_legal_pose`` of the plugin over tables of its world points (the
+plugin's ``tolerance_steps`` and rounding ``worldToMap`` computed once per goal column and
+row: they depend only on the goal's x, resp. y), scanned here in the loop's (y, x) order with
+the plugin's own choice (:func:`.plugin.tolerance_prefers`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..spec.constants import POT_HIGH
-from . import jit as J
-from .jit import EXIT_NEAR_GOAL, EXIT_UB, NCOUNTERS, calc_path_touched, propagate, run_cycles, start_propagation
-from .numba_domain import ND, jit
+from ..backends import jit as J
+from ..backends.jit import (EXIT_NEAR_GOAL, EXIT_UB, NCOUNTERS, calc_path_touched, propagate, run_cycles,
+                            start_propagation)
+from ..backends.numba_domain import ND, jit
+from .plugin import DBL_MAX, POT_HIGH, squared_offset, tolerance_prefers
+
+_squared_offset = jit(squared_offset)  # the plugin's rule, compiled
+_tolerance_prefers = jit(tolerance_prefers)
 
 # per-goal integer columns of the compiled result (``out_i``); CYCLE: the cycles the goal's
 # own propagation runs (``PluginRun.cycles``)
@@ -52,12 +57,11 @@ NSTATE = 3
 
 @jit
 def _legal_cell(pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy):
-    """The tolerance search of ``_legal_pose`` for goal ``g``: the legal cell nearest the goal
-    (first strict minimum in (y, x) order), or (-1, -1)."""
-    high = ND.f32const(POT_HIGH)
+    """The tolerance search of ``_legal_pose`` for goal ``g`` by the plugin's rule
+    (:func:`.plugin.tolerance_prefers`): the cell of the point it chooses, or (-1, -1)."""
     a = col_of[g]
     b = row_of[g]
-    best = np.inf
+    best = DBL_MAX
     bx = -1
     by = -1
     for yi in range(ylen[b]):
@@ -69,13 +73,11 @@ def _legal_cell(pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells,
             c = xcells[a, xi]
             if c < 0:
                 continue
-            if ND.lt(pot[r * nx + c], high):
-                dx = xs[a, xi] - wx[g]
-                d = dx * dx + dy * dy
-                if d < best:
-                    best = d
-                    bx = c
-                    by = r
+            d = _squared_offset(xs[a, xi] - wx[g], dy)
+            if _tolerance_prefers(ND.widen(pot[r * nx + c]), d, best):
+                best = d
+                bx = c
+                by = r
     return bx, by
 
 
@@ -147,8 +149,8 @@ def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill
                    newly, tcell, nmax, gradx, grady, buf, touched, out_i, out_f, pts, keep,
                    col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
     """Up to ``budget`` cycles of ``propNavFnDijkstra(cycles, atStart=false)`` from the robot
-    cell, by :func:`.jit.run_cycles` (its state in ``pot, pending, pb, fill, role, curt,
-    counters``; before the first call, ``st[STARTED]`` 0, it runs :func:`.jit.start_propagation`).
+    cell, by :func:`~navfn_smt.backends.jit.run_cycles` (its state in ``pot, pending, pb, fill, role, curt,
+    counters``; before the first call, ``st[STARTED]`` 0, it runs :func:`~navfn_smt.backends.jit.start_propagation`).
     At the end of each cycle every goal whose NavFn start became finite in it is finished on
     the potential as it is then; when the loop is over (``st[DONE]``), every goal still
     pending is finished on the final potential.  ``goal_of[n]`` is the goal planned from
