@@ -12,9 +12,10 @@ from navfn_smt.difftest.runner import run_suite, summarize
 from navfn_smt.errors import NavfnInputError
 from navfn_smt.maps import generators as G
 from navfn_smt.maps.generators import (
-    CATEGORIES, CATEGORY_INFO, choose_cases, components, generate_map, generate_maps, generate_suite,
+    CATEGORIES, CATEGORY_INFO, choose_cases, generate_map, generate_maps, generate_suite,
     inflate, inflation_cost, passable_cells,
 )
+from navfn_smt.maps.regions import regions as components
 from navfn_smt.maps.suite import discover, load_map
 
 SMALL = {  # sizes that keep the whole file fast

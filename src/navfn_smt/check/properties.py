@@ -19,6 +19,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from ..maps.regions import reaches, regions
 from ..spec.constants import COST_OBS, POT_HIGH
 from ..spec.costs import add_border
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
@@ -81,22 +82,9 @@ def passable(costs: np.ndarray, cell) -> bool:
 
 
 def connected(costs: np.ndarray, start, goal) -> bool:
-    """A 4-connected chain of cells from the goal to the start, every cell but the goal passable.
-
-    Propagation starts at the goal whatever its cost (``initCost`` does not look at it), so
-    this is exactly the condition under which the wave can reach the start at all."""
-    ny, nx = costs.shape
-    seen = {tuple(goal)}
-    todo = [tuple(goal)]
-    while todo:
-        x, y = todo.pop()
-        if (x, y) == tuple(start):
-            return True
-        for n in ((x + 1, y), (x - 1, y), (x, y - 1), (x, y + 1)):
-            if 0 <= n[0] < nx and 0 <= n[1] < ny and n not in seen and passable(costs, n):
-                seen.add(n)
-                todo.append(n)
-    return False
+    """The wave from the goal can reach the start (:func:`~navfn_smt.maps.regions.reaches`):
+    exactly the condition under which the start can get a finite potential at all."""
+    return reaches(regions(costs), start, goal)
 
 
 def nearest_cell(x, y) -> tuple[int, int]:

@@ -18,6 +18,7 @@ from typing import Optional
 
 import numpy as np
 
+from ..maps.regions import FOUR_NEIGHBOURS, regions
 from ..spec.constants import COST_OBS
 from ..spec.costs import add_border
 
@@ -32,19 +33,12 @@ class Connectivity:
     goal_region_boundary: int = 0  # obstacle cells 4-adjacent to the goal's region
 
 
-def _label(passable: np.ndarray) -> np.ndarray:
-    from scipy import ndimage
-
-    labels, _ = ndimage.label(passable, structure=[[0, 1, 0], [1, 1, 1], [0, 1, 0]])
-    return labels
-
-
 def connectivity(costs: np.ndarray, robot: tuple[int, int], goal: tuple[int, int]) -> Connectivity:
     """The regions of NavFn's internal ``costs`` (after setCostmap, (ny, nx)) around the robot's
     and the goal's cells."""
     framed = add_border(costs)
     passable = framed < COST_OBS
-    labels = _label(passable)
+    labels = regions(framed)
     rl = int(labels[robot[1], robot[0]])
     gl = int(labels[goal[1], goal[0]])
     robot_cells = int((labels == rl).sum()) if rl else 0
@@ -55,7 +49,7 @@ def connectivity(costs: np.ndarray, robot: tuple[int, int], goal: tuple[int, int
     if gl:
         from scipy import ndimage
 
-        grown = ndimage.binary_dilation(labels == gl, structure=[[0, 1, 0], [1, 1, 1], [0, 1, 0]])
+        grown = ndimage.binary_dilation(labels == gl, structure=FOUR_NEIGHBOURS)
         boundary = int((grown & ~passable).sum())
     return Connectivity(False, robot_cells, goal_cells, bool(gl), _cut(framed, labels, rl, goal), boundary)
 

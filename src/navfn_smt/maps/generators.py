@@ -45,7 +45,6 @@ from __future__ import annotations
 import math
 import os
 import shutil
-from collections import deque
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable, Optional, Union
@@ -99,27 +98,6 @@ def passable_cells(costs: np.ndarray) -> np.ndarray:
     inner = np.asarray(costs)[1:-1, 1:-1] < LETHAL
     ys, xs = np.nonzero(inner.T)  # transposed: rows of inner.T are x
     return np.stack([ys + 1, xs + 1], axis=1).astype(np.int32)
-
-
-def components(costs: np.ndarray) -> np.ndarray:
-    """Label the 4-connected regions of passable cells (0 = lethal, 1, 2, ... regions)."""
-    c = np.asarray(costs)
-    h, w = c.shape
-    lab = np.zeros((h, w), dtype=np.int32)
-    n = 0
-    for y0, x0 in zip(*np.nonzero(c < LETHAL)):
-        if lab[y0, x0]:
-            continue
-        n += 1
-        lab[y0, x0] = n
-        q = deque([(y0, x0)])
-        while q:
-            y, x = q.popleft()
-            for yy, xx in ((y - 1, x), (y + 1, x), (y, x - 1), (y, x + 1)):
-                if 0 <= yy < h and 0 <= xx < w and not lab[yy, xx] and c[yy, xx] < LETHAL:
-                    lab[yy, xx] = n
-                    q.append((yy, xx))
-    return lab
 
 
 def _line(x0: int, y0: int, x1: int, y1: int) -> list[tuple[int, int]]:

@@ -22,6 +22,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from ..check import properties as P
+from ..maps.regions import reaches_all, regions
 from ..spec import extraction as _extraction
 from ..spec import kernels as _kernels
 from ..spec.constants import POT_HIGH
@@ -59,8 +60,7 @@ class Batch:
 
     def connected(self) -> np.ndarray:
         if "connected" not in self._cache:
-            ny, nx = self.costs.shape
-            self._cache["connected"] = fast.connected(self.flat, nx, ny, self.cases)
+            self._cache["connected"] = reaches_all(regions(self.costs), self.cases)
         return self._cache["connected"]
 
     def finite(self) -> np.ndarray:
