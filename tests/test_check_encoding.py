@@ -127,7 +127,8 @@ def _extraction_case(seed: int):
 def test_whole_run_folds_to_the_spec(seed):
     """Propagation and calcPath as terms: fixed map, folded: the exit and every path point bit for bit."""
     from navfn_smt.check import properties as P
-    from navfn_smt.check.encoding import exit_name, extract
+    from navfn_smt.check.encoding import extract
+    from navfn_smt.spec.extraction import exit_name
     from navfn_smt.spec.planner import path_cycle_limit
 
     arr, start, goal, astar = _extraction_case(seed)
@@ -154,7 +155,8 @@ def test_whole_run_with_gradient_steps(inner, astar):
     grid-following steps: the exit and every path point bit for bit, also in the concolic domain."""
     from navfn_smt.check import properties as P
     from navfn_smt.check.concolic import ConcolicDomain
-    from navfn_smt.check.encoding import exit_name, extract
+    from navfn_smt.check.encoding import extract
+    from navfn_smt.spec.extraction import exit_name
     from navfn_smt.spec.planner import path_cycle_limit
 
     arr = np.full((5, 6), 254, np.uint8)

@@ -17,10 +17,10 @@ from pathlib import Path
 import numpy as np
 
 from .backends import BACKENDS, get_backend
-from .difftest.runner import modes_of
 from .errors import NavfnInputError
 from .inputs import check_cells
-from .maps.suite import discover, load_map
+from .maps.suite import discover, load_map, modes_of
+from .spec.constants import COST_OBS
 from .report.tables import progress_bar, progress_counts
 
 SEED = 12345
@@ -34,7 +34,7 @@ def generated_map(kind: str, n: int) -> np.ndarray:
         c = np.random.default_rng(SEED).integers(50, 254, size=(n, n), dtype=np.uint8)
     else:
         raise ValueError(kind)
-    c[0, :] = c[-1, :] = c[:, 0] = c[:, -1] = 254
+    c[0, :] = c[-1, :] = c[:, 0] = c[:, -1] = COST_OBS
     return c
 
 

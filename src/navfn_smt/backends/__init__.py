@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..inputs import check_inputs
 from ..spec.costs import add_border
-from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
+from ..spec.extraction import EXIT_CODES, ExtractionExit, UndefinedBehaviour, calc_path
 from ..spec.planner import PlanResult, path_cycle_limit, plan
 from ..spec.constants import PRIORITYBUFSIZE
 from ..spec.propagation import check_capacity, cycle_limit
@@ -116,7 +116,7 @@ class JitRunner:
         if code == J.EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         pot = p.pot.reshape(self.ny, self.nx).copy()
-        exit_ = J.EXITS[code]
+        exit_ = EXIT_CODES[code]
         return PlanResult(
             start_reached=reached,
             start_potential=pot[start[1], start[0]],
@@ -131,7 +131,7 @@ class JitRunner:
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential, compiled."""
-        from .jit import EXIT_UB, EXITS, calc_path_zeroed
+        from .jit import EXIT_UB, calc_path_zeroed
 
         pot = np.ascontiguousarray(potential, dtype=np.float32).ravel()
         n = int(path_cycles)
@@ -141,7 +141,7 @@ class JitRunner:
                                  n, p.gradx, p.grady, path)
         if code == EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
-        exit_ = EXITS[code]
+        exit_ = EXIT_CODES[code]
         return exit_, path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32)
 
     def run_batch(self, cases, astar: bool) -> dict:

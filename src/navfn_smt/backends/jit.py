@@ -15,7 +15,7 @@ import numpy as np
 
 from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
-from ..spec.extraction import ExtractionExit
+from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
 from ..spec.planner import path_cycle_limit
 from .numba_domain import ND, jit, jit_inline
 
@@ -23,15 +23,13 @@ from .numba_domain import ND, jit, jit_inline
 # (a float per offset: 4 * (2nx-1)(2ny-1) bytes, 16 MiB at the limit); larger maps call it
 HEURISTIC_MEMO_CELLS = 1 << 20
 
-# exit codes of calcPath here: the index of the ExtractionExit, and one more for the reads
-# outside the potential array that the spec refuses as undefined behaviour
-EXITS = tuple(ExtractionExit)
-EXIT_NEAR_GOAL = EXITS.index(ExtractionExit.NEAR_GOAL)
-EXIT_OUT_OF_BOUNDS = EXITS.index(ExtractionExit.OUT_OF_BOUNDS)
-EXIT_HIGH_POTENTIAL = EXITS.index(ExtractionExit.HIGH_POTENTIAL)
-EXIT_ZERO_GRADIENT = EXITS.index(ExtractionExit.ZERO_GRADIENT)
-EXIT_EXHAUSTED = EXITS.index(ExtractionExit.EXHAUSTED)
-EXIT_UB = len(EXITS)
+# calcPath's exits as the compiled code returns them (spec.extraction.exit_code)
+EXIT_NEAR_GOAL = exit_code(ExtractionExit.NEAR_GOAL)
+EXIT_OUT_OF_BOUNDS = exit_code(ExtractionExit.OUT_OF_BOUNDS)
+EXIT_HIGH_POTENTIAL = exit_code(ExtractionExit.HIGH_POTENTIAL)
+EXIT_ZERO_GRADIENT = exit_code(ExtractionExit.ZERO_GRADIENT)
+EXIT_EXHAUSTED = exit_code(ExtractionExit.EXHAUSTED)
+EXIT_UB = EXIT_UNDEFINED
 
 
 # the propagation's state between cycles: ``role`` = which of the three priority buffers

@@ -36,9 +36,10 @@ from ..spec.planner import path_cycle_limit
 from . import properties as P
 from . import exhaustive
 from .concolic import ConcolicDomain, V, concrete, term
-from .encoding import EXIT_CODES, _interior, extract, propagate
+from ..spec.extraction import exit_code
+from .encoding import _interior, extract, propagate
 
-NEAR_GOAL = EXIT_CODES[P.ExtractionExit.NEAR_GOAL]
+NEAR_GOAL = exit_code(P.ExtractionExit.NEAR_GOAL)
 CHECKABLE = tuple(P.PROPERTIES)
 
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 
 from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
-from ..spec.extraction import ExtractionExit
+from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
 from ..spec.numeric import CONCRETE
 from ..spec.propagation import cycle_limit
 
@@ -156,13 +156,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
 # ---------------------------------------------------------------------------------------
 # Path extraction: calcPath(n) over a symbolic potential
 # ---------------------------------------------------------------------------------------
-EXIT_CODES = {e: i for i, e in enumerate(ExtractionExit)}
-EXIT_UNDEFINED = len(EXIT_CODES)  # the C++ reads outside potarr
-RUNNING = -1
-
-
-def exit_name(code: int) -> str:
-    return "undefined" if code == EXIT_UNDEFINED else list(ExtractionExit)[code].value
+RUNNING = -1  # calcPath has not exited yet (beside the exits' ints, spec.extraction.EXIT_CODES)
 
 
 @dataclass
@@ -233,8 +227,8 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
         written = D.and_(running, D.not_(D.or_(at_goal, D.or_(oob, ub_ring))))
         points.append((px, py, written))
         if written is False:
-            new_code = D.ite(at_goal, EXIT_CODES[ExtractionExit.NEAR_GOAL],
-                             D.ite(oob, EXIT_CODES[ExtractionExit.OUT_OF_BOUNDS], EXIT_UNDEFINED))
+            new_code = D.ite(at_goal, exit_code(ExtractionExit.NEAR_GOAL),
+                             D.ite(oob, exit_code(ExtractionExit.OUT_OF_BOUNDS), EXIT_UNDEFINED))
             code = D.ite(running, new_code, code)
             continue
         osc = False
@@ -269,16 +263,16 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
                     ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
                     stc_step = D.add_int(D.add_int(stc, cdx), cdy * nx)
         # the outcome of the iteration, in the C++ order of its tests
-        new_code = D.ite(at_goal, EXIT_CODES[ExtractionExit.NEAR_GOAL],
-                   D.ite(oob, EXIT_CODES[ExtractionExit.OUT_OF_BOUNDS],
+        new_code = D.ite(at_goal, exit_code(ExtractionExit.NEAR_GOAL),
+                   D.ite(oob, exit_code(ExtractionExit.OUT_OF_BOUNDS),
                    D.ite(ub_ring, EXIT_UNDEFINED,
-                   D.ite(fallback, D.ite(stuck, EXIT_CODES[ExtractionExit.HIGH_POTENTIAL], RUNNING),
+                   D.ite(fallback, D.ite(stuck, exit_code(ExtractionExit.HIGH_POTENTIAL), RUNNING),
                    D.ite(ub_grad, EXIT_UNDEFINED,
-                   D.ite(flat, EXIT_CODES[ExtractionExit.ZERO_GRADIENT], RUNNING))))))
+                   D.ite(flat, exit_code(ExtractionExit.ZERO_GRADIENT), RUNNING))))))
         code = D.ite(running, new_code, code)
         keep = D.not_(running)
         stc = D.ite(keep, stc, D.ite(fallback, stc_fb, stc_step))
         dx = D.ite(keep, dx, D.ite(fallback, zero, ndx))
         dy = D.ite(keep, dy, D.ite(fallback, zero, ndy))
-    code = D.ite(D.eq(code, RUNNING), EXIT_CODES[ExtractionExit.EXHAUSTED], code)
+    code = D.ite(D.eq(code, RUNNING), exit_code(ExtractionExit.EXHAUSTED), code)
     return SymbolicExtraction(code, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))

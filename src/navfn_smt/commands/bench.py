@@ -49,7 +49,7 @@ def cmd_bench(args) -> int:
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..difftest.runner import MODE_CHOICES
+    from ..maps.suite import MODE_CHOICES
 
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")

@@ -113,7 +113,7 @@ def _largest(results, name):
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..check.bounded import CHECKABLE as CHECK_PROPERTIES
-    from ..difftest.runner import MODE_CHOICES
+    from ..maps.suite import MODE_CHOICES
     from ..engine import add_arguments as add_engine_arguments
 
     ck = sub.add_parser("check", help="prove or refute a whole-planner property on every map of a size "

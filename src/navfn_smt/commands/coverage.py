@@ -12,7 +12,7 @@ from .common import EXAMPLE_SUITE, MODE_HELP, check_files, check_max_cases
 def cmd_coverage(args) -> int:
     """Measure what a suite exercises of the reference spec; exit 1 below ``--min-branch``."""
     from ..difftest.coverage import measure
-    from ..difftest.runner import modes_of
+    from ..maps.suite import modes_of
     from ..maps.suite import discover, load_map
     from ..report import coverage as report
     from ..report.tables import progress_bar
@@ -40,7 +40,7 @@ def cmd_coverage(args) -> int:
 
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
-    from ..difftest.runner import MODE_CHOICES
+    from ..maps.suite import MODE_CHOICES
 
     cv = sub.add_parser("coverage", help="line, branch and kernel-decision coverage of the reference spec under a suite")
     cv.add_argument("suite", nargs="*", help="suite directories, measured together (default: the example suite)")

@@ -7,7 +7,8 @@ from .common import BACKEND_HELP, MODE_HELP, check_files, suite_or_example
 
 def cmd_difftest(args) -> int:
     """Compare every case of a suite with its golden files; exit 1 on any disagreement."""
-    from ..difftest.runner import count_cases, modes_of, run_suite
+    from ..difftest.runner import count_cases, run_suite
+    from ..maps.suite import modes_of
     from ..engine import engine
     from ..report import difftest as report
     from ..report.tables import progress_bar
@@ -29,7 +30,7 @@ def cmd_difftest(args) -> int:
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..difftest.runner import MODE_CHOICES
+    from ..maps.suite import MODE_CHOICES
     from ..engine import add_arguments as add_engine_arguments
 
     dt = sub.add_parser("difftest", help="compare every case of a suite with its golden files")

@@ -9,7 +9,7 @@ from .common import BACKEND_HELP, MODE_HELP, check_files, check_max_cases, suite
 
 def cmd_metamorphic(args) -> int:
     """Check map symmetries on a suite; counterexamples are saved only under ``--save``."""
-    from ..difftest.runner import modes_of
+    from ..maps.suite import modes_of
     from ..maps.suite import discover, load_map
     from ..report import metamorphic as report
     from ..report.tables import progress_bar
@@ -38,7 +38,7 @@ def cmd_metamorphic(args) -> int:
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..difftest.runner import MODE_CHOICES
+    from ..maps.suite import MODE_CHOICES
     from ..search.metamorphic import TRANSFORMS
 
     mm = sub.add_parser("metamorphic", help="check map symmetries: transposes, flips, rotations, padding, cost shifts")

@@ -47,7 +47,7 @@ def cmd_search(args) -> int:
 
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
-    from ..difftest.runner import MODE_CHOICES
+    from ..maps.suite import MODE_CHOICES
     from ..engine import add_arguments as add_engine_arguments
     from ..search.kinds import SEARCH_KINDS
 

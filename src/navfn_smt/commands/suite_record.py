@@ -13,7 +13,7 @@ import argparse
 
 from ..backends import BACKENDS
 from ..errors import NavfnInputError
-from ..difftest.runner import MODE_CHOICES, modes_of
+from ..maps.suite import MODE_CHOICES, modes_of
 
 
 def cmd_suite_record(args) -> int:

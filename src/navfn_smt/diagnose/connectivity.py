@@ -96,6 +96,6 @@ def _cut(framed: np.ndarray, labels: np.ndarray, robot_label: int, goal: tuple[i
 
 def region_mask(costs: np.ndarray, cell: tuple[int, int]) -> Optional[np.ndarray]:
     """The 4-connected passable region of ``cell`` (None when the cell is an obstacle)."""
-    labels = _label(add_border(costs) < COST_OBS)
+    labels = regions(add_border(costs))
     lab = labels[cell[1], cell[0]]
     return None if lab == 0 else labels == lab

@@ -30,7 +30,6 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..nav2.params import PlannerParams
 from ..nav2.plugin import (
-    LETHAL_OBSTACLE,
     Costmap,
     PluginRun,
     Pose,
@@ -42,8 +41,9 @@ from ..nav2.plugin import (
     plugin_world_to_map,
     tolerance_steps,
 )
+from ..spec.constants import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION
 from ..spec.costs import add_border, set_costmap
-from ..spec.extraction import ExtractionExit
+from ..spec.extraction import EXIT_CODES
 from ..spec.propagation import cycle_limit
 
 # Per-goal outcomes; the error each stands for (None: a plan was published).
@@ -65,8 +65,8 @@ OUTCOME_TEXT = {
     "undefined_behaviour": "undefined behaviour in the C++",
 }
 _CODE = {name: i for i, name in enumerate(OUTCOMES)}
-EXIT_NAMES = tuple(e.name for e in ExtractionExit)
-FREE_BELOW = 253  # goals by default: every known cell below INSCRIBED_INFLATED_OBSTACLE
+EXIT_NAMES = tuple(e.name for e in EXIT_CODES)  # the sweep's exit ints are the spec's
+FREE_BELOW = INSCRIBED_INFLATED_OBSTACLE  # goals by default: every known cell below it
 DIJKSTRA_CYCLES_PER_CALL = 256
 ASTAR_GOALS_PER_CALL = 32
 
@@ -425,10 +425,10 @@ def rooms_costmap(n: int, seed: int = 0, room: int = 40, resolution: float = 0.0
     for _ in range(max(1, n * n // 20000)):  # unknown patches
         w, h = int(rng.integers(3, 12)), int(rng.integers(3, 12))
         x, y = int(rng.integers(1, n - w - 1)), int(rng.integers(1, n - h - 1))
-        c[y:y + h, x:x + w] = 255
+        c[y:y + h, x:x + w] = NO_INFORMATION
     if inflation:
-        known = c != 255
+        known = c != NO_INFORMATION
         inflated = inflate(np.where(known, c, 0).astype(np.uint8), resolution, 0.1, 0.5, 3.0)
-        c = np.where(known, inflated, 255).astype(np.uint8)
+        c = np.where(known, inflated, NO_INFORMATION).astype(np.uint8)
     half = -n * resolution / 2
     return Costmap(np.ascontiguousarray(c), half, half, resolution)

@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Optional
 
 
-from ..maps.suite import discover, load_map
+from ..maps.suite import MODES, discover, load_map
 
 SPEC_DIR = Path(__file__).resolve().parent.parent / "spec"
 # the modules of NavFn's behaviour that a planning call executes (costs.py's setCostmap is
@@ -95,7 +95,7 @@ def _recording_domain():
     return RecordingDomain()
 
 
-def measure(suites, modes=("astar", "dijkstra"), max_cases: Optional[int] = None, progress=None) -> dict:
+def measure(suites, modes=MODES, max_cases: Optional[int] = None, progress=None) -> dict:
     """Run the reference spec on the suites under coverage.py and the recording domain.
 
     The run happens in a fresh interpreter that starts measuring before the spec is

@@ -29,7 +29,7 @@ from ..maps.suite import GOLDEN_FIELDS, MODES, SuiteMap, discover, load_map
 from ..spec.constants import POT_HIGH
 from ..spec.extraction import UndefinedBehaviour
 from ..spec.planner import sha256_f32, sha256_i32
-from .runner import modes_of
+from ..maps.suite import modes_of
 
 _UNREACHED = np.float32(POT_HIGH)
 

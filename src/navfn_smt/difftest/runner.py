@@ -27,12 +27,6 @@ FIELDS = ("path", "potential", "trace", "start_reached", "cycles", "updates")
 CHUNK = 2000  # cases per task, so that progress moves on large maps
 AUTO_CASES = 50_000  # --jobs auto: local workers from this many case runs on (their start-up is ~3 s)
 MAX_DISAGREEMENTS = 1000  # kept in a summary, the first by map, mode and case (all are counted)
-MODE_CHOICES = (*MODES, "both")  # what a command's --mode accepts
-
-
-def modes_of(choice: str) -> tuple[str, ...]:
-    """The planner modes a ``--mode`` choice stands for: ``both`` is every mode in ``MODES``."""
-    return tuple(MODES) if choice == "both" else (choice,)
 
 
 @dataclass

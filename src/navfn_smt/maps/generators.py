@@ -53,7 +53,7 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from ..fileio import atomic_write_bytes
-from ..spec.constants import COST_NEUTRAL, COST_OBS
+from ..spec.constants import COST_NEUTRAL, COST_OBS, LETHAL_OBSTACLE
 from ..spec.costs import set_costmap
 
 CATEGORIES = (
@@ -299,7 +299,6 @@ def circus_map(rng: np.random.Generator, width: int, height: int, side: Optional
 
 
 # ---- inflated: Nav2's inflation layer (nav2_costmap_2d InflationLayer::updateCosts / computeCost)
-ROS_LETHAL = 254  # nav2_costmap_2d LETHAL_OBSTACLE
 
 
 def inflation_cost(distance: float, resolution: float, inscribed_radius: float, cost_scaling_factor: float) -> int:
@@ -336,7 +335,7 @@ def inflated_map(rng: np.random.Generator, width: int, height: int, resolution: 
         cost_scaling_factor = float(rng.integers(10, 101)) / 10.0  # 1.0 .. 10.0
     ros = np.zeros((height, width), dtype=np.uint8)
     if walls:
-        ros[0, :] = ros[-1, :] = ros[:, 0] = ros[:, -1] = ROS_LETHAL
+        ros[0, :] = ros[-1, :] = ros[:, 0] = ros[:, -1] = LETHAL_OBSTACLE
     if cores is None:
         cores = int(rng.integers(1, max(2, width * height // 250) + 1))
     y, x = np.mgrid[0:height, 0:width]
@@ -346,12 +345,12 @@ def inflated_map(rng: np.random.Generator, width: int, height: int, resolution: 
         if kind == 0:  # rectangle
             rw = int(rng.integers(1, max(1, width // 6) + 1))
             rh = int(rng.integers(1, max(1, height // 6) + 1))
-            ros[cy:cy + rh, cx:cx + rw] = ROS_LETHAL
+            ros[cy:cy + rh, cx:cx + rw] = LETHAL_OBSTACLE
         elif kind == 1:  # disc
             rad = float(rng.integers(1, max(1, small // 10) + 1))
-            ros[(x - cx) ** 2 + (y - cy) ** 2 <= rad * rad] = ROS_LETHAL
+            ros[(x - cx) ** 2 + (y - cy) ** 2 <= rad * rad] = LETHAL_OBSTACLE
         else:  # a single cell (a post, a sensor speck)
-            ros[cy, cx] = ROS_LETHAL
+            ros[cy, cx] = LETHAL_OBSTACLE
     inflated = inflate(ros, resolution, inscribed_radius, inflation_radius, cost_scaling_factor)
     a = set_costmap(inflated, is_ros=True, allow_unknown=True)
     a[0, :] = a[-1, :] = a[:, 0] = a[:, -1] = LETHAL

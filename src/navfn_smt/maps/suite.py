@@ -23,7 +23,13 @@ from ..errors import NavfnInputError
 from ..fileio import atomic_write_bytes
 from ..inputs import check_cells
 
-MODES = ("astar", "dijkstra")
+MODES = ("astar", "dijkstra")  # the planner modes: calcNavFnAstar, calcNavFnDijkstra
+MODE_CHOICES = (*MODES, "both")  # what a command's --mode accepts
+
+
+def modes_of(choice: str) -> tuple[str, ...]:
+    """The planner modes a ``--mode`` choice stands for: ``both`` is every mode in ``MODES``."""
+    return tuple(MODES) if choice == "both" else (choice,)
 GOLDEN_FIELDS = (
     "width",
     "height",

@@ -59,10 +59,11 @@ from typing import Mapping, Optional, Union
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.constants import FREE_SPACE, NO_INFORMATION
 from .mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
 from .footprint import robot_footprint
 from .params import load_params_yaml
-from .inflation import NO_INFORMATION, FREE_SPACE, inflate_current, inflate_legacy
+from .inflation import inflate_current, inflate_legacy
 
 STATIC = "nav2_costmap_2d::StaticLayer"
 INFLATION = "nav2_costmap_2d::InflationLayer"

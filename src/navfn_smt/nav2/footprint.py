@@ -28,7 +28,6 @@ import ctypes
 import ctypes.util
 import math
 import re
-import sys
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Optional, Sequence
@@ -36,11 +35,11 @@ from typing import Optional, Sequence
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.constants import DBL_MAX
 
 DEFAULT_ROBOT_RADIUS = 0.1  # Costmap2DROS: robot_radius (double); nav2_bringup sets 0.22
 DEFAULT_FOOTPRINT_PADDING = 0.01  # Costmap2DROS: footprint_padding, held as float
 RADIUS_POINTS = 16  # makeFootprintFromRadius: N
-DBL_MAX = sys.float_info.max
 
 _libm = ctypes.CDLL(ctypes.util.find_library("m") or "libm.so.6")
 _libm.hypot.restype = ctypes.c_double

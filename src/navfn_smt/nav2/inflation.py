@@ -37,8 +37,7 @@ import numpy as np
 from numba import njit
 
 from ..errors import NavfnInputError
-
-LETHAL_OBSTACLE, INSCRIBED_INFLATED_OBSTACLE, NO_INFORMATION, FREE_SPACE = 254, 253, 255, 0
+from ..spec.constants import FREE_SPACE, INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION
 COST_LUT_PRECISION = 100  # InflationLayer: samples of the cost table per cell
 FLT_MAX = np.float32(np.finfo(np.float32).max)  # DistanceTransform::DT_INF
 

@@ -76,6 +76,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.constants import FREE_SPACE, INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION
 from ..spec.costs import set_costmap
 
 MODES = ("trinary", "scale", "raw")
@@ -95,7 +96,6 @@ REQUIRED_KEYS = ("image", "resolution", "origin", "negate", "occupied_thresh", "
 
 QUANTUM_MAX = 65535.0  # MaxRGB of a Q16 GraphicsMagick
 OCC_UNKNOWN, OCC_FREE, OCC_OCCUPIED = -1, 0, 100  # nav2_util/occ_grid_values.hpp
-NO_INFORMATION, LETHAL_OBSTACLE, INSCRIBED_INFLATED_OBSTACLE, FREE_SPACE = 255, 254, 253, 0
 
 # yaml-cpp reads "5e-2" as a double; PyYAML (YAML 1.1) only resolves floats that have a dot
 # and leaves such scalars as strings.  Plain decimal numbers in a string are accepted.

@@ -37,14 +37,11 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.constants import DBL_MAX, FREE_SPACE, INT_MAX, LETHAL_OBSTACLE, POT_HIGH
 from ..spec.costs import add_border, set_costmap
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour
 from .params import PlannerParams
 
-FREE_SPACE, LETHAL_OBSTACLE = 0, 254  # nav2_costmap_2d/cost_values.hpp
-POT_HIGH = 1.0e10  # navfn.hpp, compared with the float potential widened to double
-DBL_MAX = 1.7976931348623157e308
-INT_MAX = 2**31 - 1
 LEGAL_BUT_NO_PLAN = ("Failed to create a plan from potential when a legal potential was found. "
                      "This shouldn't happen.")
 EXCEPTIONS = ("StartOutsideMapBounds", "GoalOutsideMapBounds", "GoalOccupied", "NoValidPathCouldBeFound")

@@ -35,7 +35,8 @@ from ..backends import jit as J
 from ..backends.jit import (EXIT_NEAR_GOAL, EXIT_UB, NCOUNTERS, calc_path_touched, propagate, run_cycles,
                             start_propagation)
 from ..backends.numba_domain import ND, jit
-from .plugin import DBL_MAX, POT_HIGH, squared_offset, tolerance_prefers
+from ..spec.constants import DBL_MAX, POT_HIGH
+from .plugin import squared_offset, tolerance_prefers
 
 _squared_offset = jit(squared_offset)  # the plugin's rule, compiled
 _tolerance_prefers = jit(tolerance_prefers)

@@ -25,14 +25,12 @@ from ..check import properties as P
 from ..maps.regions import reaches_all, regions
 from ..spec import extraction as _extraction
 from ..spec import kernels as _kernels
-from ..spec.constants import POT_HIGH
-from ..spec.extraction import ExtractionExit, UndefinedBehaviour
+from ..spec.constants import INT_MAX, INT_MIN, POT_HIGH
+from ..spec.extraction import ExtractionExit, UndefinedBehaviour, exit_code
 from ..spec.planner import path_cycle_limit
 from . import fast
 
-EXITS = tuple(ExtractionExit)
 _HIGH = np.float32(POT_HIGH)
-INT32_MIN, INT32_MAX = -(2**31), 2**31 - 1
 
 
 # ---------------------------------------------------------------------------------------
@@ -152,7 +150,7 @@ def fallback_conversions(r: P.Run) -> list[tuple[int, float]]:
         except UndefinedBehaviour:
             pass
     return [(i, float(c)) for i, c in enumerate(obs.centres)
-            if not (INT32_MIN - 1.0 < float(c) < INT32_MAX + 1.0)]
+            if not (INT_MIN - 1.0 < float(c) < INT_MAX + 1.0)]
 
 
 # ---------------------------------------------------------------------------------------
@@ -216,7 +214,7 @@ def _screen_cost(b: Batch) -> np.ndarray:
 
 
 def _screen_incomplete(b: Batch) -> np.ndarray:
-    return (b.finite() & (b.out["exit"] != EXITS.index(ExtractionExit.NEAR_GOAL))).astype(np.float64)
+    return (b.finite() & (b.out["exit"] != exit_code(ExtractionExit.NEAR_GOAL))).astype(np.float64)
 
 
 def _screen_unreached(b: Batch) -> np.ndarray:
@@ -237,7 +235,7 @@ def _screen_int_conversion(b: Batch) -> np.ndarray:
     # taken only when all eight neighbours are reached and moves to one of them, so after the
     # first point stc is always on a reached cell.  A finite potential >= 2**31 would need
     # millions of cells of path: that is the overflow search's ground, not this screen's.
-    return (b.out["exit"] == EXITS.index(ExtractionExit.HIGH_POTENTIAL)).astype(np.float64)
+    return (b.out["exit"] == exit_code(ExtractionExit.HIGH_POTENTIAL)).astype(np.float64)
 
 
 @dataclass(frozen=True)

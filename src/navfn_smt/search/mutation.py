@@ -308,8 +308,9 @@ def _detect_equality(kernels) -> tuple[bool, dict]:
 def _detect_difftest(suite: str, backend: str) -> tuple[bool, str]:
     """The suite's cases, smallest maps first; the first disagreeing case catches the mutant."""
     from navfn_smt.difftest.runner import map_cells, plan_tasks, run_task
+    from navfn_smt.maps.suite import MODES
 
-    tasks = sorted(plan_tasks(Path(suite), ("astar", "dijkstra"), backend), key=lambda t: map_cells(t.map_dir))
+    tasks = sorted(plan_tasks(Path(suite), MODES, backend), key=lambda t: map_cells(t.map_dir))
     runs = 0
     for t in tasks:
         o = run_task(t)

@@ -36,6 +36,7 @@ from typing import Callable, Iterator, Optional
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..maps.suite import MODE_CHOICES, MODES, modes_of
 from ..spec.constants import COST_OBS, PRIORITYBUFSIZE
 from ..spec.propagation import unbounded_capacity
 
@@ -370,11 +371,9 @@ class _Search:
 
 
 def _modes(mode: str) -> tuple[str, ...]:
-    if mode == "both":
-        return ("dijkstra", "astar")
-    if mode not in ("astar", "dijkstra"):
-        raise NavfnInputError(f"unknown mode {mode!r} (choose astar, dijkstra or both)")
-    return (mode,)
+    if mode not in MODE_CHOICES:
+        raise NavfnInputError(f"unknown mode {mode!r} (choose {', '.join(MODES)} or both)")
+    return tuple(reversed(modes_of(mode)))  # both: Dijkstra first, the order of its reports
 
 
 def _side(v) -> tuple[int, int]:
@@ -497,7 +496,7 @@ def save_overflow(out_dir, found: OverflowCounterexample, name: Optional[str] = 
     write_map_dir(d, costs, [(*found.start, *found.goal)], comment=f"overflow counterexample ({found.mode})")
     smap = load_map(d)
     ref = get_backend("reference").prepare(costs)
-    for m in ("astar", "dijkstra"):
+    for m in MODES:
         write_golden(smap.golden_path(m), golden_fields(smap, ref, m == "astar"))
     astar = found.mode == "astar"
     bounded = ref.run(found.start, found.goal, astar, trace=False)

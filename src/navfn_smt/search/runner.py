@@ -12,16 +12,15 @@ from typing import Optional
 
 from ..engine import Engine, stream
 from ..errors import NavfnInputError
+from ..maps.suite import modes_of
+
+modes_list = modes_of  # (the name the command modules import)
 from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_growing
 from .kinds import KINDS, SEARCH_KINDS
 
 DEFAULT_SIZE = {"cost": (5, 7)}
 DEFAULT_HUNT_SIZE = (8, 8)  # the other kinds: hunted here, then shrunk
 PARALLEL_SHARE = 10.0  # --jobs auto: modes side by side when each has this many seconds (workers start in ~3 s)
-
-
-def modes_list(mode: str) -> tuple[str, ...]:
-    return ("astar", "dijkstra") if mode == "both" else (mode,)
 
 
 def _overflow_search():
@@ -66,7 +65,7 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
         check_size(*size)
     if max_size is not None:
         check_size(*max_size, what="--max-size")
-    modes = _overflow_search()[0](mode) if kind == "overflow" else modes_list(mode)
+    modes = _overflow_search()[0](mode) if kind == "overflow" else modes_of(mode)
     share = timeout / len(modes)
     tasks = [(kind, m, size, max_size, share, seed, costs_range, progress) for m in modes]
     eng = eng.for_work(len(modes) if share >= PARALLEL_SHARE else 1, 2)

@@ -28,13 +28,13 @@ import numpy as np
 
 from ..engine import Engine, in_order, stream
 from ..maps.suite import discover, load_map
-from ..spec.extraction import ExtractionExit
+from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code, exit_name
 from . import fast
-from .kinds import EXITS, plan_batch
+from .kinds import plan_batch
 
 PAPER = {"turn_per_step_percent": 1.91, "oscillation_per_step_percent": 0.13}
-_NEAR = EXITS.index(ExtractionExit.NEAR_GOAL)
-_HIGH = EXITS.index(ExtractionExit.HIGH_POTENTIAL)
+_NEAR = exit_code(ExtractionExit.NEAR_GOAL)
+_HIGH = exit_code(ExtractionExit.HIGH_POTENTIAL)
 PARALLEL_FROM = 40  # --jobs auto: local workers from this many maps on
 
 
@@ -55,9 +55,9 @@ def _measure(smap, mode: str, acc: dict) -> None:
     paths = (off[1:] - off[:-1]) > 0
     acc["paths"] += int(paths.sum())
     for code in np.unique(out["exit"]):
-        name = EXITS[code].value if code < len(EXITS) else "undefined"
+        name = exit_name(int(code))
         acc["exits"][name] = acc["exits"].get(name, 0) + int((out["exit"] == code).sum())
-    acc["undefined"] += int((out["exit"] >= len(EXITS)).sum())
+    acc["undefined"] += int((out["exit"] == EXIT_UNDEFINED).sum())
     t, ts = fast.turns(out["path"], off)
     o, os_ = fast.oscillations(out["path"], off)
     acc["turn_paths"] += int((t > 0).sum())

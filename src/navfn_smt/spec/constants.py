@@ -1,8 +1,12 @@
-"""The constants of Nav2's NavFn (``navfn.hpp``), with the C++ types they carry.
+"""The constants of Nav2's NavFn (``navfn.hpp``), with the C++ types they carry, and the
+few of the C++ library and of ``nav2_costmap_2d`` that the planner plugin and the costmap
+layers around it use: each stated once, here.
 
 Values that C++ writes as ``double`` literals stay Python floats here (they are
 doubles); values that become ``float`` in the arithmetic are noted where they do.
 """
+
+import sys
 
 # Internal NavFn costs (COSTTYPE is unsigned char).
 COST_UNKNOWN_ROS = 255  # ROS costmap "unknown"
@@ -35,3 +39,15 @@ PRI_INC = 2 * COST_NEUTRAL
 # x86-64's cvttss2si/cvttsd2si result for NaN and out-of-range conversions to int32.
 INT_MIN = -(2**31)
 INT_MAX = 2**31 - 1
+
+# <cfloat>'s DBL_MAX: getPointPotential's "no potential" and the tolerance search's first
+# best_sdist in the planner plugin, DT_INF's double in the footprint's distances.
+DBL_MAX = sys.float_info.max
+
+# nav2_costmap_2d/cost_values.hpp: the costmap's values (unsigned char) that the layers write
+# and the plugin hands to setCostmap (which knows 253 and 255 as COST_OBS_ROS and
+# COST_UNKNOWN_ROS).
+NO_INFORMATION = 255
+LETHAL_OBSTACLE = 254
+INSCRIBED_INFLATED_OBSTACLE = 253
+FREE_SPACE = 0

@@ -26,6 +26,23 @@ class ExtractionExit(enum.Enum):
     EXHAUSTED = "exhausted"  # n iterations without reaching the goal
 
 
+# calcPath's exit as a small int (in compiled code, symbolic terms and batch arrays): its
+# place in EXIT_CODES, or EXIT_UNDEFINED for the reads outside the potential array that C++
+# leaves undefined (the spec raises UndefinedBehaviour)
+EXIT_CODES = tuple(ExtractionExit)
+EXIT_UNDEFINED = len(EXIT_CODES)
+
+
+def exit_code(e: ExtractionExit) -> int:
+    """The int of an exit (:data:`EXIT_CODES`)."""
+    return EXIT_CODES.index(e)
+
+
+def exit_name(code: int) -> str:
+    """The exit an int stands for, by its value (``"near_goal"``, ...), or ``"undefined"``."""
+    return EXIT_CODES[code].value if 0 <= code < EXIT_UNDEFINED else "undefined"
+
+
 @dataclass
 class Extraction:
     path: list  # [(x, y), ...] float32 values, empty unless exit is NEAR_GOAL
