@@ -172,7 +172,7 @@ def test_batch_agrees_with_single_runs(backend, costs, data):
         return  # an interior start next to a lethal corner can still be undefined; covered above
     batch = get_backend(backend).prepare(costs).run_batch(flat, astar)
     _assert_batch(batch, singles)
-    # the batch keeps the runner's capacity too
+    # the batch keeps the planner's capacity too
     capacity = data.draw(st.integers(1, 6))
     try:
         singles = [get_backend("reference").prepare(costs, capacity).run(s, g, astar, trace=False) for s, g in cases]
@@ -192,12 +192,12 @@ def _assert_batch(batch, singles):
 
 
 def test_results_do_not_alias_the_runner():
-    """A result keeps its values when the same runner plans another case."""
+    """A result keeps its values when the same planner plans another case."""
     costs = np.full((8, 8), 50, np.uint8)
-    runner = get_backend("jit").prepare(costs)
-    first = runner.run((2, 2), (5, 5), True)
+    planner = get_backend("jit").prepare(costs)
+    first = planner.run((2, 2), (5, 5), True)
     kept = (first.potential.copy(), first.path.copy(), first.trace.copy())
-    runner.run((5, 2), (2, 6), False)
+    planner.run((5, 2), (2, 6), False)
     assert np.array_equal(first.potential, kept[0])
     assert np.array_equal(first.path, kept[1]) and np.array_equal(first.trace, kept[2])
 

@@ -39,8 +39,8 @@ def test_overflow_subset_agrees_and_drops_pushes():
     suite = DATA / "overflow-subset"
     _assert_clean(run_suite(suite, ("astar", "dijkstra"), "jit"))
     smap = load_map(discover(suite)[0], suite)
-    runner = get_backend("jit").prepare(smap.costs)
-    dropped = [runner.run(tuple(c[:2]), tuple(c[2:]), False).dropped for c in smap.cases.tolist()]
+    planner = get_backend("jit").prepare(smap.costs)
+    dropped = [planner.run(tuple(c[:2]), tuple(c[2:]), False).dropped for c in smap.cases.tolist()]
     # the large suite's README: Dijkstra drops pushes on this map; these two cases drop some
     assert all(d > 0 for d in dropped), dropped
 

@@ -48,7 +48,7 @@ def test_jit_replay_drops_and_changes_the_path(d):
     detail = verdict(bounded, unbounded)
     for k in ("dropped", "path_points", "path_points_unbounded", "first_difference"):
         assert detail[k] == doc["detail"][k], k
-    # the default capacity is the C++ one: the plain runner gives the bounded result
+    # the default capacity is the C++ one: the plain planner gives the bounded result
     default = get_backend("jit").prepare(costs).run(start, goal, False, trace=False)
     assert default.dropped == bounded.dropped and default.path.tobytes() == bounded.path.tobytes()
 
@@ -68,10 +68,10 @@ def test_golden_files_hold_the_dropping_planner(d):
     from navfn_smt.difftest.record import golden_fields
 
     smap = load_map(d)
-    runner = get_backend("jit").prepare(smap.costs)
+    planner = get_backend("jit").prepare(smap.costs)
     for mode in ("astar", "dijkstra"):
         stored = load_golden(smap.golden_path(mode), smap)
-        fresh = golden_fields(smap, runner, mode == "astar")
+        fresh = golden_fields(smap, planner, mode == "astar")
         for f, v in fresh.items():
             assert np.asarray(stored[f]).tobytes() == np.asarray(v).tobytes(), (mode, f)
 

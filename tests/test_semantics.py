@@ -703,13 +703,13 @@ def walled_map():
 
 @pytest.mark.parametrize("backend", ["reference", "jit"])
 def test_unreachable_start_dijkstra_true_astar_false(backend):
-    runner = get_backend(backend).prepare(walled_map())
-    dj = runner.run((5, 2), (1, 2), False)
+    planner = get_backend(backend).prepare(walled_map())
+    dj = planner.run((5, 2), (1, 2), False)
     # Dijkstra returns cycle < cycles: the buffers ran dry long before max(35//20, 12) = 12
     assert dj.start_reached is True and dj.start_potential == HIGH
     assert dj.exit == ExtractionExit.HIGH_POTENTIAL
     assert dj.cycles < 12
-    astar = runner.run((5, 2), (1, 2), True)
+    astar = planner.run((5, 2), (1, 2), True)
     # A* returns whether the start potential is finite
     assert astar.start_reached is False and astar.start_potential == HIGH
     assert astar.exit == ExtractionExit.HIGH_POTENTIAL

@@ -100,29 +100,29 @@ def _bench_sizes_of(b: str, sizes, repeat: int, modes: str, advance) -> list[dic
     for n in sizes:
         for kind in ("open", "random"):
             costs = generated_map(kind, n)
-            runner = get_backend(b).prepare(costs)
+            planner = get_backend(b).prepare(costs)
             for md in modes_of(modes):
                 astar = md == "astar"
                 best = None
                 res = None
                 for _ in range(repeat if b == "jit" else 1):
                     t0 = time.perf_counter()
-                    res = runner.run((5, 5), (n - 6, n - 6), astar, trace=False)
+                    res = planner.run((5, 5), (n - 6, n - 6), astar, trace=False)
                     dt = time.perf_counter() - t0
                     best = dt if best is None else min(best, dt)
                 rows.append({
                     "backend": b, "size": n, "map": kind, "mode": md,
                     "seconds_per_plan": float(f"{best:.4g}"),
                     "path_points": int(len(res.path)), "dropped_pushes": int(res.dropped),
-                    "work_bytes": _work_bytes(runner),
+                    "work_bytes": _work_bytes(planner),
                 })
                 advance(1)
     return rows
 
 
-def _work_bytes(runner) -> int:
+def _work_bytes(planner) -> int:
     """Bytes of the planner's own arrays (JIT backend, trace off); 0 where not measured."""
-    p = getattr(runner, "planner", None)
+    p = getattr(planner, "work", None)
     if p is None:
         return 0
     return int(sum(a.nbytes for a in vars(p).values() if isinstance(a, np.ndarray)))

@@ -1,13 +1,13 @@
 """Planner backends: one declared interface, implemented by the reference spec and the JIT.
 
 ``get_backend(name).prepare(costs, capacity=None)`` checks a map (NavFn-internal costs, a
-(height, width) uint8 array) and returns a :class:`Runner` for it, whose priority buffers
+(height, width) uint8 array) and returns a :class:`MapPlanner` for it, whose priority buffers
 hold ``capacity`` cells each (PRIORITYBUFSIZE, as in C++, when None; pass
-:func:`~navfn_smt.spec.propagation.unbounded_capacity` of the map for buffers that never drop); ``runner.run(start, goal, astar,
+:func:`~navfn_smt.spec.propagation.unbounded_capacity` of the map for buffers that never drop); ``planner.run(start, goal, astar,
 trace=True, path_cycles=None, cycles=None)`` returns a :class:`~navfn_smt.spec.planner.PlanResult` that owns
-its arrays (nothing in it changes when the runner plans again; ``path_cycles`` and ``cycles``
-replace NavFn's budgets ``4 * nx`` and ``max(nx * ny / 20, nx + ny)``); ``runner.extract(potential,
-start, goal, path_cycles)`` runs calcPath alone; ``runner.run_batch(cases, astar)``
+its arrays (nothing in it changes when it plans again; ``path_cycles`` and ``cycles``
+replace NavFn's budgets ``4 * nx`` and ``max(nx * ny / 20, nx + ny)``); ``planner.extract(potential,
+start, goal, path_cycles)`` runs calcPath alone; ``planner.run_batch(cases, astar)``
 plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
 """
 
@@ -26,7 +26,7 @@ from ..spec.constants import PRIORITYBUFSIZE
 from ..spec.propagation import check_capacity, cycle_limit
 
 
-class Runner(Protocol):
+class MapPlanner(Protocol):
     """A backend's planner for one map, with the buffer capacity it was prepared with."""
 
     capacity: int
@@ -42,14 +42,14 @@ class Runner(Protocol):
 class Backend(Protocol):
     name: str
 
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> Runner: ...
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> MapPlanner: ...
 
 
 def _capacity(capacity: Optional[int]) -> int:
     return PRIORITYBUFSIZE if capacity is None else check_capacity(capacity)
 
 
-class ReferenceRunner:
+class ReferenceMapPlanner:
     def __init__(self, costs: np.ndarray, capacity: Optional[int] = None):
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
@@ -88,18 +88,18 @@ class ReferenceBackend:
 
     name = "reference"
 
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> ReferenceRunner:
-        return ReferenceRunner(costs, capacity)
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> ReferenceMapPlanner:
+        return ReferenceMapPlanner(costs, capacity)
 
 
-class JitRunner:
+class JitMapPlanner:
     def __init__(self, costs: np.ndarray, capacity: Optional[int] = None):
         from .jit import JitPlanner
 
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
         self.ny, self.nx = self.costs.shape
-        self.planner = JitPlanner(add_border(self.costs), self.capacity)
+        self.work = JitPlanner(add_border(self.costs), self.capacity)
         self.cycles = cycle_limit(self.nx, self.ny)
         self.path_cycles = path_cycle_limit(self.nx)
 
@@ -108,7 +108,7 @@ class JitRunner:
         from . import jit as J
 
         check_inputs(self.costs, start, goal)
-        p = self.planner
+        p = self.work
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
         n = self.path_cycles if path_cycles is None else int(path_cycles)
@@ -136,7 +136,7 @@ class JitRunner:
         pot = np.ascontiguousarray(potential, dtype=np.float32).ravel()
         n = int(path_cycles)
         path = np.empty((max(n, 0) + 1, 2), np.float32)
-        p = self.planner
+        p = self.work
         code, npath = calc_path_zeroed(pot, self.nx, self.ny, int(start[0]), int(start[1]), int(goal[0]), int(goal[1]),
                                  n, p.gradx, p.grady, path)
         if code == EXIT_UB:
@@ -150,7 +150,7 @@ class JitRunner:
 
         for sx, sy, gx, gy in np.asarray(cases).reshape(-1, 4).tolist():
             check_inputs(self.costs, (sx, sy), (gx, gy))
-        return run_cases(self.planner, cases, astar, self.cycles, self.path_cycles)
+        return run_cases(self.work, cases, astar, self.cycles, self.path_cycles)
 
 
 class JitBackend:
@@ -158,8 +158,8 @@ class JitBackend:
 
     name = "jit"
 
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> JitRunner:
-        return JitRunner(costs, capacity)
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> JitMapPlanner:
+        return JitMapPlanner(costs, capacity)
 
 
 _BACKENDS: dict[str, type] = {b.name: b for b in (JitBackend, ReferenceBackend)}

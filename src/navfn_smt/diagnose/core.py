@@ -293,8 +293,8 @@ def _repropagate(run: PluginRun, astar: bool, backend: str) -> dict:
 def _propagate(costs, start, goal, astar, backend, cycles, capacity) -> np.ndarray:
     from ..backends import get_backend
 
-    runner = get_backend(backend).prepare(costs, capacity)
-    return runner.run(start, goal, astar, trace=False, path_cycles=0, cycles=cycles).potential
+    planner = get_backend(backend).prepare(costs, capacity)
+    return planner.run(start, goal, astar, trace=False, path_cycles=0, cycles=cycles).potential
 
 
 # ---------------------------------------------------------------------------- extraction
@@ -382,9 +382,9 @@ def _factor_fix(d: Diagnosis, cm: Costmap, backend: str, max_steps: Optional[int
         return FactorFix(None, f"the path needs calcPath({L}) but max_cycles = {maxdim} * factor overflows int "
                                f"above factor {limit}", path_length=L, max_dimension=maxdim, factor_limit=limit)
     # the budget boundary on the backend itself: calcPath(L) succeeds, calcPath(L - 1) does not
-    runner = get_backend(backend).prepare(run.costs)
-    at_l = runner.extract(run.potential, run.best_cell, run.robot_cell, L)[0] is ExtractionExit.NEAR_GOAL
-    below = runner.extract(run.potential, run.best_cell, run.robot_cell, L - 1)[0] is ExtractionExit.NEAR_GOAL
+    planner = get_backend(backend).prepare(run.costs)
+    at_l = planner.extract(run.potential, run.best_cell, run.robot_cell, L)[0] is ExtractionExit.NEAR_GOAL
+    below = planner.extract(run.potential, run.best_cell, run.robot_cell, L - 1)[0] is ExtractionExit.NEAR_GOAL
     if not at_l or below:
         raise AssertionError(f"the unbudgeted extraction (L = {L}) disagrees with the {backend} backend's calcPath")
     fix = FactorFix(need, f"the path needs calcPath({L}): max_cycles_factor >= ceil({L} / {maxdim}) = {need}",

@@ -45,7 +45,7 @@ class RecordedMap:
     path: Path  # the golden file written
 
 
-def golden_fields(smap: SuiteMap, runner, astar: bool, full_first: int = 50) -> dict:
+def golden_fields(smap: SuiteMap, planner, astar: bool, full_first: int = 50) -> dict:
     """Plan every case of ``smap`` and build the golden arrays (in ``GOLDEN_FIELDS`` order)."""
     n = len(smap.cases)
     start_reached = np.zeros(n, dtype=np.int8)
@@ -61,12 +61,12 @@ def golden_fields(smap: SuiteMap, runner, astar: bool, full_first: int = 50) -> 
     full_traces: list[np.ndarray] = []
     for i, (sx, sy, gx, gy) in enumerate(smap.cases.tolist()):
         try:
-            res = runner.run((sx, sy), (gx, gy), astar, trace=True)
+            res = planner.run((sx, sy), (gx, gy), astar, trace=True)
         except UndefinedBehaviour as e:
             raise NavfnInputError(
                 f"{smap.directory}: case {i} ({sx} {sy} {gx} {gy}): the C++ would read outside its arrays "
                 f"({e}); nothing can be recorded for it") from None
-        # a JIT result is a view into the runner's buffers: take what we keep before the next run
+        # a JIT result is a view into the planner's buffers: take what we keep before the next run
         pot = np.ascontiguousarray(res.potential, dtype="<f4")
         trace = np.ascontiguousarray(res.trace, dtype="<i4")
         path = np.array(res.path, dtype=np.float32).reshape(-1, 2)
@@ -158,11 +158,11 @@ def record_suite(
     be = get_backend(backend)
     done: list[RecordedMap] = []
     for smap in maps:
-        runner = be.prepare(smap.costs)
+        planner = be.prepare(smap.costs)
         rel = str(smap.directory.resolve().relative_to(root.resolve()))
         for mode in modes:
             t0 = time.perf_counter()
-            fields = golden_fields(smap, runner, mode == "astar", int(full_first))
+            fields = golden_fields(smap, planner, mode == "astar", int(full_first))
             write_golden(smap.golden_path(mode), fields)
             r = RecordedMap(rel, smap.category, mode, len(smap.cases), len(fields["full_index"]),
                             time.perf_counter() - t0, smap.golden_path(mode))

@@ -153,14 +153,14 @@ def run_task(t: Task) -> TaskOutcome:
     if t.hi > len(smap.cases) or t.counted not in (None, len(smap.cases)):
         raise NavfnInputError(f"{smap.directory / 'test.txt'}: has {len(smap.cases)} cases, not the "
                               f"{t.counted or t.hi} counted (changed during the run?)")
-    runner = get_backend(t.backend).prepare(smap.costs)
+    planner = get_backend(t.backend).prepare(smap.costs)
     astar = t.mode == "astar"
     out = TaskOutcome(rel, smap.category, t.mode, t.hi - t.lo, 0, 0.0)
     t0 = time.perf_counter()
     for i in range(t.lo, t.hi):
         sx, sy, gx, gy = (int(v) for v in smap.cases[i])
         try:
-            res = runner.run((sx, sy), (gx, gy), astar)
+            res = planner.run((sx, sy), (gx, gy), astar)
             verdict = compare_case(res, g, i, full_pos)
         except UndefinedBehaviour as e:
             verdict = ("undefined_behaviour", {"message": str(e)})

@@ -383,8 +383,8 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
         return []
     run.max_cycles = n
     try:
-        runner = get_backend(backend).prepare(run.costs)
-        run.extraction, path = runner.extract(run.potential, cell, run.robot_cell, n)
+        planner = get_backend(backend).prepare(run.costs)
+        run.extraction, path = planner.extract(run.potential, cell, run.robot_cell, n)
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
         return []

@@ -145,11 +145,11 @@ def golden_differences(directory, backend: str) -> list[str]:
     from ..difftest.record import golden_fields
 
     smap = load_map(directory)
-    runner = get_backend(backend).prepare(smap.costs)
+    planner = get_backend(backend).prepare(smap.costs)
     diffs = []
     for m in MODES:
         stored = load_golden(smap.golden_path(m), smap)
-        fresh = golden_fields(smap, runner, m == "astar")
+        fresh = golden_fields(smap, planner, m == "astar")
         for f in GOLDEN_FIELDS:
             a, b = np.asarray(stored[f]), np.asarray(fresh[f])
             if a.dtype != b.dtype or a.shape != b.shape or a.tobytes() != b.tobytes():

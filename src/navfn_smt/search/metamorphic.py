@@ -78,17 +78,17 @@ class RelationOutcome:
     counterexamples: list = field(default_factory=list)
 
 
-def check_case(t: Transform, costs: np.ndarray, case, runner, truner, astar: bool) -> dict:
+def check_case(t: Transform, costs: np.ndarray, case, planner, tplanner, astar: bool) -> dict:
     """Compare one case with its transformed twin; returns which parts agree."""
     ny, nx = costs.shape
     sx, sy, gx, gy = (int(v) for v in case)
-    r0 = runner.run((sx, sy), (gx, gy), astar, trace=False)
+    r0 = planner.run((sx, sy), (gx, gy), astar, trace=False)
     pot0 = np.array(r0.potential, copy=True)
     path0 = np.array(r0.path, dtype=np.float64, copy=True)
     reached0 = r0.start_reached
     ts = t.point(np.array([[sx, sy]]), nx, ny)[0].astype(int)
     tg = t.point(np.array([[gx, gy]]), nx, ny)[0].astype(int)
-    r1 = truner.run((int(ts[0]), int(ts[1])), (int(tg[0]), int(tg[1])), astar, trace=False)
+    r1 = tplanner.run((int(ts[0]), int(ts[1])), (int(tg[0]), int(tg[1])), astar, trace=False)
     pot_ok = (not t.same_potential) or np.array_equal(
         t.grid(pot0).view(np.uint32), np.asarray(r1.potential).view(np.uint32))
     mapped = t.point(path0, nx, ny)
@@ -105,14 +105,14 @@ def run_metamorphic(suite, relations=None, modes=("astar",), backend="jit", max_
     for d in discover(suite):
         smap = load_map(d, Path(suite))
         cases = smap.cases if max_cases is None else smap.cases[:max_cases]
-        runner = get_backend(backend).prepare(smap.costs)
+        planner = get_backend(backend).prepare(smap.costs)
         for rel in relations:
             t = TRANSFORMS[rel]
-            truner = get_backend(backend).prepare(t.grid(smap.costs))
+            tplanner = get_backend(backend).prepare(t.grid(smap.costs))
             for mode in modes:
                 o = outcomes[(rel, mode)]
                 for i, case in enumerate(cases):
-                    v = check_case(t, smap.costs, case, runner, truner, mode == "astar")
+                    v = check_case(t, smap.costs, case, planner, tplanner, mode == "astar")
                     o.cases += 1
                     o.potential_equal += v["potential"]
                     o.path_equal += v["path"]
