@@ -84,6 +84,18 @@ def test_no_part_imports_a_private_name_of_another():
     assert _graph()[1] == []
 
 
+def test_report_only_renders():
+    """report/ renders what a part gives it: it imports nothing of diagnose/ (the sweep's
+    summary and outcomes come with the result), and saves nothing (the commands and the
+    parts write counterexamples and record decisions)."""
+    edges, _ = _graph()
+    assert "report" in edges and "diagnose" not in edges["report"]
+    saving = [(str(p.relative_to(PACKAGE)), ".".join(t), n) for p in sorted((PACKAGE / "report").glob("*.py"))
+              for t, names in _imports(p) for n in names
+              if n.startswith("save_") or n in ("record", "record_decisions")]
+    assert saving == []
+
+
 def test_the_check_can_fail():
     """The cycle finder and the private-name reader see what they must."""
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == [["a", "b", "c", "a"]]

@@ -174,7 +174,7 @@ def test_picture_and_summary(tmp_path):
     assert seen[-1] == (len(res), len(res))
     render_sweep(res, cm.costs, (cm.origin_x, cm.origin_y), tmp_path / "s.png")
     assert (tmp_path / "s.png").stat().st_size > 10000
-    write_summary_json(tmp_path / "s.json", res)
+    write_summary_json(tmp_path / "s.json", summary(res))
     doc = json.loads((tmp_path / "s.json").read_text())
     assert sum(doc["outcomes"].values()) == len(res) and set(doc["outcomes"]) == set(OUTCOMES)
 

@@ -10,6 +10,8 @@ import contextlib
 import os
 from pathlib import Path
 
+import numpy as np
+
 from .errors import NavfnInputError
 
 
@@ -81,3 +83,17 @@ def check_writable_dir(path) -> None:
         raise NavfnInputError(f"{path}: {existing} is not a directory")
     if not os.access(existing, os.W_OK | os.X_OK):
         raise NavfnInputError(f"{path}: cannot write into {existing}")
+
+
+def jsonable(v):
+    """``v`` with numpy values and arrays as plain Python ones, keys as strings: what
+    ``json.dumps`` takes."""
+    if isinstance(v, dict):
+        return {str(k): jsonable(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [jsonable(x) for x in v]
+    if isinstance(v, np.generic):
+        return v.item()
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    return v

@@ -1,1 +1,3 @@
-"""Whole-planner verification over symbolic small maps (in progress: the encoding of propagation)."""
+"""Whole-planner checks over symbolic small maps: the properties (judges of one spec run),
+the whole run as domain terms, the concolic exploration of every map of a size, and the
+runner that checks the sizes in turn."""

@@ -172,6 +172,43 @@ def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> l
     return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), -s[0], s[1]))
 
 
+def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: float, jobs, start, goal,
+                ends: str, exhaustive_limit: int, budget: float = 0.0, smallest_only: bool = False,
+                progress_of: Callable[[str], Optional[Callable]] = lambda size: None,
+                t0: Optional[float] = None) -> tuple[list, list]:
+    """:func:`check_one_size` for each of ``sizes`` in turn until ``budget`` seconds (0: no
+    budget) have passed since ``t0``; the results in size order and the sizes not reached.
+    With ``smallest_only`` a property refuted at one size is not checked at larger ones (its
+    smallest counterexample is found).  ``progress_of("WxH")`` gives each size's progress."""
+    t0 = time.perf_counter() if t0 is None else t0
+    results, skipped = [], []
+    open_names = list(names)
+    for nx, ny in sizes:
+        if budget and time.perf_counter() - t0 > budget:
+            skipped.append([nx, ny])
+            continue
+        if not open_names:
+            break
+        got = check_one_size(open_names, nx, ny, modes, lo, hi, semantics, timeout, jobs, start, goal, ends,
+                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"))
+        for n in list(open_names):
+            results.append(got[n])
+            if got[n].status == "refuted" and smallest_only:
+                open_names.remove(n)
+    return results, skipped
+
+
+def proved_sizes(results, name: str) -> list:
+    """The sizes at which ``name`` was proved, as [W, H] lists."""
+    return [list(r.size) for r in results if r.property == name and r.status == "proved"]
+
+
+def largest_proved(results, name: str) -> Optional[list]:
+    """The proved size of ``name`` with the most interior cells (ties: the larger), or None."""
+    proved = [r.size for r in results if r.property == name and r.status == "proved"]
+    return list(max(proved, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))) if proved else None
+
+
 def induction_status(name: str, verdict_of) -> str:
     """The every-size status of an inductive property: the worst fp32 status of the predicates
     that carry it (:func:`~navfn_smt.smt.chains.derive`, from ``verdict_of``), the one status

@@ -33,7 +33,9 @@ def cmd_check(args) -> int:
         sizes = [tuple(args.size or (4, 4))]
     t0 = time.perf_counter()
     try:
-        results, skipped = _check_sizes(args, names, sizes, modes, lo, hi, t0, eng)
+        results, skipped = CR.check_sizes(names, sizes, modes, lo, hi, args.semantics, args.timeout, eng, args.start,
+                                          args.goal, args.ends, args.exhaustive, args.budget,
+                                          smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0)
     finally:
         report.stop_progress()
     report.table(results)
@@ -48,14 +50,14 @@ def cmd_check(args) -> int:
                 saved[r.property] = str(save_counterexample(
                     args.out, np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]),
                     cx["mode"] == "astar", r.property, {"reason": cx["reason"], "exit": cx["exit"]},
-                    extra={"found_by": "check", "size_proved_below": _proved_sizes(results, r.property)}))
+                    extra={"found_by": "check", "size_proved_below": CR.proved_sizes(results, r.property)}))
     induction = {n: CR.induction(n) for n in names if n in CR.INDUCTION}
     if args.json:
         report.write_json(args.json, {
             "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": args.semantics,
             "ends": args.ends,
             "results": [report.row(r) for r in results], "sizes_not_reached": skipped,
-            "largest_size_proved": {n: _largest(results, n) for n in names},
+            "largest_size_proved": {n: CR.largest_proved(results, n) for n in names},
             "smallest_counterexample": {n: next((r.counterexample for r in results if r.property == n
                                                  and r.counterexample), None) for n in names},
             "every_size_by_induction": induction,
@@ -74,40 +76,6 @@ def cmd_check(args) -> int:
     if any(ind["contradicted"] for ind in induction.values()):
         return 1
     return 0 if all(r.status == "proved" for r in results) else 1
-
-
-def _check_sizes(args, names, sizes, modes, lo, hi, t0, eng):
-    """Check each size in turn on ``eng`` until --budget runs out; the results and the sizes skipped."""
-    import time
-
-    from ..check import runner as CR
-    from ..report import check as report
-
-    results, skipped = [], []
-    open_names = list(names)
-    for nx, ny in sizes:
-        if args.budget and time.perf_counter() - t0 > args.budget:
-            skipped.append([nx, ny])
-            continue
-        if not open_names:
-            break
-        got = CR.check_one_size(open_names, nx, ny, modes, lo, hi, args.semantics, args.timeout, eng,
-                                args.start, args.goal, args.ends, int(args.exhaustive),
-                                progress=report.progress(f"{nx}x{ny}"))
-        for n in list(open_names):
-            results.append(got[n])
-            if got[n].status == "refuted" and args.max_size:
-                open_names.remove(n)  # the smallest counterexample of this property is found
-    return results, skipped
-
-
-def _proved_sizes(results, name) -> list:
-    return [list(r.size) for r in results if r.property == name and r.status == "proved"]
-
-
-def _largest(results, name):
-    proved = [r.size for r in results if r.property == name and r.status == "proved"]
-    return list(max(proved, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))) if proved else None
 
 
 def register(sub) -> None:

@@ -126,7 +126,7 @@ def _sweep(args, start) -> int:
         if k:
             print(f"  {name:20s} {k}")
     if args.json:
-        write_summary_json(args.json, res)
+        write_summary_json(args.json, doc)
     if args.picture:
         render_sweep(res, cm.costs, (cm.origin_x, cm.origin_y), args.picture, title=Path(args.map).name)
     ok = doc["outcomes"].get("ok", 0) + doc["outcomes"].get("ok_tolerance", 0) + doc["outcomes"].get("same_pose", 0)

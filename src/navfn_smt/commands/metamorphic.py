@@ -9,11 +9,10 @@ from .common import BACKEND_HELP, MODE_HELP, check_files, check_max_cases, suite
 
 def cmd_metamorphic(args) -> int:
     """Check map symmetries on a suite; counterexamples are saved only under ``--save``."""
-    from ..maps.suite import modes_of
-    from ..maps.suite import discover, load_map
+    from ..maps.suite import discover, load_map, modes_of
     from ..report import metamorphic as report
     from ..report.tables import progress_bar
-    from ..search.metamorphic import TRANSFORMS, run_metamorphic
+    from ..search.metamorphic import TRANSFORMS, run_metamorphic, save_counterexamples
 
     suite, modes = suite_or_example(args.suite), modes_of(args.mode)
     relations = args.relation or list(TRANSFORMS)
@@ -27,7 +26,7 @@ def cmd_metamorphic(args) -> int:
     total = sum(min(n, args.max_cases or n) for n in per_map) * len(relations) * len(modes)
     with progress_bar(total, f"metamorphic {suite}") as advance:
         outcomes = run_metamorphic(suite, relations, modes, args.backend, args.max_cases, progress=advance)
-    rows = report.relation_rows(outcomes, report.save_counterexamples(outcomes, args.save, args.save_max))
+    rows = report.relation_rows(outcomes, save_counterexamples(outcomes, args.save, args.save_max))
     report.table(rows)
     if args.json:
         report.write_json(args.json, suite, rows)

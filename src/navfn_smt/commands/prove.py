@@ -21,6 +21,7 @@ def cmd_prove(args) -> int:
     from ..report import proof_run
     from ..report import proofs as report
     from ..report.tables import progress_bar
+    from ..smt.knowledge import record_decisions
     from ..smt.obligation import load_obligations
     from ..smt.solvers import SOLVERS
     from ..smt.runner import SEMANTICS, default_proof_files, run, slow_queries, write_smt2
@@ -61,7 +62,7 @@ def cmd_prove(args) -> int:
         print(f"{len(left)} slow queries left to `navfn-smt prove --all` (splits: `navfn-smt split`): {', '.join(left)}")
     proof_run.closing_line(outcomes)
     if args.record:
-        for line in proof_run.record_decisions(outcomes, obligations, meta["when"]):
+        for line in record_decisions(outcomes, obligations, meta["when"]):
             print(line)
     return 1 if any(o.fails for o in outcomes) else 0
 

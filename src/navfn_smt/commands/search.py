@@ -13,6 +13,7 @@ def cmd_search(args) -> int:
     """Hunt counterexamples of one kind (``--summary SUITE``: count every kind on a suite)."""
     from ..engine import engine
     from ..report import search as report
+    from ..search.counterexamples import save_findings
     from ..search.runner import modes_list, run_search
 
     eng = engine(args.jobs, args.scheduler)
@@ -37,7 +38,7 @@ def cmd_search(args) -> int:
         check_writable_dir(args.out)
     findings, tried = run_search(args.kind, args.mode, args.size, args.max_size, args.timeout, args.seed,
                                  costs_range, progress=report.progress_line, eng=eng)
-    rows = [report.finding_row(f, s) for f, s in zip(findings, report.save_findings(findings, args.out))]
+    rows = [report.finding_row(f, s) for f, s in zip(findings, save_findings(findings, args.out))]
     report.table(args.kind, rows, modes_list(args.mode))
     if args.json:
         report.write_json(args.json, args.kind, vars_of(args), rows, tried)

@@ -3,24 +3,14 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 from rich.table import Table
 
 from ..fileio import atomic_write_text
-from ..search.metamorphic import TRANSFORMS, save_counterexample
+from ..search.metamorphic import TRANSFORMS
 from .tables import console
 
 _CX_FIELDS = ("case_index", "case", "transformed_case", "mode", "potential", "path", "reached")
-
-
-def save_counterexamples(outcomes, save_dir, save_max: int) -> list[list[str]]:
-    """Save at most ``save_max`` counterexamples of each outcome under ``save_dir`` (none
-    without a directory); the saved directories per outcome."""
-    if not save_dir:
-        return [[] for _ in outcomes]
-    return [[str(save_counterexample(Path(save_dir), o.relation, cx, TRANSFORMS[o.relation]))
-             for cx in o.counterexamples[:save_max]] for o in outcomes]
 
 
 def relation_rows(outcomes, saved: list[list[str]]) -> list[dict]:

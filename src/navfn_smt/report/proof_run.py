@@ -81,15 +81,3 @@ def closing_line(outcomes) -> None:
     for o in n[CONTRADICTED]:
         print(f"CONTRADICTION: {o.name}[{o.semantics}] {o.status} by {o.solver}, against the known {o.known} "
               f"({o.known_source})" + (f": {o.detail}" if o.detail else ""))
-
-
-def record_decisions(outcomes, obligations, when: str) -> list[str]:
-    """Record this run's new decisions (where nothing was known) beside their proof files, with
-    the solver, its time and the run's time stamp ``when`` (and the witness of a refutation)."""
-    from ..smt.knowledge import NEWLY_DECIDED, record
-
-    obs = {o.name: o for o in obligations}
-    return record((obs[o.name], o.semantics, o.status,
-                   {"solver": o.solver, "seconds": o.seconds, "when": when,
-                    **({"witness": o.witness} if o.witness else {})})
-                  for o in outcomes if o.judgement == NEWLY_DECIDED)

@@ -9,7 +9,8 @@ from typing import Optional
 import numpy as np
 from rich.table import Table
 
-from ..fileio import atomic_write_text
+from ..fileio import atomic_write_text, jsonable
+from ..search.counterexamples import field_of
 from .tables import console
 
 
@@ -18,51 +19,23 @@ def progress_line(line: str) -> None:
     print(line, file=sys.stderr, flush=True)
 
 
-def _get(f, name, default=None):
-    return f.get(name, default) if isinstance(f, dict) else getattr(f, name, default)
 
 
 def finding_row(f, saved: Optional[str] = None) -> dict:
     """One finding as a JSON row (works for the overflow search's finding-like results too)."""
-    costs = _get(f, "costs")
-    size = list(_get(f, "size", None) or (np.asarray(costs).shape[::-1] if costs is not None else []))
+    costs = field_of(f, "costs")
+    size = list(field_of(f, "size", None) or (np.asarray(costs).shape[::-1] if costs is not None else []))
     row = {
-        "kind": _get(f, "kind"), "mode": _get(f, "mode"), "size": [int(v) for v in size],
+        "kind": field_of(f, "kind"), "mode": field_of(f, "mode"), "size": [int(v) for v in size],
         "interior_cells": int(max(size[0] - 2, 0) * max(size[1] - 2, 0)) if len(size) == 2 else None,
-        "start": list(_get(f, "start") or []), "goal": list(_get(f, "goal") or []),
-        "detail": jsonable(_get(f, "detail", {})),
-        "seconds": _get(f, "seconds"), "evaluations": _get(f, "evaluations"), "plans": _get(f, "plans"),
-        "found_size": list(_get(f, "found_size") or []) or None, "seed": _get(f, "seed"),
-        "history": jsonable(_get(f, "history", [])),
+        "start": list(field_of(f, "start") or []), "goal": list(field_of(f, "goal") or []),
+        "detail": jsonable(field_of(f, "detail", {})),
+        "seconds": field_of(f, "seconds"), "evaluations": field_of(f, "evaluations"), "plans": field_of(f, "plans"),
+        "found_size": list(field_of(f, "found_size") or []) or None, "seed": field_of(f, "seed"),
+        "history": jsonable(field_of(f, "history", [])),
         "saved": saved,
     }
     return row
-
-
-def jsonable(v):
-    from ..search.counterexamples import jsonable as j
-
-    return j(v)
-
-
-def save_findings(findings, out_dir) -> list[Optional[str]]:
-    """Save every finding that carries a map under ``out_dir`` (nothing without one)."""
-    from ..search.counterexamples import save_counterexample
-
-    if not out_dir:
-        return [None] * len(findings)
-    saved = []
-    for f in findings:
-        costs = _get(f, "costs")
-        if costs is None:
-            saved.append(None)
-            continue
-        extra = {k: _get(f, k) for k in ("seconds", "evaluations", "plans", "seed")}
-        extra["found_size"] = list(_get(f, "found_size") or [])
-        d = save_counterexample(out_dir, costs, _get(f, "start"), _get(f, "goal"), _get(f, "mode") == "astar",
-                                _get(f, "kind"), _get(f, "detail", {}), extra=extra)
-        saved.append(str(d))
-    return saved
 
 
 def short(detail: dict) -> str:

@@ -1,4 +1,4 @@
-"""What a whole-map sweep (:mod:`navfn_smt.diagnose.sweep`) reports: a picture of every goal's
+"""What a whole-map sweep (:mod:`navfn_smt.diagnose.sweep`) reports, from the result it is given: a picture of every goal's
 outcome over the costmap, a path-length heat map, and the JSON summary."""
 
 from __future__ import annotations
@@ -38,9 +38,8 @@ def _background(costs: np.ndarray) -> np.ndarray:
 
 def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") -> None:
     """Two panels over the costmap: each goal's outcome (colours, counts in the legend) and
-    the path length of every planned goal; the robot's pose marked.  ``out`` .png or .svg."""
-    from ..diagnose.sweep import OUTCOMES
-
+    the path length of every planned goal; the robot's pose marked.  ``out`` .png or .svg.
+    ``res`` is a sweep's result: its ``counts()`` name the outcomes in the order of their codes."""
     if Path(out).suffix.lower() not in (".png", ".svg"):
         raise NavfnInputError(f"{out}: the picture must be .png or .svg")
     import matplotlib
@@ -58,12 +57,13 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     xs, ys = res.cells[:, 0], res.cells[:, 1]
     over = bg.copy()
     counts = res.counts()
-    for k, name in enumerate(OUTCOMES):
+    outcomes = list(counts)
+    for k, name in enumerate(outcomes):
         sel = res.outcome == k
         if sel.any():
             over[ys[sel], xs[sel]] = 0.35 * bg[ys[sel], xs[sel]] + 0.65 * np.array(to_rgb(COLOURS[name][0]))
     length = np.full((ny, nx), np.nan)
-    planned = np.isin(res.outcome, [OUTCOMES.index("ok"), OUTCOMES.index("ok_tolerance")])
+    planned = np.isin(res.outcome, [outcomes.index("ok"), outcomes.index("ok_tolerance")])
     length[ys[planned], xs[planned]] = res.path_length[planned]
 
     side = 6.5 if max(nx, ny) >= 100 else 5.0
@@ -72,7 +72,7 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     a0, a1 = axes
     a0.imshow(over, origin="lower", extent=ext, interpolation="nearest")
     a0.set_title("outcome per goal cell")
-    handles = [Patch(color=COLOURS[n][0], label=f"{COLOURS[n][1]}: {counts[n]}") for n in OUTCOMES if counts[n]]
+    handles = [Patch(color=COLOURS[n][0], label=f"{COLOURS[n][1]}: {counts[n]}") for n in outcomes if counts[n]]
     handles.append(Patch(facecolor="black", label="lethal / inscribed (costmap)"))
     if (costs == 255).any():
         handles.append(Patch(facecolor=(0.75, 0.82, 0.95), label="unknown (costmap)"))
@@ -97,8 +97,6 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     plt.close(fig)
 
 
-def write_summary_json(path, res) -> None:
-    """The sweep's summary (:func:`navfn_smt.diagnose.sweep.summary`) as one JSON document."""
-    from ..diagnose.sweep import summary
-
-    atomic_write_text(path, json.dumps(summary(res), indent=1))
+def write_summary_json(path, doc: dict) -> None:
+    """A sweep's summary (:func:`navfn_smt.diagnose.sweep.summary`) as one JSON document."""
+    atomic_write_text(path, json.dumps(doc, indent=1))

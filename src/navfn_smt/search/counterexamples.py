@@ -26,6 +26,7 @@ import numpy as np
 
 from ..check import properties as P
 from ..errors import NavfnInputError
+from ..fileio import jsonable
 from ..maps.suite import GOLDEN_FIELDS, MODES, load_golden, load_map, write_map_dir
 from . import kinds as KD
 
@@ -38,16 +39,30 @@ def directory_name(kind: str, mode: str, costs: np.ndarray) -> str:
     return f"{kind}-{mode}-{w}x{h}"
 
 
-def jsonable(v):
-    if isinstance(v, dict):
-        return {str(k): jsonable(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [jsonable(x) for x in v]
-    if isinstance(v, np.generic):
-        return v.item()
-    if isinstance(v, np.ndarray):
-        return v.tolist()
-    return v
+def field_of(f, name, default=None):
+    """A field of a finding: a hunt's :class:`~navfn_smt.search.hunt.Finding` or the overflow
+    search's finding-like dict."""
+    return f.get(name, default) if isinstance(f, dict) else getattr(f, name, default)
+
+
+def save_findings(findings, out_dir) -> list[Optional[str]]:
+    """Save every finding that carries a map under ``out_dir`` (nothing without one); the
+    directories written, None where nothing was."""
+    if not out_dir:
+        return [None] * len(findings)
+    saved = []
+    for f in findings:
+        costs = field_of(f, "costs")
+        if costs is None:
+            saved.append(None)
+            continue
+        extra = {k: field_of(f, k) for k in ("seconds", "evaluations", "plans", "seed")}
+        extra["found_size"] = list(field_of(f, "found_size") or [])
+        d = save_counterexample(out_dir, costs, field_of(f, "start"), field_of(f, "goal"),
+                                field_of(f, "mode") == "astar", field_of(f, "kind"), field_of(f, "detail", {}),
+                                extra=extra)
+        saved.append(str(d))
+    return saved
 
 
 def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, kind: str, detail: dict,

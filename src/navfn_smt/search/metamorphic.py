@@ -138,3 +138,12 @@ def save_counterexample(out_dir: Path, relation: str, cx: dict, transform: Trans
     write_map_dir(base / "original", smap.costs, [cx["case"]])
     write_map_dir(base / "transformed", transform.grid(smap.costs), [cx["transformed_case"]])
     return base
+
+
+def save_counterexamples(outcomes, save_dir, save_max: int) -> list[list[str]]:
+    """Save at most ``save_max`` counterexamples of each outcome under ``save_dir`` (none
+    without a directory); the saved directories per outcome."""
+    if not save_dir:
+        return [[] for _ in outcomes]
+    return [[str(save_counterexample(Path(save_dir), o.relation, cx, TRANSFORMS[o.relation]))
+             for cx in o.counterexamples[:save_max]] for o in outcomes]

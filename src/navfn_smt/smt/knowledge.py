@@ -162,3 +162,13 @@ def record(decisions: Iterable[tuple]) -> list[str]:
             lines = [ln for ln in lines if not ln.endswith(str(path))]
             lines.append(f"not recorded: {path}: {e}")
     return lines
+
+
+def record_decisions(outcomes, obligations, when: str) -> list[str]:
+    """Record this run's new decisions (where nothing was known) beside their proof files, with
+    the solver, its time and the run's time stamp ``when`` (and the witness of a refutation)."""
+    obs = {o.name: o for o in obligations}
+    return record((obs[o.name], o.semantics, o.status,
+                   {"solver": o.solver, "seconds": o.seconds, "when": when,
+                    **({"witness": o.witness} if o.witness else {})})
+                  for o in outcomes if o.judgement == NEWLY_DECIDED)
