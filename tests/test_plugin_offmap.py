@@ -1,4 +1,4 @@
-"""The plugin's own misbehaviours (nav2/offmap.py, docs/plugin.md): the Z3 characterisation of the
+"""The plugin's own misbehaviours (nav2/offmap.py, smt/offmap.py, docs/plugin.md): the Z3 characterisation of the
 points createPlan accepts and makePlan rounds off the map, the tolerance loop's stall threshold,
 one-sided window and skipped column, and every case directory replayed on both backends."""
 
@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from navfn_smt.nav2.offmap import (RES, SKIP_GOAL_X, centre_cells, loop_cells, offmap, offmap_interval,
-                                   offmap_interval_numeric, replay_case, stall_threshold)
+from navfn_smt.nav2.offmap import RES, centre_cells, loop_cells, offmap, offmap_interval_numeric
+from navfn_smt.smt.offmap import offmap_interval, stall_threshold
+from plugin_cases import SKIP_GOAL_X, replay_case
 from navfn_smt.nav2.plugin import Costmap, Pose, create_plan
 
 CASES = Path(__file__).resolve().parent / "data" / "plugin_cases"
