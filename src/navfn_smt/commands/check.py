@@ -13,7 +13,7 @@ def cmd_check(args) -> int:
     from ..check import runner as CR
     from ..engine import engine
     from ..report import check as report
-    from ..search.runner import modes_list
+    from ..maps.suite import modes_of
 
     names = CR.CHECKABLE if args.property == "all" else (args.property,)
     from ..search.hunt import parse_costs
@@ -26,7 +26,7 @@ def cmd_check(args) -> int:
     check_files(args.json)
     if args.out:
         check_writable_dir(args.out)
-    modes = [m == "astar" for m in modes_list(args.mode)]
+    modes = [m == "astar" for m in modes_of(args.mode)]
     if args.max_size:
         sizes = CR.sizes_up_to(*args.max_size)
     else:

@@ -14,7 +14,8 @@ def cmd_search(args) -> int:
     from ..engine import engine
     from ..report import search as report
     from ..search.counterexamples import save_findings
-    from ..search.runner import modes_list, run_search
+    from ..maps.suite import modes_of
+    from ..search.runner import run_search
 
     eng = engine(args.jobs, args.scheduler)
     check_files(args.json)
@@ -23,7 +24,7 @@ def cmd_search(args) -> int:
             raise NavfnInputError("give either a KIND or --summary SUITE, not both")
         from ..search.summary import summarize
 
-        s = summarize(Path(args.summary), modes_list(args.mode), progress=report.progress_line, eng=eng)
+        s = summarize(Path(args.summary), modes_of(args.mode), progress=report.progress_line, eng=eng)
         report.summary_table(s)
         if args.json:
             report.write_summary_json(args.json, s)
@@ -39,7 +40,7 @@ def cmd_search(args) -> int:
     findings, tried = run_search(args.kind, args.mode, args.size, args.max_size, args.timeout, args.seed,
                                  costs_range, progress=report.progress_line, eng=eng)
     rows = [report.finding_row(f, s) for f, s in zip(findings, save_findings(findings, args.out))]
-    report.table(args.kind, rows, modes_list(args.mode))
+    report.table(args.kind, rows, modes_of(args.mode))
     if args.json:
         report.write_json(args.json, args.kind, vars_of(args), rows, tried)
     report.saved_note(args.out, rows)

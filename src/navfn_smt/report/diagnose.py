@@ -16,7 +16,8 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from ..fileio import atomic_path, atomic_write_text
-from ..nav2.plugin import LEGAL_BUT_NO_PLAN, POT_HIGH, yaw_of
+from ..nav2.plugin import LEGAL_BUT_NO_PLAN, yaw_of
+from ..spec.constants import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION, POT_HIGH
 
 SCHEMA = "navfn-smt-diagnose/1"
 PICTURE_FORMATS = (".png", ".svg")
@@ -201,9 +202,9 @@ def _costmap_image(costs: np.ndarray) -> np.ndarray:
     mid = (costs > 0) & (costs < 253)
     t = c[mid] / 252.0
     rgb[mid] = np.stack([1.0 - 0.15 * t, 0.95 - 0.75 * t, 0.6 - 0.6 * t], axis=-1)
-    rgb[costs == 253] = (0.55, 0.2, 0.6)
-    rgb[costs == 254] = (0.0, 0.0, 0.0)
-    rgb[costs == 255] = (0.75, 0.85, 0.95)
+    rgb[costs == INSCRIBED_INFLATED_OBSTACLE] = (0.55, 0.2, 0.6)
+    rgb[costs == LETHAL_OBSTACLE] = (0.0, 0.0, 0.0)
+    rgb[costs == NO_INFORMATION] = (0.75, 0.85, 0.95)
     return rgb
 
 
@@ -316,7 +317,7 @@ def write_picture(path, d, title: str = "") -> None:
         if pot is not None:
             ax.imshow(np.where(pot < POT_HIGH, pot, np.nan), origin="lower", extent=extent, interpolation="nearest",
                       cmap="viridis", vmin=np.nanmin(_sub(pot, win)), vmax=np.nanmax(_sub(pot, win)))
-            ax.imshow(np.where(cm.costs >= 254, 1.0, np.nan), origin="lower", extent=extent,
+            ax.imshow(np.where(cm.costs >= LETHAL_OBSTACLE, 1.0, np.nan), origin="lower", extent=extent,
                       interpolation="nearest", cmap="Greys", vmin=0, vmax=1)
         if pot is not None and x1 - x0 <= 16:
             _label_cells(ax, pot, cm.costs, win)

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from ..fileio import atomic_path, atomic_write_text
+from ..spec.constants import INSCRIBED_INFLATED_OBSTACLE, NO_INFORMATION
 
 # outcome -> (colour, legend label); the costmap stays visible under the goals
 COLOURS = {
@@ -29,10 +30,10 @@ def _background(costs: np.ndarray) -> np.ndarray:
     """Costmap as RGB: free white, costs darker grey, lethal black, unknown pale blue."""
     c = costs.astype(np.float64)
     g = 1.0 - 0.55 * np.clip(c, 0, 252) / 252.0
-    g = np.where(costs >= 253, 0.0, g)
+    g = np.where(costs >= INSCRIBED_INFLATED_OBSTACLE, 0.0, g)
     rgb = np.repeat(g[..., None], 3, axis=2)
-    rgb[costs == 253] = (0.25, 0.25, 0.25)
-    rgb[costs == 255] = (0.75, 0.82, 0.95)
+    rgb[costs == INSCRIBED_INFLATED_OBSTACLE] = (0.25, 0.25, 0.25)
+    rgb[costs == NO_INFORMATION] = (0.75, 0.82, 0.95)
     return rgb
 
 
@@ -74,7 +75,7 @@ def render_sweep(res, costs: np.ndarray, origin: tuple, out, title: str = "") ->
     a0.set_title("outcome per goal cell")
     handles = [Patch(color=COLOURS[n][0], label=f"{COLOURS[n][1]}: {counts[n]}") for n in outcomes if counts[n]]
     handles.append(Patch(facecolor="black", label="lethal / inscribed (costmap)"))
-    if (costs == 255).any():
+    if (costs == NO_INFORMATION).any():
         handles.append(Patch(facecolor=(0.75, 0.82, 0.95), label="unknown (costmap)"))
     handles.append(Line2D([], [], marker="*", markersize=14, color="white", markeredgecolor="black",
                           linestyle="none", label="robot (the start of every plan)"))

@@ -13,8 +13,6 @@ from typing import Optional
 from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from ..maps.suite import modes_of
-
-modes_list = modes_of  # (the name the command modules import)
 from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_growing
 from .kinds import KINDS, SEARCH_KINDS
 
