@@ -65,9 +65,11 @@ class ArrayDomain(ReplayDomain):
     add64, sub64, mul64, div64 = (_elementwise(f, np.float64) for f in (np.add, np.subtract, np.multiply, np.divide))
 
     def hypotf(self, a, b):
+        """glibc's ``hypotf``: the square root in double, rounded once to float; an infinite
+        argument gives +inf even beside a NaN (IEEE 754 and C's hypot)."""
         wa, wb = self.widen(a), self.widen(b)
         with np.errstate(all="ignore"):
-            return self.narrow(np.sqrt(wa * wa + wb * wb))
+            return np.where(np.isinf(wa) | np.isinf(wb), np.float32(np.inf), self.narrow(np.sqrt(wa * wa + wb * wb)))
 
 
 def _floats(lo: int, hi: int) -> np.ndarray:
