@@ -20,11 +20,12 @@ REPO = Path(__file__).resolve().parent.parent
 SHARED = Path(os.environ.get("NAVFN_SHARED", REPO.parent / "shared"))
 SUITE = SHARED / "navfn-suite"
 SUITE_LARGE = SHARED / "navfn-suite-large"
+NAV2_SRC = SHARED / "nav2-src"
 DATA = Path(__file__).resolve().parent / "data"
 SLOW = bool(os.environ.get("NAVFN_SLOW"))  # the slow tests and guide commands run only then
 
 # a test using one of these fixtures gets the marker
-FIXTURE_MARKERS = {"shared_suite": "shared", "shared_suite_large": "large", "cluster": "dask",
+FIXTURE_MARKERS = {"shared_suite": "shared", "shared_suite_large": "large", "nav2_src": "shared", "cluster": "dask",
                    "local_cluster": "dask", "proof_run": "prove", "progress_run": "prove"}
 
 
@@ -43,6 +44,18 @@ def shared_suite() -> Path:
     if not (SUITE / "README.md").exists():
         pytest.skip(f"shared suite not found at {SUITE}")
     return SUITE
+
+
+@pytest.fixture(scope="session")
+def nav2_src() -> Path:
+    """The unmodified Nav2 sources of ../shared (a folder per distribution), and a C++ compiler."""
+    import shutil
+
+    if not (NAV2_SRC / "COMMITS.txt").exists():
+        pytest.skip(f"Nav2 sources not found at {NAV2_SRC}")
+    if shutil.which(os.environ.get("CXX") or "g++") is None:
+        pytest.skip("no C++ compiler (g++ or $CXX)")
+    return NAV2_SRC
 
 
 @pytest.fixture

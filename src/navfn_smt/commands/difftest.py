@@ -16,10 +16,32 @@ def cmd_difftest(args) -> int:
     suite, modes = suite_or_example(args.suite), modes_of(args.mode)
     eng = engine(args.jobs, args.scheduler)
     check_files(args.json)
+    if args.oracle:
+        return _live(args, suite, modes)
     total = count_cases(suite, modes)
     with progress_bar(total, f"difftest {suite} ({args.backend})", enabled=not args.quiet) as advance:
         summary = run_suite(suite, modes, args.backend, eng=eng, total=total,
                             progress=lambda o: advance(o.cases)).as_dict()
+    report.table(summary)
+    if args.json:
+        report.write_json(args.json, suite, args.backend, modes, summary)
+    report.closing_line(summary)
+    return 0 if summary["failed"] == 0 else 1
+
+
+def _live(args, suite, modes) -> int:
+    """``--oracle DIR``: the spec against the C++ NavFn built in DIR, live, every case."""
+    from ..difftest.live import run_live
+    from ..maps.suite import discover, load_map
+    from ..oracle.client import Oracle
+    from ..report import difftest as report
+    from ..report.tables import progress_bar
+
+    total = sum(len(load_map(d, suite).cases) for d in discover(suite)) * len(modes)
+    with Oracle(args.oracle) as oracle:
+        label = f"difftest {suite} ({args.backend} against the C++ of {oracle.build['distribution']})"
+        with progress_bar(total, label, enabled=not args.quiet) as advance:
+            summary = run_live(suite, modes, args.backend, oracle, progress=lambda o: advance(o.cases)).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
@@ -37,6 +59,8 @@ def register(sub) -> None:
     dt.add_argument("suite", nargs="?", help="suite directory (default: the example suite shipped with the package)")
     dt.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
     dt.add_argument("--backend", choices=BACKENDS, default="jit", help=BACKEND_HELP)
+    dt.add_argument("--oracle", metavar="DIR", help="compare with the C++ NavFn built in DIR (navfn-smt oracle "
+                    "build), run live on every case, instead of the golden files")
     add_engine_arguments(dt, what="difftest chunks")
     dt.add_argument("--json", metavar="FILE", help="write per-map counts and every disagreement as JSON")
     dt.add_argument("--quiet", action="store_true", help="no progress bar")

@@ -1,7 +1,8 @@
-"""``navfn-smt suite record``: the command that records golden files from the spec.
+"""``navfn-smt suite record``: the command that records golden files from the spec, or with
+``--oracle DIR`` from the user's own C++ build of NavFn (``navfn-smt oracle build``).
 
     navfn-smt suite record SUITE [--mode astar|dijkstra|both] [--backend jit|reference]
-                                 [--full-first K] [--overwrite] [--quiet]
+                                 [--oracle DIR] [--full-first K] [--overwrite] [--quiet]
 
 Wire it into the ``suite`` command with ``register(suite_subparsers)``; the handler raises
 :class:`~navfn_smt.errors.NavfnInputError` on bad input, which ``main`` prints as one line.
@@ -10,6 +11,7 @@ Wire it into the ``suite`` command with ``register(suite_subparsers)``; the hand
 from __future__ import annotations
 
 import argparse
+import contextlib
 
 from ..backends import BACKENDS
 from ..errors import NavfnInputError
@@ -21,19 +23,23 @@ def cmd_suite_record(args) -> int:
     from ..maps.suite import discover, load_map
     from ..report.tables import progress_bar
     from ..difftest.record import record_suite
+    from ..oracle.client import Oracle
 
     modes = modes_of(args.mode)
     if args.full_first < 0:
         raise NavfnInputError(f"--full-first {args.full_first}: expected a non-negative number of cases")
     total = sum(len(load_map(d).cases) for d in discover(args.suite)) * len(modes)
-    with progress_bar(total, f"record {args.suite} ({args.backend})", enabled=not args.quiet) as advance:
+    source = f"the C++ of {args.oracle}" if args.oracle else f"backend {args.backend}"
+    with contextlib.ExitStack() as stack:
+        oracle = stack.enter_context(Oracle(args.oracle)) if args.oracle else None
+        advance = stack.enter_context(progress_bar(total, f"record {args.suite} ({source})", enabled=not args.quiet))
         recs = record_suite(args.suite, modes, args.backend, args.full_first, overwrite=args.overwrite,
-                            progress=lambda r: advance(r.cases))
+                            progress=lambda r: advance(r.cases), oracle=oracle)
     maps = len({r.map for r in recs})
     cases = sum(r.cases for r in recs)
     secs = sum(r.seconds for r in recs)
     print(f"{len(recs)} golden files recorded for {maps} map{'s' if maps != 1 else ''} "
-          f"({', '.join(modes)}; backend {args.backend}), {cases} case runs in {secs:.1f} s")
+          f"({', '.join(modes)}; {source}), {cases} case runs in {secs:.1f} s")
     return 0
 
 
@@ -47,6 +53,8 @@ def register(suite_subparsers) -> argparse.ArgumentParser:
     re_.add_argument("suite", metavar="SUITE", help="suite directory")
     re_.add_argument("--mode", choices=MODE_CHOICES, default="both", help="planner modes to record")
     re_.add_argument("--backend", choices=BACKENDS, default="jit", help="planner implementation that plans")
+    re_.add_argument("--oracle", metavar="DIR", help="record from the C++ NavFn built in DIR (navfn-smt oracle "
+                     "build) instead of the spec")
     re_.add_argument("--full-first", type=int, default=50, metavar="K",
                      help="store full potentials and traces of the first K cases of each map "
                      "(the shared suite uses 5 on its ROS maps)")

@@ -47,6 +47,22 @@ class RecordedMap:
 
 def golden_fields(smap: SuiteMap, planner, astar: bool, full_first: int = 50) -> dict:
     """Plan every case of ``smap`` and build the golden arrays (in ``GOLDEN_FIELDS`` order)."""
+    return fields_of_results(smap, _planned(smap, planner, astar), full_first)
+
+
+def _planned(smap: SuiteMap, planner, astar: bool):
+    for i, (sx, sy, gx, gy) in enumerate(smap.cases.tolist()):
+        try:
+            yield planner.run((sx, sy), (gx, gy), astar, trace=True)
+        except UndefinedBehaviour as e:
+            raise NavfnInputError(
+                f"{smap.directory}: case {i} ({sx} {sy} {gx} {gy}): the C++ would read outside its arrays "
+                f"({e}); nothing can be recorded for it") from None
+
+
+def fields_of_results(smap: SuiteMap, results, full_first: int = 50) -> dict:
+    """The golden arrays (in ``GOLDEN_FIELDS`` order) of ``results``, one per case of ``smap``
+    in order, with their traces: the spec's (:func:`golden_fields`) or the C++'s (an oracle)."""
     n = len(smap.cases)
     start_reached = np.zeros(n, dtype=np.int8)
     start_potential = np.zeros(n, dtype=np.float32)
@@ -59,13 +75,7 @@ def golden_fields(smap: SuiteMap, planner, astar: bool, full_first: int = 50) ->
     full_index: list[int] = []
     full_pot: list[np.ndarray] = []
     full_traces: list[np.ndarray] = []
-    for i, (sx, sy, gx, gy) in enumerate(smap.cases.tolist()):
-        try:
-            res = planner.run((sx, sy), (gx, gy), astar, trace=True)
-        except UndefinedBehaviour as e:
-            raise NavfnInputError(
-                f"{smap.directory}: case {i} ({sx} {sy} {gx} {gy}): the C++ would read outside its arrays "
-                f"({e}); nothing can be recorded for it") from None
+    for i, res in enumerate(results):
         # a JIT result is a view into the planner's buffers: take what we keep before the next run
         pot = np.ascontiguousarray(res.potential, dtype="<f4")
         trace = np.ascontiguousarray(res.trace, dtype="<i4")
@@ -135,8 +145,10 @@ def record_suite(
     full_first: int = 50,
     overwrite: bool = False,
     progress: Optional[Callable[[RecordedMap], None]] = None,
+    oracle=None,
 ) -> list[RecordedMap]:
-    """Write ``golden_<mode>.npz`` for every map under ``suite_dir`` from our spec.
+    """Write ``golden_<mode>.npz`` for every map under ``suite_dir`` from our spec, or with
+    ``oracle`` (a running :class:`~navfn_smt.oracle.client.Oracle`) from the C++ NavFn.
 
     Every map is loaded and every target checked before anything is written; an existing
     golden file is an error unless ``overwrite``.  ``progress`` is called after each map and
@@ -158,11 +170,14 @@ def record_suite(
     be = get_backend(backend)
     done: list[RecordedMap] = []
     for smap in maps:
-        planner = be.prepare(smap.costs)
+        planner = be.prepare(smap.costs) if oracle is None else None
         rel = str(smap.directory.resolve().relative_to(root.resolve()))
         for mode in modes:
             t0 = time.perf_counter()
-            fields = golden_fields(smap, planner, mode == "astar", int(full_first))
+            if oracle is None:
+                fields = golden_fields(smap, planner, mode == "astar", int(full_first))
+            else:
+                fields = fields_of_results(smap, oracle.plan(smap.costs, smap.cases, mode == "astar"), int(full_first))
             write_golden(smap.golden_path(mode), fields)
             r = RecordedMap(rel, smap.category, mode, len(smap.cases), len(fields["full_index"]),
                             time.perf_counter() - t0, smap.golden_path(mode))

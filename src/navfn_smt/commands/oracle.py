@@ -1,0 +1,35 @@
+"""``navfn-smt oracle build NAV2_SRC``: build the user's own Nav2 NavFn as an oracle.
+
+The sources are compiled unchanged (:mod:`navfn_smt.oracle.build`); ``difftest --oracle DIR``
+and ``suite record --oracle DIR`` then run them live.
+"""
+
+from __future__ import annotations
+
+DEFAULT_OUT = "build/nav2-oracle"
+
+
+def cmd_oracle_build(args) -> int:
+    from ..oracle.build import build
+
+    doc = build(args.nav2_src, args.out)
+    commit = f", commit {doc['git_commit'][:12]}" if doc.get("git_commit") else ""
+    print(f"built the NavFn oracle of {doc['sources']} ({doc['distribution']}{commit}) into {args.out} "
+          f"with {doc['compiler_version'] or doc['compiler']} {' '.join(doc['flags'])}: "
+          f"{', '.join(doc['programs'])}")
+    return 0
+
+
+def register(sub) -> None:
+    """The ``oracle`` command and its ``build`` subcommand."""
+    orc = sub.add_parser("oracle", help="build the user's own Nav2 NavFn (unchanged) to test the spec against")
+    osub = orc.add_subparsers(dest="oracle_command", required=True, metavar="SUBCOMMAND")
+    b = osub.add_parser("build", help="compile nav2_navfn_planner's NavFn from a navigation2 checkout",
+                        description="Compile NavFn (navfn.cpp) from NAV2_SRC unchanged, with the project's "
+                        "driver and rclcpp stubs, plain and with a white-box trace hook inserted at an anchor "
+                        "line in a copy; record the compiler, flags, source hashes, git commit and distribution "
+                        "in DIR/build.json.")
+    b.add_argument("nav2_src", metavar="NAV2_SRC",
+                   help="a navigation2 checkout, or a folder holding nav2_navfn_planner and nav2_core")
+    b.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="the build folder (default: %(default)s)")
+    b.set_defaults(func=cmd_oracle_build)

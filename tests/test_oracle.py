@@ -1,0 +1,117 @@
+"""The user's own Nav2 NavFn in the loop: built unchanged from the shared sources of every
+distribution, run live, and held equal to the spec (and to the recorded golden files)."""
+
+from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+
+from navfn_smt.cli import main
+from navfn_smt.difftest.live import run_live
+from navfn_smt.difftest.record import compare_golden_files
+from navfn_smt.maps.suite import MODES, discover
+from navfn_smt.oracle.build import ANCHOR, build, distribution
+from navfn_smt.oracle.client import Oracle
+
+EXAMPLE = Path(__file__).resolve().parent.parent / "src" / "navfn_smt" / "examples" / "suite"
+DISTROS = ("humble", "jazzy", "kilted", "rolling")
+
+
+@pytest.fixture(scope="session")
+def builds(nav2_src, tmp_path_factory) -> dict:
+    root = tmp_path_factory.mktemp("oracle")
+    return {d: (build(nav2_src / d, root / d), root / d) for d in DISTROS}
+
+
+@pytest.mark.parametrize("distro", DISTROS)
+def test_every_distribution_builds_and_says_which_it_is(builds, nav2_src, distro):
+    doc, folder = builds[distro]
+    assert doc["distribution"] == distro == distribution(nav2_src / distro)
+    assert set(doc["source_sha256"]) >= {"nav2_navfn_planner/src/navfn.cpp"}
+    assert json.loads((folder / "build.json").read_text()) == doc
+    # the sources are built as they are: the hook goes into a copy in the build folder only
+    assert ANCHOR in (nav2_src / distro / "nav2_navfn_planner" / "src" / "navfn.cpp").read_text()
+    assert "NAVFN_SMT_CYCLE" not in (nav2_src / distro / "nav2_navfn_planner" / "src" / "navfn.cpp").read_text()
+
+
+@pytest.mark.parametrize("distro", DISTROS)
+def test_the_spec_agrees_with_each_distributions_cpp_live(builds, distro):
+    """Every case of the example suite, both modes, white-box (trace, cycles, updates)."""
+    with Oracle(builds[distro][1]) as oracle:
+        summary = run_live(EXAMPLE, MODES, "jit", oracle).as_dict()
+    assert summary["failed"] == 0 and summary["passed"] == 4396, summary["disagreements"][:2]
+
+
+def test_recording_from_the_cpp_reproduces_the_golden_files(builds, tmp_path):
+    suite = tmp_path / "suite"
+    shutil.copytree(EXAMPLE, suite)
+    oracle = str(builds["rolling"][1])
+    assert main(["suite", "record", str(suite), "--oracle", oracle, "--overwrite", "--quiet"]) == 0
+    # the suite keeps whole potentials of the first 50 cases of a map, 5 on the ROS maps
+    assert main(["suite", "record", str(suite / "ROS"), "--oracle", oracle, "--overwrite", "--quiet",
+                 "--full-first", "5"]) == 0
+    files = sorted(suite.rglob("golden_*.npz"))
+    assert len(files) == 2 * len(discover(EXAMPLE))
+    assert [f.name for f in files if compare_golden_files(f, EXAMPLE / f.relative_to(suite))] == []
+
+
+def test_a_bug_seeded_in_the_cpp_is_caught_and_named(nav2_src, tmp_path, capsys):
+    """A copy of the rolling sources with the path step changed (0.5 -> 0.25): the live
+    difftest fails on the path, the first field compared."""
+    src = tmp_path / "src"
+    shutil.copytree(nav2_src / "rolling", src)
+    cpp = src / "nav2_navfn_planner" / "src" / "navfn.cpp"
+    text = cpp.read_text()
+    assert text.count("pathStep = 0.5;") == 1
+    cpp.write_text(text.replace("pathStep = 0.5;", "pathStep = 0.25;"))
+    build(src, tmp_path / "bug")
+    with Oracle(tmp_path / "bug") as oracle:
+        summary = run_live(EXAMPLE, ("dijkstra",), "jit", oracle).as_dict()
+    assert summary["failed"] > 0
+    assert {d["field"] for d in summary["disagreements"]} == {"path"}
+
+
+def test_a_moved_anchor_stops_the_build_naming_it(nav2_src, tmp_path, capsys):
+    src = tmp_path / "src"
+    shutil.copytree(nav2_src / "rolling", src)
+    cpp = src / "nav2_navfn_planner" / "src" / "navfn.cpp"
+    cpp.write_text(cpp.read_text().replace(ANCHOR, "// (moved)", 1))
+    assert main(["oracle", "build", str(src), "--out", str(tmp_path / "b")]) == 2
+    err = capsys.readouterr().err
+    assert ANCHOR in err and err.count("\n") == 1 and "Traceback" not in err
+    assert not (tmp_path / "b").exists()  # nothing half-written
+
+
+@pytest.mark.parametrize("args, says", [
+    (["oracle", "build", "{tmp}/nowhere"], "no such directory"),
+    (["oracle", "build", "{tmp}"], "no nav2_navfn_planner/src/navfn.cpp"),
+    (["difftest", "--oracle", "{tmp}"], "not an oracle build folder"),
+])
+def test_bad_input_is_one_line(args, says, tmp_path, capsys):
+    assert main([a.format(tmp=tmp_path) for a in args]) == 2
+    err = capsys.readouterr().err
+    assert says in err and err.count("\n") == 1
+
+
+def test_a_corrupt_build_folder_is_one_line(builds, tmp_path, capsys):
+    folder = tmp_path / "b"
+    shutil.copytree(builds["rolling"][1], folder)
+    (folder / "navfn-traced").unlink()
+    assert main(["difftest", "--oracle", str(folder)]) == 2
+    assert "incomplete" in capsys.readouterr().err
+
+
+def test_the_cli_difftest_against_the_cpp(builds, capsys):
+    assert main(["difftest", "--oracle", str(builds["humble"][1]), "--quiet"]) == 0
+    assert "4396 passed, 0 failed" in capsys.readouterr().out
+
+
+def test_a_build_folder_that_is_something_else_is_refused(nav2_src, tmp_path, capsys):
+    (tmp_path / "mine").mkdir()
+    (tmp_path / "mine" / "keep.txt").write_text("x")
+    assert main(["oracle", "build", str(nav2_src / "rolling"), "--out", str(tmp_path / "mine")]) == 2
+    assert "not an oracle build folder" in capsys.readouterr().err
+    assert (tmp_path / "mine" / "keep.txt").exists()
