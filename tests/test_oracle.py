@@ -58,20 +58,37 @@ def test_recording_from_the_cpp_reproduces_the_golden_files(builds, tmp_path):
     assert [f.name for f in files if compare_golden_files(f, EXAMPLE / f.relative_to(suite))] == []
 
 
-def test_a_bug_seeded_in_the_cpp_is_caught_and_named(nav2_src, tmp_path, capsys):
-    """A copy of the rolling sources with the path step changed (0.5 -> 0.25): the live
-    difftest fails on the path, the first field compared."""
+# bugs seeded in a copy of the rolling sources: (file, the line as it is, the bug, the mode)
+HPP = "nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp"
+CPP = "nav2_navfn_planner/src/navfn.cpp"
+SEEDED = {
+    "cost constant": (HPP, "#define COST_OBS 254", "#define COST_OBS 253", "dijkstra"),
+    "push guard": (CPP, "costarr[n] < COST_OBS && nextPe < PRIORITYBUFSIZE", "costarr[n] <= COST_OBS && nextPe < "
+                   "PRIORITYBUFSIZE", "dijkstra"),
+    "buffer size": (HPP, "#define PRIORITYBUFSIZE 10000", "#define PRIORITYBUFSIZE 100", "dijkstra"),
+    "path step": (CPP, "pathStep = 0.5;", "pathStep = 0.25;", "dijkstra"),
+    "A* heuristic": (CPP, "float dist = hypot(x - start[0], y - start[1]) * static_cast<float>(COST_NEUTRAL);",
+                     "float dist = hypot(x - start[0], y - start[1]) * static_cast<float>(COST_NEUTRAL + 1);",
+                     "astar"),
+}
+FIELDS = ("path", "potential", "trace", "start_reached", "cycles", "updates")
+
+
+@pytest.mark.parametrize("bug", SEEDED)
+def test_a_bug_seeded_in_the_cpp_is_caught_and_named(nav2_src, tmp_path, bug):
+    """The live difftest of the example suite fails on the seeded copy, and each disagreement
+    names the first field that differs."""
+    rel, line, seeded, mode = SEEDED[bug]
     src = tmp_path / "src"
     shutil.copytree(nav2_src / "rolling", src)
-    cpp = src / "nav2_navfn_planner" / "src" / "navfn.cpp"
-    text = cpp.read_text()
-    assert text.count("pathStep = 0.5;") == 1
-    cpp.write_text(text.replace("pathStep = 0.5;", "pathStep = 0.25;"))
+    text = (src / rel).read_text()
+    assert text.count(line) == 1, f"{rel} no longer has {line!r} once"
+    (src / rel).write_text(text.replace(line, seeded))
     build(src, tmp_path / "bug")
     with Oracle(tmp_path / "bug") as oracle:
-        summary = run_live(EXAMPLE, ("dijkstra",), "jit", oracle).as_dict()
+        summary = run_live(EXAMPLE, (mode,), "jit", oracle).as_dict()
     assert summary["failed"] > 0
-    assert {d["field"] for d in summary["disagreements"]} == {"path"}
+    assert summary["disagreements"] and {d["field"] for d in summary["disagreements"]} <= set(FIELDS)
 
 
 def test_a_moved_anchor_stops_the_build_naming_it(nav2_src, tmp_path, capsys):
@@ -115,3 +132,14 @@ def test_a_build_folder_that_is_something_else_is_refused(nav2_src, tmp_path, ca
     assert main(["oracle", "build", str(nav2_src / "rolling"), "--out", str(tmp_path / "mine")]) == 2
     assert "not an oracle build folder" in capsys.readouterr().err
     assert (tmp_path / "mine" / "keep.txt").exists()
+
+
+def test_bench_times_the_cpp_and_the_jit_in_one_run(builds, tmp_path, capsys):
+    out = tmp_path / "b.json"
+    assert main(["bench", "--oracle", str(builds["kilted"][1]), "--json", str(out)]) == 0
+    rows = json.loads(out.read_text())["results"]
+    assert [r["mode"] for r in rows] == ["astar", "dijkstra"]
+    for r in rows:
+        assert r["cases"] == 2198 and r["cpp_seconds"] > 0 and r["jit_seconds"] > 0
+        assert r["jit_over_cpp"] == round(r["jit_seconds"] / r["cpp_seconds"], 3)
+    assert "jit / C++" in capsys.readouterr().out

@@ -71,6 +71,31 @@ def bench_suite(suite: Path, backend: str, mode: str) -> list[dict]:
     return rows
 
 
+def bench_oracle(suite: Path, oracle, mode: str) -> list[dict]:
+    """The C++ NavFn (``oracle``: a running plain build) and the JIT on every case of ``suite``,
+    map by map in the same run: the C++'s own planning time (its driver's clock, pipes aside),
+    the whole calls (planning and the answers' transfer) and the JIT's batch time."""
+    maps = [load_map(d, suite) for d in discover(suite)]
+    ncases = sum(len(m.cases) for m in maps)
+    rows = []
+    for md in modes_of(mode):
+        astar = md == "astar"
+        planners = [get_backend("jit").prepare(m.costs) for m in maps]
+        planners[0].run_batch(maps[0].cases[:1], astar)  # compile or load the cache before timing
+        cpp = wall = jit = 0.0
+        for m, p in zip(maps, planners):
+            t0 = time.perf_counter()
+            oracle.plan(m.costs, m.cases, astar)
+            wall += time.perf_counter() - t0
+            cpp += oracle.planning_seconds
+            t0 = time.perf_counter()
+            p.run_batch(m.cases, astar)
+            jit += time.perf_counter() - t0
+        rows.append({"mode": md, "cases": ncases, "cpp_seconds": cpp, "jit_seconds": jit,
+                     "jit_over_cpp": round(jit / cpp, 3) if cpp else None, "cpp_call_seconds": wall})
+    return rows
+
+
 def check_sizes(sizes, repeat: int) -> None:
     """Reject benchmark sizes below 12 cells a side and fewer than one plan per map."""
     for n in sizes:

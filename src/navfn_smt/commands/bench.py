@@ -39,6 +39,16 @@ def cmd_bench(args) -> int:
         return 0
     suite = suite_or_example(args.suite)
     check_files(args.json)
+    if args.oracle:
+        from ..bench import bench_oracle
+        from ..oracle.client import Oracle
+
+        with Oracle(args.oracle, traced=False) as oracle:
+            rows = bench_oracle(suite, oracle, args.mode)
+            report.oracle_table(suite, oracle.build["distribution"], rows)
+        if args.json:
+            report.write_suite_json(args.json, suite, rows)
+        return 0
     rows = bench_suite(suite, args.backend, args.mode)
     report.suite_table(suite, rows)
     if args.json:
@@ -58,6 +68,8 @@ def register(sub) -> None:
     be.add_argument("--backend", choices=(*BACKENDS, "all"), default="all", help="planner implementations timed")
     be.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
     be.add_argument("--repeat", type=int, default=3, metavar="K", help="plans per map and mode with --size (best is kept)")
+    be.add_argument("--oracle", metavar="DIR", help="time the C++ NavFn built in DIR (navfn-smt oracle build) and "
+                    "the JIT on the suite in the same run, and print their ratio")
     be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
     be.add_argument("--sweep", nargs="?", type=int, const=400, metavar="N",
                     help="instead, time the whole-map sweep (every free cell a goal of one robot pose) on a "

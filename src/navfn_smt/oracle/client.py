@@ -26,6 +26,7 @@ class Oracle:
         self.folder = Path(folder)
         self.build = load_build(self.folder)
         self.traced = traced
+        self.planning_seconds = 0.0  # the C++'s own time planning the last request's cases
         program = self.folder / ("navfn-traced" if traced else "navfn-plain")
         self.proc = subprocess.Popen([str(program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
 
@@ -70,6 +71,7 @@ class Oracle:
             trace = np.frombuffer(self._read(4 * ntrace), dtype="<i4").copy() if self.traced else None
             out.append(PlanResult(start_reached=bool(reached), start_potential=pot[sy, sx], path=path, potential=pot,
                                   trace=trace, cycles=cycles, updates=updates))
+        (self.planning_seconds,) = struct.unpack("<d", self._read(8))
         return out
 
     def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> "OracleMapPlanner":
