@@ -129,14 +129,16 @@ def test_not_run_without_a_report(tmp_path):
 def test_prove_markdown_is_the_same_generator():
     """`prove --markdown` renders through the docs generator: from the same verdicts it gives
     the same page but for the line naming the report."""
+    from navfn_smt.commands.common import page_sources
+    from navfn_smt.commands.docs import generate
     from navfn_smt.report import invariants_page as page
     from navfn_smt.report.proofs import markdown
 
     doc = json.loads((REPORTS / "prove.json").read_text())
     checks = sorted(REPORTS.glob("check*.json"))
     meta = {k: v for k, v in doc.items() if k in ("when", "timeout", "solvers", "semantics")}
-    a = markdown(page.outcomes_of(doc), meta, check_reports=checks).splitlines()
-    b = page.generate(REPORTS / "prove.json", checks).splitlines()
+    a = markdown(page.outcomes_of(doc), meta, page_sources(checks, REPORTS)).splitlines()
+    b = generate(REPORTS / "prove.json", checks).splitlines()
     assert len(a) == len(b)
     differ = [(x, y) for x, y in zip(a, b) if x != y]
     assert len(differ) == 1 and differ[0][1].startswith("Proofs: [reports/prove.json]"), differ

@@ -16,11 +16,13 @@ def _module_name(path: Path) -> list[str]:
     return parts[:-1] if parts[-1] == "__init__" else parts
 
 
-def _imports(path: Path):
-    """``(target module parts, names)`` of every import of the package itself in ``path``."""
+def _imports(path: Path, source: str | None = None):
+    """``(target module parts, names)`` of every import of the package itself in ``path``
+    (read from ``source`` when given: a module as it would be at that place)."""
     here = _module_name(path)
     package = here if path.name == "__init__.py" else here[:-1]
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    text = path.read_text(encoding="utf-8") if source is None else source
+    for node in ast.walk(ast.parse(text)):
         if isinstance(node, ast.ImportFrom):
             if node.level:
                 base = package[:len(package) - (node.level - 1)] if node.level > 1 else package
@@ -84,16 +86,42 @@ def test_no_part_imports_a_private_name_of_another():
     assert _graph()[1] == []
 
 
+REPORT = PACKAGE / "report"
+# What report/ must not call: saving and recording are actions, loading obligations and what
+# is known of them is the gathering the commands do (report/ renders what it is given).
+NOT_RENDERING = ("record", "record_decisions", "load_obligations", "load_splits", "known_of_files",
+                 "default_proof_files")
+
+
+def _diagnose_imports(modules) -> list:
+    """``(module, imported module)`` of every import of diagnose/ in ``modules``, ``(path,
+    source or None)`` pairs: absolute, relative (``..diagnose``) or the package itself."""
+    return [(str(p.relative_to(PACKAGE)), ".".join(t)) for p, src in modules
+            for t, _ in _imports(p, src) if _part(t) == "diagnose"]
+
+
+def _not_rendering(modules) -> list:
+    """``(module, imported module, name)`` of every saving, recording or loading name imported."""
+    return [(str(p.relative_to(PACKAGE)), ".".join(t), n) for p, src in modules
+            for t, names in _imports(p, src) for n in names
+            if n.startswith("save_") or n in NOT_RENDERING]
+
+
+def test_report_imports_nothing_of_diagnose():
+    """report/ renders the diagnosis and the sweep from the result and summary it is given
+    (the sweep's outcomes come with the result): no module of it imports diagnose/."""
+    modules = [(p, None) for p in sorted(REPORT.glob("*.py"))]
+    assert len(modules) > 5, "report/ not found: the check reads nothing"
+    assert _diagnose_imports(modules) == []
+
+
 def test_report_only_renders():
-    """report/ renders what a part gives it: it imports nothing of diagnose/ (the sweep's
-    summary and outcomes come with the result), and saves nothing (the commands and the
-    parts write counterexamples and record decisions)."""
+    """report/ renders what a part gives it: it saves nothing and records nothing (the
+    commands and the parts write counterexamples and record decisions), and loads no
+    obligations (the commands gather what the invariants page is rendered from)."""
     edges, _ = _graph()
     assert "report" in edges and "diagnose" not in edges["report"]
-    saving = [(str(p.relative_to(PACKAGE)), ".".join(t), n) for p in sorted((PACKAGE / "report").glob("*.py"))
-              for t, names in _imports(p) for n in names
-              if n.startswith("save_") or n in ("record", "record_decisions")]
-    assert saving == []
+    assert _not_rendering([(p, None) for p in sorted(REPORT.glob("*.py"))]) == []
 
 
 def test_the_check_can_fail():
@@ -102,3 +130,20 @@ def test_the_check_can_fail():
     assert _cycles({"a": {"b"}, "b": set()}) == []
     src = PACKAGE / "commands" / "split.py"
     assert (["report", "split"], ["interval_text", "table", "write_json"]) in list(_imports(src))
+
+
+def test_the_report_checks_can_fail():
+    """An import of diagnose/ added back to report/, in any spelling, is found; so is a
+    saving or loading name."""
+    here = REPORT / "sweep.py"
+    for source, target in [("from ..diagnose.sweep import OUTCOMES, summary\n", "diagnose.sweep"),
+                           ("from ..diagnose import core\n", "diagnose"),
+                           ("from .. import diagnose\n", "diagnose"),
+                           ("def f():\n    from navfn_smt.diagnose.sweep import summary\n", "diagnose.sweep"),
+                           ("import navfn_smt.diagnose.walk\n", "diagnose.walk")]:
+        assert _diagnose_imports([(here, source)]) == [("report/sweep.py", target)], source
+    assert _diagnose_imports([(here, "from ..diagnose_notes import x\nfrom .diagnose import y\n")]) == []
+    assert _not_rendering([(here, "from ..search.counterexamples import save_counterexample\n")]) == [
+        ("report/sweep.py", "search.counterexamples", "save_counterexample")]
+    assert _not_rendering([(here, "def f():\n    from ..smt.obligation import load_obligations\n")]) == [
+        ("report/sweep.py", "smt.obligation", "load_obligations")]

@@ -209,6 +209,12 @@ def largest_proved(results, name: str) -> Optional[list]:
     return list(max(proved, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))) if proved else None
 
 
+def smallest_counterexample(results, name: str) -> Optional[dict]:
+    """The counterexample of ``name`` at the first size that has one (sizes run smallest
+    interior first), or None."""
+    return next((r.counterexample for r in results if r.property == name and r.counterexample), None)
+
+
 def induction_status(name: str, verdict_of) -> str:
     """The every-size status of an inductive property: the worst fp32 status of the predicates
     that carry it (:func:`~navfn_smt.smt.chains.derive`, from ``verdict_of``), the one status

@@ -58,8 +58,7 @@ def cmd_check(args) -> int:
             "ends": args.ends,
             "results": [report.row(r) for r in results], "sizes_not_reached": skipped,
             "largest_size_proved": {n: CR.largest_proved(results, n) for n in names},
-            "smallest_counterexample": {n: next((r.counterexample for r in results if r.property == n
-                                                 and r.counterexample), None) for n in names},
+            "smallest_counterexample": {n: CR.smallest_counterexample(results, n) for n in names},
             "every_size_by_induction": induction,
             "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names if n in CR.NOT_INDUCTIVE},
             "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})

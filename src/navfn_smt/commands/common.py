@@ -1,5 +1,6 @@
 """What every command shares: the example suite, the checks of numbers and output paths,
-a cell from the command line, and the arguments as JSON."""
+a cell from the command line, the arguments as JSON, and what the invariants page is
+rendered from (``docs`` and ``prove --markdown``)."""
 
 from __future__ import annotations
 
@@ -51,3 +52,24 @@ def cell(what: str, v) -> tuple[int, int]:
 def vars_of(args) -> dict:
     """The arguments of a command as plain JSON values (no handler)."""
     return {k: v for k, v in vars(args).items() if k != "func"}
+
+
+def page_sources(check_reports, split_dir, files=None) -> dict:
+    """What the invariants page (:func:`navfn_smt.report.invariants_page.render`) is rendered
+    from beside a prove report, as its keyword arguments: the ``check_reports`` read (one-line
+    errors on a missing or malformed one) and where their pictures are, the split report in
+    ``split_dir`` if there is one, the obligations of the proof ``files`` (default: those shipped
+    in the package) and what is known of them (their declarations, the splits of their files
+    and the shipped chains).  It only reads: no solver runs."""
+    from ..proofs import PREDICATES
+    from ..report import invariants_page as page
+    from ..smt.obligation import load_obligations
+    from ..smt.runner import default_proof_files
+    from ..smt.split import known_of_files
+
+    checks = [(page.report_label(p), page.read_check_report(p)) for p in check_reports]
+    split = page.split_beside(split_dir)
+    declared = load_obligations(files if files else default_proof_files())
+    known = known_of_files(sorted({ob.source for ob in declared if ob.source}), declared, PREDICATES)
+    return {"checks": checks, "images": page.images_dir(check_reports), "split": split,
+            "declared": declared, "known": known}

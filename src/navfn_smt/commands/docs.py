@@ -13,6 +13,16 @@ from pathlib import Path
 from ..errors import NavfnInputError
 from ..fileio import atomic_write_text, check_writable
 from ..report import invariants_page as page
+from .common import page_sources
+
+
+def generate(prove_report, check_reports) -> str:
+    """The page from a prove report and check reports: read them (one-line errors on a missing
+    or malformed one), with the split report beside the prove report, the shipped obligations
+    and what is known of them (:func:`~navfn_smt.commands.common.page_sources`), and render it."""
+    prove_doc = page.read_prove_report(prove_report)
+    sources = page_sources(check_reports, Path(prove_report).parent)
+    return page.render(prove_doc, page.report_label(prove_report), **sources)
 
 
 def _excerpt(line: str, col: int, width: int = 60) -> str:
@@ -23,20 +33,19 @@ def _excerpt(line: str, col: int, width: int = 60) -> str:
 
 
 def cmd_docs(args) -> int:
-    if args.out is None and not args.check:  # nothing named: the page goes to stdout, no file is written
-        check_reports = (args.check_report if args.check_report is not None
-                         else page.default_check_reports(Path(args.prove_report).parent))
-        print(page.generate(args.prove_report, check_reports), end="")
-        return 0
-    out = Path(args.out if args.out is not None else page.DEFAULT_OUT)
+    """Print, write or check the invariants page; exit 1 only when ``--check`` finds it differs."""
     check_reports = (args.check_report if args.check_report is not None
                      else page.default_check_reports(Path(args.prove_report).parent))
+    if args.out is None and not args.check:  # nothing named: the page goes to stdout, no file is written
+        print(generate(args.prove_report, check_reports), end="")
+        return 0
+    out = Path(args.out if args.out is not None else page.DEFAULT_OUT)
     if args.check:
         if not out.is_file():
             raise NavfnInputError(f"{out}: no such page to check" + (" (it is a directory)" if out.is_dir() else ""))
     else:
         check_writable(out)
-    text = page.generate(args.prove_report, check_reports)
+    text = generate(args.prove_report, check_reports)
     if not args.check:
         atomic_write_text(out, text)
         print(f"wrote {out}")

@@ -15,6 +15,17 @@ def _proof_files(names) -> list[Path]:
     return proof_files(names)
 
 
+def _page_sources(files) -> dict:
+    """What ``--markdown``'s page is rendered from beside the run's verdicts: the committed
+    check reports (``docs/reports/check*.json`` under the working directory) and the split
+    report beside them, the obligations of the run's proof ``files`` and what is known of them."""
+    from ..report import invariants_page as page
+    from .common import page_sources
+
+    paths = page.default_check_reports()
+    return page_sources(paths, Path(paths[0]).parent if paths else page.REPORTS_DIR, files)
+
+
 def cmd_prove(args) -> int:
     """Check the proof obligations; exit 1 only when a verdict contradicts what is known."""
     from ..engine import engine
@@ -55,7 +66,7 @@ def cmd_prove(args) -> int:
     if args.junit:
         report.write_junit(args.junit, outcomes)
     if args.markdown:
-        report.write_markdown(args.markdown, outcomes, meta)
+        report.write_markdown(args.markdown, outcomes, meta, _page_sources(meta["files"]))
     proof_run.witness_note(outcomes, witnesses)
     left = [] if args.all else slow_queries(files, semantics)
     if left:

@@ -17,6 +17,10 @@ What no report covers is written as *not run*, never guessed.  Counterexamples o
 ``check`` link to a picture under ``images/`` beside the reports directory
 (``images/check-<property>-<mode>-<W>x<H>.png``) when one is committed there; the
 obligations' witnesses are kernel inputs, not maps, and are given as values.
+
+This module renders what it is given (:func:`render`) and reads the reports' JSON (one-line
+errors on a missing or malformed one); the commands gather the rest, the obligations and
+what is known of them (:func:`navfn_smt.commands.common.page_sources`).
 """
 
 from __future__ import annotations
@@ -175,14 +179,6 @@ def outcomes_of(prove_doc: dict) -> list:
                     assumptions=list(r.get("assumptions") or []), bound=r.get("bound"),
                     witness=r.get("witness_values"), detail=r.get("detail", ""))
             for r in prove_doc["obligations"]]
-
-
-def declared_obligations() -> list:
-    """The obligations shipped in the package, as declared now."""
-    from ..smt.obligation import load_obligations
-    from ..smt.runner import default_proof_files
-
-    return load_obligations(default_proof_files())
 
 
 # ------------------------------------------------------------------ obligations' texts
@@ -476,15 +472,6 @@ def judged(outcomes: list, split_doc: Optional[dict], known: dict) -> list:
     return out
 
 
-def page_knowledge(declared: list) -> dict:
-    """What is known of the declared obligations: their declarations, the splits of their proof
-    files and the shipped chains (no solver runs)."""
-    from ..smt.split import known_of_files
-
-    files = sorted({ob.source for ob in declared if ob.source})
-    return known_of_files(files, declared, predicates.registry())
-
-
 def split_section(split_doc: Optional[dict], label: str) -> list[str]:
     """The splits: verdict, parts, slowest part, cover and time of each (from ``navfn-smt split --report``)."""
     if not split_doc:
@@ -514,15 +501,15 @@ def split_section(split_doc: Optional[dict], label: str) -> list[str]:
     return out
 
 
-def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Path] = None,
-           declared: Optional[list] = None, split: Optional[tuple] = None) -> str:
+def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Path] = None, *,
+           declared: list, known: dict, split: Optional[tuple] = None) -> str:
     """The page from a prove report (``prove_label`` names it), the ``(label, doc)`` check
     reports, and the directory where check counterexample pictures are looked up;
-    ``declared``: the obligations to list (default: those shipped in the package);
-    ``split``: the ``(label, doc)`` of a split report, whose verdicts replace the whole ones."""
+    ``declared``: the obligations to list, ``known``: what is known of them
+    (:func:`navfn_smt.smt.split.known_of_files`); ``split``: the ``(label, doc)`` of a split
+    report, whose verdicts replace the whole ones.  The caller gathers all of it
+    (:func:`navfn_smt.commands.common.page_sources`): the page only renders."""
     split_label, split_doc = split or (None, None)
-    declared = declared_obligations() if declared is None else declared
-    known = page_knowledge(declared)
     outcomes = judged(outcomes_of(prove_doc), split_doc, known)
     sems = list(prove_doc.get("semantics") or predicates.run_semantics(outcomes)) or ["real", "fp32"]
     by_name: dict = {}
@@ -572,14 +559,6 @@ def images_dir(check_paths) -> Optional[Path]:
     check report's directory (``docs/images`` for ``docs/reports``)."""
     first = next(iter(check_paths), None)
     return None if first is None else Path(first).resolve().parent.parent / "images"
-
-
-def generate(prove_report, check_reports) -> str:
-    """Read the reports (one-line errors on a missing or malformed one) and render the page."""
-    prove_doc = read_prove_report(prove_report)
-    checks = [(report_label(p), read_check_report(p)) for p in check_reports]
-    split = split_beside(Path(prove_report).parent)
-    return render(prove_doc, report_label(prove_report), checks, images_dir(check_reports), split=split)
 
 
 def first_difference(committed: str, generated: str) -> Optional[tuple[int, str, str]]:

@@ -4,7 +4,6 @@ that becomes ``docs/invariants.md`` (generated from the obligations, never hand-
 from __future__ import annotations
 
 import json
-from pathlib import Path
 from dataclasses import asdict
 from xml.sax.saxutils import escape, quoteattr
 
@@ -82,23 +81,18 @@ def write_junit(path, outcomes) -> None:
     atomic_write_text(path, "\n".join(lines) + "\n")
 
 
-def markdown(outcomes, meta: dict, check_reports=None) -> str:
+def markdown(outcomes, meta: dict, sources: dict) -> str:
     """The invariants page of this run: the page ``navfn-smt docs`` generates
-    (:mod:`navfn_smt.report.invariants_page`, the one generator), read from this run's
-    report instead of the committed one, with the obligations of the files it checked and
-    the committed check reports (``docs/reports/check*.json`` under the working directory,
-    when there are any, or ``check_reports``)."""
+    (:func:`navfn_smt.report.invariants_page.render`, the one generator), read from this run's
+    report instead of the committed one; ``sources`` is the rest the page is rendered from
+    (:func:`navfn_smt.commands.common.page_sources`: the check reports, the split report, the
+    obligations of the files the run checked and what is known of them)."""
     from . import invariants_page as page
-    from ..smt.obligation import load_obligations
 
     doc = json.loads(json.dumps({**meta, "obligations": to_json(outcomes, {})}))
-    paths = page.default_check_reports() if check_reports is None else list(check_reports)
-    checks = [(page.report_label(p), page.read_check_report(p)) for p in paths]
-    files = meta.get("files")
-    declared = load_obligations(files) if files else None
-    return page.render(doc, "the run's report", checks, page.images_dir(paths), declared=declared,
-                       split=page.split_beside(Path(paths[0]).parent if paths else page.REPORTS_DIR))
+    return page.render(doc, "the run's report", **sources)
 
 
-def write_markdown(path, outcomes, meta: dict) -> None:
-    atomic_write_text(path, markdown(outcomes, meta))
+def write_markdown(path, outcomes, meta: dict, sources: dict) -> None:
+    """Write :func:`markdown` to ``path``."""
+    atomic_write_text(path, markdown(outcomes, meta, sources))
