@@ -1,160 +1,98 @@
 """Every numeric domain against the concrete one: the interface, then every kernel, bit for bit.
 
-One table of kernels and inputs (:mod:`navfn_smt.spec.conformance`), one way to compare
-(``same``: bit for bit, NaN payloads aside), and per domain only how it takes a plain input
-in and gives a result back:
-
-- numba: the fast backend's domain, each kernel compiled and called on float32/int64 values;
-- concolic: point intervals whose concrete part must be the concrete result and whose
-  interval must hold it;
-- array: numpy arrays, one call per kernel on every input at once, for the kernels the
-  splits enumerate (the others take Python ints and tuples the array domain does not);
-- real: exact arithmetic, so only where no rounding happens (``push_admitted``).
-
-The bit-precise fp32 domain runs the same table in ``tests/test_smt_equivalence.py`` (100,000
-evaluations on two workers; here 300 per kernel).
+The interface is :class:`navfn_smt.spec.domain.NumericDomain`; the kernels, the inputs and
+how each domain takes them in are the conformance harness (:mod:`navfn_smt.testing.conformance`:
+numba, concolic with its intervals, array, fp32, real where nothing rounds, real against
+exact rationals).  Here every kernel runs in every domain that runs it, and each kind of
+check is shown to fail on a domain with a seeded fault.  The bit-precise fp32 domain runs the
+same table at length in ``tests/test_smt_equivalence.py`` (100,000 evaluations on two workers).
 """
 
 from __future__ import annotations
 
 import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
-from numba import njit
+import z3
 
-from navfn_smt.backends.numba_domain import ND, OPERATIONS as NUMBA_OPERATIONS
-from navfn_smt.check.concolic import ConcolicDomain, V, concrete
-from navfn_smt.smt.domains import FPDomain, RealDomain
+import navfn_smt.spec.kernels as kernels
+from navfn_smt.backends.numba_domain import OPERATIONS as NUMBA_OPERATIONS
+from navfn_smt.check.concolic import ConcolicDomain
 from navfn_smt.smt.enumerate import ArrayDomain
-from navfn_smt.smt.evaluate import FPEvalDomain, RealEvalDomain, compare_kernel, lift, value
+from navfn_smt.smt.evaluate import RealEvalDomain
 from navfn_smt.spec import conformance as T
-from navfn_smt.spec.domain import OPERATIONS
+from navfn_smt.spec.domain import OPERATIONS, NumericDomain
 from navfn_smt.spec.numeric import CONCRETE as C
-from navfn_smt.spec.numeric import ConcreteDomain
-
-N = 4000  # inputs per kernel (numba, concolic, array)
-ARRAY_KERNELS = ("cell_update", "edge_weight", "push", "push_admitted", "grad_cell", "interpolate", "step")
-
-
-def _mismatches(case, got_of, n=N, seed=None):
-    """The inputs on which ``got_of(args)`` differs from the concrete results (first 5)."""
-    bad = []
-    for args in T.inputs(case, seed if seed is not None else 7 + T.CASES.index(case), n):
-        want, got = case.call(C, *args), got_of(args)
-        if len(want) != len(got) or not all(T.same(w, g) for w, g in zip(want, got)):
-            bad.append((args, want, got))
-    return bad[:5]
+from navfn_smt.testing import conformance as H
 
 
 # ------------------------------------------------------------------------ the interface
-@pytest.mark.parametrize("domain", [ConcreteDomain, FPDomain, RealDomain, ConcolicDomain, ArrayDomain],
-                         ids=lambda d: d.__name__)
+@pytest.mark.parametrize("domain", H.DOMAIN_CLASSES, ids=lambda d: d.__name__)
 def test_every_domain_has_every_operation(domain):
-    assert set(OPERATIONS) - set(dir(domain)) == set()
+    assert H.missing(dir(domain)) == set()
 
 
 def test_the_numba_domain_compiles_every_operation():
-    assert set(OPERATIONS) - set(NUMBA_OPERATIONS) == set()
+    assert H.missing(NUMBA_OPERATIONS) == set()
 
 
 def test_the_interface_lists_what_the_kernels_call():
-    import re
-    from pathlib import Path
-
-    import navfn_smt.spec.kernels as kernels
-
     called = set(re.findall(r"\bD\.(\w+)\(", Path(kernels.__file__).read_text()))
     assert called and called <= set(OPERATIONS), sorted(called - set(OPERATIONS))
 
 
-# ------------------------------------------------------------------------ the kernels
-_NUMBA = {}
+def test_every_operation_says_what_it_stands_for():
+    assert len(OPERATIONS) > 20
+    assert [n for n in OPERATIONS if not (getattr(NumericDomain, n).__doc__ or "").strip()] == []
 
 
-def _numba_call(case):
-    if case.name not in _NUMBA:
-        _NUMBA[case.name] = njit(error_model="numpy")(case.call)
-    return _NUMBA[case.name]
+def test_a_missing_operation_is_found():
+    partial = type("Partial", (), {n: None for n in OPERATIONS if n != "hypotf"})
+    assert H.missing(dir(partial)) == {"hypotf"}
 
 
-def _numba_value(kind, v):
-    if kind in (T.F32, T.COST_F32):
-        return np.float32(v)
-    return np.bool_(v) if kind == T.BOOL else np.int64(v)
+# ------------------------------------------------------------------------ every kernel, every domain
+PAIRS = [(run, case) for run in H.RUNS for case in T.CASES if case.name in run.kernels]
 
 
-@pytest.mark.parametrize("case", T.CASES, ids=lambda c: c.name)
-def test_numba(case):
-    f = _numba_call(case)
-    got = lambda args: tuple(f(ND, *(_numba_value(k, v) for k, v in zip(case.kinds, args))))  # noqa: E731
-    assert _mismatches(case, got) == []
+@pytest.mark.parametrize("run, case", PAIRS, ids=[f"{r.name}-{c.name}" for r, c in PAIRS])
+def test_kernel_in_domain(run, case):
+    assert H.mismatches(run, case) == []
 
 
-def _concolic_value(D, kind, v):
-    if kind == T.F32:
-        return V("f32", v, v, v, D.S.f32const(v))
-    if kind == T.COST:
-        return D.cost_int(D.cost(v, v, v, "c"))
-    if kind == T.COST_F32:
-        return D.cost_as_f32(D.cost(int(v), int(v), int(v), "c"))
-    return v
+def test_every_domain_runs_every_kernel_it_can():
+    """The runs leave out only what their domain cannot take: the array domain's conversions to
+    int are scalar (heuristic, nearest, lowest); the real domain's hypot is a value the inputs do
+    not determine (heuristic, grad_cell, step)."""
+    left_out = {r.name: set(T.CASE) - set(r.kernels) for r in H.RUNS}
+    assert left_out["numba"] == left_out["concolic"] == left_out["fp32"] == set()
+    assert left_out["array"] == {"heuristic", "nearest", "lowest"}
+    assert left_out["real"] & left_out["real-exact"] == {"heuristic", "grad_cell", "step"}
 
 
-def _holds(r) -> bool:
-    """A result's interval holds its concrete value (bools: the truth value's range)."""
-    if not isinstance(r, V) or r.kind == "bool" or (isinstance(r.conc, float) and math.isnan(r.conc)):
-        return True
-    return r.lo <= r.conc <= r.hi or (isinstance(r.lo, float) and math.isnan(r.lo))
+def test_the_inputs_hold_every_edge_and_every_cost():
+    """Each kernel's inputs carry NaN, both infinities, both zeros and subnormals, and a kernel
+    of a cost sees every cost byte in every domain."""
+    for case in T.CASES:
+        floats = [v for a in H.rows(H.RUN["numba"], case) for v, k in zip(a, case.kinds) if k == T.F32]
+        if floats:
+            assert any(math.isnan(v) for v in floats) and {math.inf, -math.inf} <= set(floats), case.name
+            assert {math.copysign(1, v) for v in floats if v == 0} == {1.0, -1.0}, case.name
+            assert any(0 < abs(v) < 1.1754942e-38 for v in floats), case.name
+    for run in H.RUNS:
+        for case in T.CASES:
+            at = [i for i, k in enumerate(case.kinds) if k in (T.COST, T.COST_F32)]
+            if at and case.name in run.kernels:
+                assert {int(a[i]) for a in H.rows(run, case) for i in at} == set(range(256)), (run.name, case.name)
 
 
-@pytest.mark.parametrize("case", T.CASES, ids=lambda c: c.name)
-def test_concolic(case):
-    def got(args):
-        D = ConcolicDomain(FPEvalDomain())
-        res = case.call(D, *(_concolic_value(D, k, v) for k, v in zip(case.kinds, args)))
-        assert all(_holds(r) for r in res), (args, res)
-        return tuple(concrete(r) for r in res)
-
-    assert _mismatches(case, got, n=N // 4) == []
-
-
-@pytest.mark.parametrize("name", ARRAY_KERNELS)
-def test_array(name):
-    case = T.CASE[name]
-    ins = T.inputs(case, 11, N)
-    cols = [np.array(c, np.float32 if k in (T.F32, T.COST_F32) else None) for k, c in zip(case.kinds, zip(*ins))]
-    with np.errstate(all="ignore"):
-        out = [np.broadcast_to(r, (N,)) for r in case.call(ArrayDomain({}), *cols)]
-    rows = iter(range(N))  # _mismatches draws the same inputs, in order
-
-    def got(args):
-        i = next(rows)
-        return tuple(r[i] for r in out)
-
-    assert _mismatches(case, got, seed=11) == []
-
-
-def test_real_where_nothing_rounds():
-    case = T.CASE["push_admitted"]
-
-    def got(args):
-        D = RealEvalDomain()
-        return tuple(value(r) for r in case.call(D, *(lift(D, k, v) for k, v in zip(case.kinds, args))))
-
-    assert _mismatches(case, got, n=1000) == []
-
-
-@pytest.mark.parametrize("case", T.CASES, ids=lambda c: c.name)
-def test_fp32(case):
-    """A short run of the bit-precise comparison (the long one: test_smt_equivalence.py)."""
-    assert compare_kernel(case.name, 5, 300) == []
-
-
-# ------------------------------------------------------------------------ the harness can fail
-def test_a_wrong_domain_is_caught():
-    """A domain whose hypotf forgets C's rule for an infinite argument beside a NaN (the
-    array domain's bug this harness found) differs from the concrete one."""
+# ------------------------------------------------------------------------ each check can fail
+def test_a_wrong_array_domain_is_caught():
+    """A domain whose hypotf forgets C's rule for an infinite argument beside a NaN (the array
+    domain's bug this harness found) differs from the concrete one."""
 
     class Forgetful(ArrayDomain):
         def hypotf(self, a, b):
@@ -162,12 +100,30 @@ def test_a_wrong_domain_is_caught():
             with np.errstate(all="ignore"):
                 return self.narrow(np.sqrt(wa * wa + wb * wb))
 
+    row = (-math.inf, 16.263456344604492, -1.4406818796870028e-31, 2.2537213648985461e+27, 30.40559196472168)
     case = T.CASE["grad_cell"]
-    ins = [(-math.inf, 16.263456344604492, -1.4406818796870028e-31, 2.2537213648985461e+27, 30.40559196472168)]
-    cols = [np.array(c, np.float32) for c in zip(*ins)]
-    with np.errstate(all="ignore"):
-        out = case.call(Forgetful({}), *cols)
-    assert not all(T.same(w, np.asarray(r)[0]) for w, r in zip(case.call(C, *ins[0]), out))
-    with np.errstate(all="ignore"):
-        fixed = case.call(ArrayDomain({}), *cols)
-    assert all(T.same(w, np.asarray(r)[0]) for w, r in zip(case.call(C, *ins[0]), fixed))
+    assert not T.agree(case.call(C, *row), H.array_results(case, [row], Forgetful)[0])
+    assert T.agree(case.call(C, *row), H.array_results(case, [row])[0])
+    assert H.mismatches(H.with_domain(H.RUN["array"], Forgetful, 4000), case) != []
+
+
+def test_an_unsound_interval_is_caught():
+    """A concolic product that takes the interval from two corners of four (sound only for
+    operands of one sign) misses values at the other corners."""
+
+    class TwoCorners(ConcolicDomain):
+        def mul(self, a, b):
+            return self._binary("f32", C.mul, self.S.mul, a, b, False)
+
+    assert H.mismatches(H.with_domain(H.RUN["concolic"], TwoCorners, 200), T.CASE["interpolate"]) != []
+
+
+def test_a_wrong_real_domain_is_caught():
+    """A real roundf that rounds halves up (not away from zero) differs from the exact one."""
+
+    class HalfUp(RealEvalDomain):
+        @staticmethod
+        def roundf(a):
+            return z3.ToReal(z3.ToInt(a + z3.RealVal("1/2")))
+
+    assert H.mismatches(H.with_domain(H.RUN["real-exact"], HalfUp, 300), T.CASE["nearest"]) != []

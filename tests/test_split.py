@@ -3,27 +3,22 @@
 The toy proof file (tests/data/split/toy_proofs.py) has one split per way a part is decided
 (bit-precise query, enumeration, error model) and per verdict; each must reach its declared
 verdict, in this process and on a real two-worker Dask cluster alike.  The array domain that
-enumeration runs on is a second statement of the concrete arithmetic, so it is held equal to
-the scalar spec bit for bit on generated inputs.
+enumeration runs on is a second statement of the concrete arithmetic: the conformance harness
+holds it equal to the scalar spec bit for bit (``tests/test_domain_conformance.py``).
 """
 
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 
-import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from navfn_smt.cli import main
 from navfn_smt.engine import Engine
 from navfn_smt.smt import split as S
-from navfn_smt.smt.enumerate import ArrayDomain
-from navfn_smt.spec import kernels as K
-from navfn_smt.spec.numeric import ConcreteDomain
 
 TOY = Path(__file__).parent / "data" / "split" / "toy_proofs.py"
 f32s = st.floats(width=32, allow_nan=False)
@@ -152,45 +147,6 @@ def test_the_shipped_splits_name_declared_obligations():
     assert {s.obligation for s in splits} >= {"grad_is_unit_or_zero", "interpolated_gradient_is_zero_or_not_tiny",
                                               "step_along_an_axis_moves_at_most_half"}
     assert all(s.obligation in names for s in splits)
-
-
-# ------------------------------------------------- the array domain equals the scalar spec
-def _bits(v):
-    return np.asarray(v, dtype=np.float32).view(np.uint32)
-
-
-@settings(max_examples=30, deadline=None)
-@given(st.lists(st.tuples(f32s, f32s), min_size=1, max_size=64))
-def test_array_normalise_equals_the_spec(pairs):
-    a = np.array([p[0] for p in pairs], dtype=np.float32)
-    b = np.array([p[1] for p in pairs], dtype=np.float32)
-    gx, gy = K.normalise(ArrayDomain({}), a, b)
-    for i, (x, y) in enumerate(pairs):
-        sx, sy = K.normalise(ConcreteDomain, float(np.float32(x)), float(np.float32(y)))
-        assert _bits(gx[i]) == _bits(sx) and _bits(gy[i]) == _bits(sy)
-
-
-@settings(max_examples=30, deadline=None)
-@given(st.lists(st.tuples(*(st.floats(-1, 1, width=32),) * 2, *(st.floats(-20, 20, width=32),) * 2),
-                min_size=1, max_size=64))
-def test_array_step_offsets_equal_the_spec(rows):
-    cols = [np.array(c, dtype=np.float32) for c in zip(*rows)]
-    out = K.step_offsets(ArrayDomain({}), *cols, np.float32(0.5))
-    for i, r in enumerate(rows):
-        want = K.step_offsets(ConcreteDomain, *(float(np.float32(v)) for v in r), 0.5)
-        got = tuple(o[i] for o in out)
-        assert [_bits(g) for g in got[:2]] == [_bits(w) for w in want[:2]] and tuple(map(int, got[2:])) == want[2:]
-
-
-@settings(max_examples=30, deadline=None)
-@given(st.lists(st.tuples(*(st.floats(-1, 1, width=32),) * 2, *(st.floats(-2, 2, width=32),) * 4),
-                min_size=1, max_size=64))
-def test_array_interpolation_equals_the_spec(rows):
-    cols = [np.array(c, dtype=np.float32) for c in zip(*rows)]
-    got = K.interpolate_gradient(ArrayDomain({}), *cols)
-    for i, r in enumerate(rows):
-        want = K.interpolate_gradient(ConcreteDomain, *(float(np.float32(v)) for v in r))
-        assert _bits(got[i]) == _bits(want) or (math.isnan(want) and math.isnan(float(got[i])))
 
 
 def test_a_worker_without_the_proof_file_decides_a_part_from_its_contents(tmp_path):

@@ -96,20 +96,40 @@ def lift(D, kind: str, v):
     return v  # plain ints and bools stay plain, as the kernels take them
 
 
+def _results(D, case: T.KernelCase, args: tuple):
+    return tuple(value(v) for v in case.call(D, *(lift(D, k, v) for k, v in zip(case.kinds, args))))
+
+
+def fp32_result(case: T.KernelCase, args: tuple):
+    """``case``'s results on one input of the table in the bit-precise domain, or a sentence
+    saying why there are none (a result the inputs do not determine, the library model
+    refusing what the platform's libm returns)."""
+    D = FPEvalDomain()
+    try:
+        got = _results(D, case, args)
+    except NotConstant as e:  # the inputs do not determine the symbolic result
+        return f"not determined: {str(e)[:200]}"
+    return got if D.model_admits_libm() else f"the library model refuses libm's {got}"
+
+
+def real_result(case: T.KernelCase, args: tuple, domain=RealEvalDomain):
+    """``case``'s results on one finite input of the table in the real domain (Fractions, ints,
+    bools), or a sentence saying why there are none."""
+    try:
+        return _results(domain(), case, args)
+    except NotConstant as e:
+        return f"not determined: {str(e)[:200]}"
+
+
 def compare_kernel(kernel: str, seed: int, n: int) -> list:
     """Evaluate ``kernel`` on ``n`` inputs of the conformance table in the bit-precise domain and
     concretely; return the mismatches (and the inputs where the library model refuses libm)."""
     case = T.CASE[kernel]
     bad = []
     for args in T.inputs(case, seed, n):
-        try:
-            D = FPEvalDomain()
-            want = case.call(C, *args)
-            got = tuple(value(v) for v in case.call(D, *(lift(D, k, v) for k, v in zip(case.kinds, args))))
-            if not all(same(a, b) for a, b in zip(want, got)) or not D.model_admits_libm():
-                bad.append((kernel, args, want, got, D.model_admits_libm()))
-        except NotConstant as e:  # the inputs do not determine the symbolic result
-            bad.append((kernel, "not determined", str(e)[:200]))
+        want, got = case.call(C, *args), fp32_result(case, args)
+        if not T.agree(want, got):
+            bad.append((kernel, args, want, got))
     return bad
 
 

@@ -3,14 +3,15 @@
 Every numeric domain that runs :mod:`.kernels` (concrete, numba, bit-precise, real, concolic
 intervals, numpy arrays) is held equal to the concrete one, bit for bit, on these cases: the
 symbolic equality of ``smt/evaluate.py`` (also the mutation check's domain detector) and the
-conformance test over all domains (``tests/test_domain_conformance.py``) both draw from here.
+harness that runs every domain on them (:mod:`navfn_smt.testing.conformance`) both draw from here.
 
 A case names its kernel, the kind of each argument (so a domain knows how to take it in:
 a float32 value, a cost byte as int or as float, a plain int or bool), how inputs are drawn,
 and how the kernel is called (its results always a tuple).  Floats are drawn from one mix:
 edge values (zeros, ones, halves, the cost values, POT_HIGH, 2**24 and its neighbours, the
 largest float, subnormals, infinities, NaN, rounding ties near 1), potentials, edge weights,
-small offsets, and arbitrary float32 bit patterns.
+small offsets, and arbitrary float32 bit patterns.  A kernel that takes a cost is also tried
+on every cost byte (:func:`every_cost`).
 """
 
 from __future__ import annotations
@@ -63,16 +64,23 @@ def same(a, b) -> bool:
     return a == b
 
 
+def agree(want: tuple, got) -> bool:
+    """``got`` (a domain's results, or a sentence saying why it has none) is ``want``, bit for bit."""
+    return isinstance(got, tuple) and len(got) == len(want) and all(same(w, g) for w, g in zip(want, got))
+
+
 @dataclass(frozen=True)
 class KernelCase:
     """One kernel under test: ``draw(rng)`` one input (a tuple of plain values, of ``kinds``),
-    ``call(D, *args)`` the kernel's results as a tuple; ``count`` inputs in the symbolic test."""
+    ``call(D, *args)`` the kernel's results as a tuple; ``count`` inputs in the symbolic test;
+    ``stated``: inputs chosen by hand, tried on every cost byte (:func:`every_cost`)."""
 
     name: str
     kinds: tuple
     draw: Callable
     call: Callable
     count: int
+    stated: tuple = ()
 
 
 def _floats(k, potentials=True):
@@ -86,6 +94,13 @@ def _cost(rng):
 def _cell_update(rng):
     c = _cost(rng)
     return (*f32_values(rng, 5), c, float(c))
+
+
+# updateCell's branches for every cost: the cell already lower than any candidate, a
+# neighbour difference of 12.5 (dc >= hf up to cost 12, the quadratic above), and of 1
+_HUGE = float(np.float32(1e10))
+_CELL_UPDATE_STATED = ((0.0, _HUGE, _HUGE, _HUGE, _HUGE, 0, 0.0), (_HUGE, 0.0, 30.0, _HUGE, 12.5, 0, 0.0),
+                       (9.0, 100.0, 120.0, 105.0, 99.0, 0, 0.0))
 
 
 def _push_admitted(rng):
@@ -146,7 +161,8 @@ def call_lowest(D, c, n0, n1, n2, n3, n4, n5, n6, n7):
 
 
 CASES = (
-    KernelCase("cell_update", (F32,) * 5 + (COST, COST_F32), _cell_update, call_cell_update, 16000),
+    KernelCase("cell_update", (F32,) * 5 + (COST, COST_F32), _cell_update, call_cell_update, 16000,
+               _CELL_UPDATE_STATED),
     KernelCase("edge_weight", (COST_F32,), lambda rng: (float(_cost(rng)),), call_edge_weight, 3000),
     KernelCase("push", (F32,) * 4, _floats(4), call_push, 12000),
     KernelCase("push_admitted", (INT, INT, BOOL, COST, INT, INT), _push_admitted, call_push_admitted, 3000),
@@ -164,3 +180,22 @@ def inputs(case: KernelCase, seed: int, n: int) -> list[tuple]:
     """``n`` inputs of ``case``, the same for the same seed."""
     rng = np.random.default_rng(seed)
     return [case.draw(rng) for _ in range(n)]
+
+
+def every_cost(case: KernelCase, seed: int, per_cost: int = 3) -> list[tuple]:
+    """Inputs of ``case`` on every cost byte 0..255: its stated inputs and ``per_cost`` drawn
+    ones (from a stream of their own), their cost arguments (``COST``, ``COST_F32``) set to the
+    byte; an input that comes twice (a kernel of the cost alone) is kept once; none for a kernel
+    without a cost."""
+    at = [i for i, k in enumerate(case.kinds) if k in (COST, COST_F32)]
+    if not at:
+        return []
+    rng = np.random.default_rng((seed, 256))
+    rows = []
+    for c in range(256):
+        for args in [*case.stated, *(case.draw(rng) for _ in range(per_cost))]:
+            args = list(args)
+            for i in at:
+                args[i] = c if case.kinds[i] == COST else float(c)
+            rows.append(tuple(args))
+    return list(dict.fromkeys(rows))
