@@ -77,10 +77,10 @@ def bench_oracle(suite: Path, oracle, mode: str) -> list[dict]:
     the whole calls (planning and the answers' transfer) and the JIT's batch time."""
     maps = [load_map(d, suite) for d in discover(suite)]
     ncases = sum(len(m.cases) for m in maps)
+    planners = [get_backend("jit").prepare(m.costs) for m in maps]
     rows = []
     for md in modes_of(mode):
         astar = md == "astar"
-        planners = [get_backend("jit").prepare(m.costs) for m in maps]
         planners[0].run_batch(maps[0].cases[:1], astar)  # compile or load the cache before timing
         cpp = wall = jit = 0.0
         for m, p in zip(maps, planners):

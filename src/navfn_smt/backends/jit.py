@@ -87,8 +87,9 @@ def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pend
     both buffers empty, or with ``at_start`` the start's potential below POT_HIGH), False
     when it paused: after ``budget`` cycles, or at the end of a cycle that ran with watched
     cells in ``newly[:counters[NEWLY]]`` (a cell ``n`` with ``watch[n] >= 0``, ``watch``
-    empty: none, that leaves POT_HIGH appends ``watch[n]``).  The state is in ``pot, pending, pb, fill, role, curt,
-    counters``.  ``trace`` receives the white-box trace while it has room (empty: none).
+    empty: none, that leaves POT_HIGH appends ``watch[n]``).  The state is in ``pot,
+    pending, pb, fill, role, curt, counters``.  ``trace`` receives the white-box trace while
+    it has room (empty: none).
     """
     ns = nx * ny
     high = ND.f32const(POT_HIGH)
@@ -408,8 +409,8 @@ def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int
         "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
     }
     _run_cases(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
-               planner.pending, planner.pb, planner.fill, planner.role, planner.curt, planner.memo, planner.gradx, planner.grady, out["start_reached"],
-               out["start_potential"], out["cycles"], out["updates"], out["dropped"], out["exit"],
-               out["path_offsets"], out["path"])
+               planner.pending, planner.pb, planner.fill, planner.role, planner.curt, planner.memo, planner.gradx,
+               planner.grady, out["start_reached"], out["start_potential"], out["cycles"], out["updates"],
+               out["dropped"], out["exit"], out["path_offsets"], out["path"])
     out["path"] = out["path"][: out["path_offsets"][-1]]
     return out

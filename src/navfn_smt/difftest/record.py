@@ -174,10 +174,10 @@ def record_suite(
         rel = str(smap.directory.resolve().relative_to(root.resolve()))
         for mode in modes:
             t0 = time.perf_counter()
-            if oracle is None:
-                fields = golden_fields(smap, planner, mode == "astar", int(full_first))
-            else:
-                fields = fields_of_results(smap, oracle.plan(smap.costs, smap.cases, mode == "astar"), int(full_first))
+            astar = mode == "astar"
+            results = (_planned(smap, planner, astar) if oracle is None
+                       else oracle.plan(smap.costs, smap.cases, astar))
+            fields = fields_of_results(smap, results, int(full_first))
             write_golden(smap.golden_path(mode), fields)
             r = RecordedMap(rel, smap.category, mode, len(smap.cases), len(fields["full_index"]),
                             time.perf_counter() - t0, smap.golden_path(mode))

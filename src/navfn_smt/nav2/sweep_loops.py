@@ -16,8 +16,9 @@ its run stops at the end of cycle 0 (or never starts when the buffers are empty)
 A*: the heuristic depends on the goal, so every goal is planned alone (:func:`~navfn_smt.backends.jit.propagate`).
 
 ``calcPath`` here is :func:`~navfn_smt.backends.jit.calc_path_touched`, the body of
-:func:`~navfn_smt.backends.jit.calc_path_zeroed` without its reset of the whole gradient arrays: the cells it writes are recorded and zeroed
-after the call, which leaves the arrays as the reset would (all zero) at the next call;
+:func:`~navfn_smt.backends.jit.calc_path_zeroed` without its reset of the whole gradient
+arrays: the cells it writes are recorded and zeroed after the call, which leaves the arrays
+as the reset would (all zero) at the next call;
 ``gradCell``'s cache is a pure function of the potential, so the results are bit-identical at
 O(path) instead of O(cells) per goal.
 
@@ -150,8 +151,9 @@ def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill
                    newly, tcell, nmax, gradx, grady, buf, touched, out_i, out_f, pts, keep,
                    col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
     """Up to ``budget`` cycles of ``propNavFnDijkstra(cycles, atStart=false)`` from the robot
-    cell, by :func:`~navfn_smt.backends.jit.run_cycles` (its state in ``pot, pending, pb, fill, role, curt,
-    counters``; before the first call, ``st[STARTED]`` 0, it runs :func:`~navfn_smt.backends.jit.start_propagation`).
+    cell, by :func:`~navfn_smt.backends.jit.run_cycles` (its state in ``pot, pending, pb, fill,
+    role, curt, counters``; before the first call, ``st[STARTED]`` 0, it runs
+    :func:`~navfn_smt.backends.jit.start_propagation`).
     At the end of each cycle every goal whose NavFn start became finite in it is finished on
     the potential as it is then; when the loop is over (``st[DONE]``), every goal still
     pending is finished on the final potential.  ``goal_of[n]`` is the goal planned from
@@ -192,7 +194,8 @@ def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill
 
 @jit
 def sweep_astar(costs, nx, ny, rx, ry, cycles, goals, pot, pending, pb, fill, role, curt, memo, tcell, nmax, gradx,
-                grady, buf, touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy):
+                grady, buf, touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen,
+                wx, wy):
     """``calcNavFnAstar`` + ``_legal_pose`` + ``getPlanFromPotential`` for each goal in ``goals``
     alone (NavFn start its cell, NavFn goal the robot's).  Returns ``pts``."""
     no_trace = np.empty(0, np.int32)

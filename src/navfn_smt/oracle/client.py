@@ -1,8 +1,8 @@
 """The built C++ NavFn as a planner: one process serves every case (no process per case).
 
-:class:`Oracle` speaks the driver's protocol (``navfn_driver.cpp``); :meth:`Oracle.prepare`
-gives a planner for one map with the same ``run`` as the backends' (:class:`MapPlanner`), so
-the golden-file recorder and the difftest's comparison take the C++ where they take the spec.
+:class:`Oracle` speaks the driver's protocol (``navfn_driver.cpp``): :meth:`Oracle.plan` gives
+every case of a map as the spec's :class:`~navfn_smt.spec.planner.PlanResult`, so the
+golden-file recorder and the live difftest take the C++'s answers where they take the spec's.
 """
 
 from __future__ import annotations
@@ -10,7 +10,6 @@ from __future__ import annotations
 import struct
 import subprocess
 from pathlib import Path
-from typing import Optional
 
 import numpy as np
 
@@ -73,19 +72,3 @@ class Oracle:
                                   trace=trace, cycles=cycles, updates=updates))
         (self.planning_seconds,) = struct.unpack("<d", self._read(8))
         return out
-
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> "OracleMapPlanner":
-        if capacity is not None:
-            raise NavfnInputError("the C++ NavFn's buffers hold PRIORITYBUFSIZE cells: no other capacity")
-        return OracleMapPlanner(self, costs)
-
-
-class OracleMapPlanner:
-    """The C++ NavFn on one map, planning one case per :meth:`run` (as a backend's planner)."""
-
-    def __init__(self, oracle: Oracle, costs: np.ndarray):
-        self.oracle = oracle
-        self.costs = np.ascontiguousarray(costs, dtype=np.uint8)
-
-    def run(self, start, goal, astar: bool, trace: bool = True) -> PlanResult:
-        return self.oracle.plan(self.costs, [(*start, *goal)], astar)[0]

@@ -5,8 +5,8 @@ with Python floats as C++ does; the numba domain compiles the same operations; t
 bit-precise and real domains build solver terms; the concolic domain carries intervals and
 terms beside the concrete value; the array domain computes on numpy arrays.  Each operation
 below says what it stands for in C++ (``float`` is binary32, ``double`` binary64, every
-operation rounds to nearest-even unless it says otherwise).  The conformance harness (:mod:`navfn_smt.testing.conformance`, run by
-``tests/test_domain_conformance.py``) holds every domain to this list and to the concrete
+operation rounds to nearest-even unless it says otherwise).  The conformance harness
+(:mod:`navfn_smt.testing.conformance`, run by ``tests/test_domain_conformance.py``) holds every domain to this list and to the concrete
 domain's results, bit for bit, on the inputs of :mod:`.conformance`.
 """
 
