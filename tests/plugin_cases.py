@@ -103,6 +103,7 @@ def outcome(run) -> dict:
         "best_cell": cell(run.best_cell),
         "max_cycles": run.max_cycles,
         "log": list(run.log),
+        "warnings": list(run.warnings),
     }
 
 

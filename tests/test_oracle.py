@@ -14,7 +14,7 @@ from navfn_smt.difftest.live import run_live
 from navfn_smt.difftest.record import compare_golden_files
 from navfn_smt.maps.suite import MODES, discover
 from navfn_smt.oracle.build import ANCHOR, build, distribution
-from navfn_smt.oracle.client import Oracle
+from navfn_smt.oracle.client import Oracle, PluginOracle
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "src" / "navfn_smt" / "examples" / "suite"
 DISTROS = ("humble", "jazzy", "kilted", "rolling")
@@ -84,7 +84,7 @@ def test_a_bug_seeded_in_the_cpp_is_caught_and_named(nav2_src, tmp_path, bug):
     text = (src / rel).read_text()
     assert text.count(line) == 1, f"{rel} no longer has {line!r} once"
     (src / rel).write_text(text.replace(line, seeded))
-    build(src, tmp_path / "bug")
+    build(src, tmp_path / "bug", programs=("navfn-traced",))
     with Oracle(tmp_path / "bug") as oracle:
         summary = run_live(EXAMPLE, (mode,), "jit", oracle).as_dict()
     assert summary["failed"] > 0
@@ -143,3 +143,119 @@ def test_bench_times_the_cpp_and_the_jit_in_one_run(builds, tmp_path, capsys):
         assert r["cases"] == 2198 and r["cpp_seconds"] > 0 and r["jit_seconds"] > 0
         assert r["jit_over_cpp"] == round(r["jit_seconds"] / r["cpp_seconds"], 3)
     assert "jit / C++" in capsys.readouterr().out
+
+
+# --------------------------------------------------------------------------- the plugin level
+def test_the_plugin_model_of_each_distribution_agrees_with_its_cpp(builds):
+    """Generated costmaps x poses x parameters: exceptions, messages, every published double and
+    every WARN and ERROR line, for the four distributions; each outcome the version has occurs."""
+    from navfn_smt.difftest.plugin_live import generated_configs, run_plugin_live
+
+    for distro in DISTROS:
+        with PluginOracle(builds[distro][1]) as oracle:
+            s = run_plugin_live(generated_configs(distro, 120, seed=7), oracle).as_dict()
+        assert s["failed"] == 0, (distro, s["disagreements"][:1])
+        assert s["passed"] > 2000 and s["log_lines"] > 5000
+        want = {"path", "empty path"} if distro == "humble" else {
+            "path", "StartOutsideMapBounds", "GoalOutsideMapBounds", "GoalOccupied", "NoValidPathCouldBeFound"}
+        assert want <= set(s["outcomes"]), (distro, s["outcomes"])
+
+
+def test_the_tolerance_search_logs_a_line_per_point_past_the_edge_as_nav2_does(builds):
+    """8x6 free map, tolerance 0.25, the goal in the right column's last half cell: the goal's
+    cell rounds one past the edge, so getPointPotential and the tolerance points past the right
+    edge log too (not only makePlan's line)."""
+    import numpy as np
+
+    from navfn_smt.nav2.params import PlannerParams
+    from navfn_smt.nav2.plugin import Costmap, Pose, create_plan
+
+    cm = Costmap(np.zeros((6, 8), np.uint8), 0.0, 0.0, 0.05)
+    params = PlannerParams(tolerance=0.25)
+    start, goal = Pose(0.11, 0.16), Pose(0.39, 0.11)
+    with PluginOracle(builds["rolling"][1]) as oracle:
+        (answer,) = oracle.create_plans(cm, params, [(start, goal)])
+    run = create_plan(cm, start, goal, params)
+    assert run.lines == answer.lines and len(answer.lines) == 60
+    assert all(line.startswith("worldToMap failed: mx,my: ") for _, line in answer.lines)
+
+
+def test_every_plugin_case_directory_replays_on_the_cpp(builds):
+    """The committed findings of the plugin model (tests/data/plugin_cases), planned by Rolling's
+    C++ plugin: the same exception, the same poses bit for bit, the same ERROR and WARN lines."""
+    from plugin_cases import load_case, outcome, run_case
+    from navfn_smt.difftest.plugin_live import first_difference
+
+    cases = sorted(d for d in (Path(__file__).parent / "data" / "plugin_cases").iterdir() if d.is_dir())
+    compared = 0
+    with PluginOracle(builds["rolling"][1]) as oracle:
+        for d in cases:
+            run = run_case(d)
+            if isinstance(run, dict) or run.error == "UndefinedBehaviour":
+                continue
+            cm, start, goal, params, case = load_case(d)
+            assert outcome(run) == case["expected"], d.name
+            (answer,) = oracle.create_plans(cm, params, [(start, goal)])
+            assert first_difference(run, answer) is None, d.name
+            compared += 1
+    assert compared >= 10
+
+
+def test_a_bug_seeded_in_the_plugin_is_caught(nav2_src, tmp_path):
+    """navfn_planner.cpp's worldToMap truncating instead of rounding: the plugin level fails."""
+    from navfn_smt.difftest.plugin_live import generated_configs, run_plugin_live
+
+    src = tmp_path / "src"
+    shutil.copytree(nav2_src / "rolling", src)
+    cpp = src / "nav2_navfn_planner" / "src" / "navfn_planner.cpp"
+    text = cpp.read_text()
+    assert text.count("std::round(") == 2
+    cpp.write_text(text.replace("std::round(", "std::floor("))
+    build(src, tmp_path / "bug", programs=("navfn-plugin",))
+    with PluginOracle(tmp_path / "bug") as oracle:
+        s = run_plugin_live(generated_configs("rolling", 40, seed=3), oracle).as_dict()
+    assert s["failed"] > 0 and s["disagreements"][0]["field"].split()[0] in ("pose", "log", "error")
+
+
+def test_the_cli_plugin_level(builds, tmp_path, capsys):
+    out = tmp_path / "p.json"
+    assert main(["difftest", "--level", "plugin", "--oracle", str(builds["humble"][1]), "--configs", "20",
+                 "--quiet", "--json", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["distribution"] == "humble" and doc["failed"] == 0 and doc["passed"] > 0
+    assert f"{doc['passed']} passed, 0 failed" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("args, says", [
+    (["difftest", "--level", "plugin"], "give --oracle DIR"),
+    (["difftest", "--unbounded"], "give --oracle DIR"),
+])
+def test_levels_need_an_oracle(args, says, capsys):
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert says in err and err.count("\n") == 1
+
+
+def test_a_build_without_the_plugin_says_so(nav2_src, tmp_path, capsys):
+    build(nav2_src / "jazzy", tmp_path / "b", programs=("navfn-traced",))
+    assert main(["difftest", "--level", "plugin", "--oracle", str(tmp_path / "b")]) == 2
+    assert "has no navfn-plugin" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- unbounded buffers
+def test_the_unbounded_build_agrees_with_the_unbounded_spec_where_buffers_overflow(builds, shared_suite_large):
+    """On the Nav2-sized map the bounded buffers drop pushes: the unbounded C++ plans other paths
+    than the bounded one, and the spec with unbounded buffers follows it bit for bit."""
+    import numpy as np
+
+    from navfn_smt.maps.suite import load_map
+
+    with Oracle(builds["rolling"][1], variant="unbounded") as oracle:
+        s = run_live(shared_suite_large, MODES, "jit", oracle, unbounded=True).as_dict()
+    assert s["failed"] == 0 and s["passed"] == 8
+    d = discover(shared_suite_large)[0]
+    m = load_map(d, shared_suite_large)
+    with Oracle(builds["rolling"][1], variant="unbounded") as u, Oracle(builds["rolling"][1]) as b:
+        differ = [not np.array_equal(x.path, y.path) for x, y in zip(u.plan(m.costs, m.cases, False),
+                                                                     b.plan(m.costs, m.cases, False))]
+    assert any(differ)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..errors import NavfnInputError
 from .common import BACKEND_HELP, MODE_HELP, check_files, suite_or_example
 
 
@@ -13,9 +14,13 @@ def cmd_difftest(args) -> int:
     from ..report import difftest as report
     from ..report.tables import progress_bar
 
+    check_files(args.json)
+    if args.level != "navfn":
+        return _level(args)
+    if args.unbounded and not args.oracle:
+        raise NavfnInputError("--unbounded compares with the C++ built with unbounded buffers: give --oracle DIR")
     suite, modes = suite_or_example(args.suite), modes_of(args.mode)
     eng = engine(args.jobs, args.scheduler)
-    check_files(args.json)
     if args.oracle:
         return _live(args, suite, modes)
     total = count_cases(suite, modes)
@@ -39,14 +44,46 @@ def _live(args, suite, modes) -> int:
     from ..report.tables import progress_bar
 
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
-    with Oracle(args.oracle) as oracle:
+    with Oracle(args.oracle, variant="unbounded" if args.unbounded else "traced") as oracle:
         label = f"difftest {suite} ({args.backend} against the C++ of {oracle.build['distribution']})"
         with progress_bar(total, label, enabled=not args.quiet) as advance:
-            summary = run_live(suite, modes, args.backend, oracle, progress=lambda o: advance(o.cases)).as_dict()
+            summary = run_live(suite, modes, args.backend, oracle, progress=lambda o: advance(o.cases),
+                               unbounded=args.unbounded).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
     report.closing_line(summary)
+    return 0 if summary["failed"] == 0 else 1
+
+
+def _level(args) -> int:
+    """``--level plugin``: the model of that level against the C++ built in ``--oracle DIR``."""
+    if not args.oracle:
+        raise NavfnInputError(f"--level {args.level} runs against the C++: give --oracle DIR (navfn-smt oracle build)")
+    if args.suite:
+        raise NavfnInputError(f"--level {args.level} generates its own cases (or takes --map): no suite")
+    return _plugin_level(args)
+
+
+def _plugin_level(args) -> int:
+    from ..difftest.plugin_live import generated_configs, map_configs, run_plugin_live
+    from ..oracle.client import PluginOracle
+    from ..report import difftest as report
+    from ..report.tables import progress_bar
+
+    with PluginOracle(args.oracle) as oracle:
+        distro = oracle.build["distribution"]
+        if args.map:
+            configs = list(map_configs(args.map, args.params, distro, args.configs, args.seed, args.pairs, args.sweep))
+        else:
+            configs = list(generated_configs(distro, args.configs, args.seed, args.pairs))
+        total = sum(len(c.pairs) for c in configs)
+        label = f"difftest --level plugin ({args.backend} model against the C++ plugin of {distro})"
+        with progress_bar(total, label, enabled=not args.quiet) as advance:
+            summary = run_plugin_live(configs, oracle, args.backend, progress=advance).as_dict()
+    report.level_table(summary)
+    if args.json:
+        report.write_level_json(args.json, summary)
     return 0 if summary["failed"] == 0 else 1
 
 
@@ -62,6 +99,21 @@ def register(sub) -> None:
     dt.add_argument("--backend", choices=BACKENDS, default="jit", help=BACKEND_HELP)
     dt.add_argument("--oracle", metavar="DIR", help="compare with the C++ NavFn built in DIR (navfn-smt oracle "
                     "build), run live on every case, instead of the golden files")
+    dt.add_argument("--unbounded", action="store_true", help="with --oracle: the C++ and the spec both with "
+                    "priority buffers that never drop a push")
+    dt.add_argument("--level", choices=("navfn", "plugin"), default="navfn",
+                    help="navfn: NavFn on a suite (default); plugin: Nav2's createPlan on generated costmaps, poses "
+                    "and parameters (or --map), with --oracle")
+    dt.add_argument("--configs", type=int, default=200, metavar="N",
+                    help="--level plugin|costmap: generated configurations (default: %(default)s)")
+    dt.add_argument("--pairs", type=int, default=24, metavar="N",
+                    help="--level plugin: pose pairs per configuration (default: %(default)s)")
+    dt.add_argument("--seed", type=int, default=0, help="--level plugin|costmap: the generator's seed")
+    dt.add_argument("--map", metavar="YAML", help="--level plugin: a map_server map (with --params, its global "
+                    "costmap and planner parameters) instead of generated costmaps")
+    dt.add_argument("--params", metavar="FILE", help="--level plugin --map: a Nav2 params file")
+    dt.add_argument("--sweep", nargs="+", type=float, metavar="X", help="--level plugin --map: from the start "
+                    "pose X Y [YAW] to the centre of every cell of the map")
     add_engine_arguments(dt, what="difftest chunks")
     dt.add_argument("--json", metavar="FILE", help="write per-map counts and every disagreement as JSON")
     dt.add_argument("--quiet", action="store_true", help="no progress bar")

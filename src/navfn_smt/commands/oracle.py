@@ -26,10 +26,11 @@ def register(sub) -> None:
     osub = orc.add_subparsers(dest="oracle_command", required=True, metavar="SUBCOMMAND")
     b = osub.add_parser("build", help="compile nav2_navfn_planner's NavFn from a navigation2 checkout",
                         description="Compile NavFn (navfn.cpp) from NAV2_SRC unchanged, with the project's "
-                        "driver and rclcpp stubs, plain and with a white-box trace hook inserted at an anchor "
-                        "line in a copy; record the compiler, flags, source hashes, git commit and distribution "
-                        "in DIR/build.json.")
+                        "drivers and ROS stub headers: plain; with a white-box trace hook inserted at an anchor "
+                        "line in a copy; with priority buffers that never drop (a copy of navfn.hpp); and the "
+                        "planner plugin (navfn_planner.cpp with Nav2's costmap_2d.cpp).  Record the compiler, "
+                        "flags, source hashes, git commit and distribution in DIR/build.json.")
     b.add_argument("nav2_src", metavar="NAV2_SRC",
-                   help="a navigation2 checkout, or a folder holding nav2_navfn_planner and nav2_core")
+                   help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
     b.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="the build folder (default: %(default)s)")
     b.set_defaults(func=cmd_oracle_build)

@@ -18,6 +18,7 @@ from typing import Callable, Iterable, Optional
 from ..backends import get_backend
 from ..maps.suite import discover, load_map
 from ..spec.extraction import UndefinedBehaviour
+from ..spec.propagation import unbounded_capacity
 from .record import fields_of_results
 from .runner import Disagreement, Summary, TaskOutcome, compare_case
 
@@ -25,14 +26,16 @@ MAX_DETAILS = 20  # disagreements kept per map and mode (every one is counted)
 
 
 def run_live(root, modes: Iterable[str], backend: str, oracle,
-             progress: Optional[Callable[[TaskOutcome], None]] = None) -> Summary:
-    """Every case of ``root`` in ``modes``: ``backend`` against the running ``oracle``."""
+             progress: Optional[Callable[[TaskOutcome], None]] = None, unbounded: bool = False) -> Summary:
+    """Every case of ``root`` in ``modes``: ``backend`` against the running ``oracle``
+    (``unbounded``: the spec's buffers never drop a push, as the C++ of ``navfn-unbounded``)."""
     root = Path(root)
     summary = Summary()
     be = get_backend(backend)
     for d in discover(root):
         smap = load_map(d, root)
-        planner = be.prepare(smap.costs)
+        ny, nx = smap.costs.shape
+        planner = be.prepare(smap.costs, capacity=unbounded_capacity(nx, ny) if unbounded else None)
         rel = str(Path(d).resolve().relative_to(root.resolve()))
         for mode in modes:
             o = _compare_map(smap, rel, mode, planner, oracle)

@@ -1,7 +1,8 @@
-"""``nav2_navfn_planner::NavfnPlanner``, the planner plugin around NavFn, as Nav2 Rolling runs it.
+"""``nav2_navfn_planner::NavfnPlanner``, the planner plugin around NavFn, per distribution.
 
-``createPlan`` (``navfn_planner.cpp``), step by step, every number as the C++ computes it
-(all plugin arithmetic is double; NavFn's is the spec's):
+``createPlan`` (``navfn_planner.cpp``) as Jazzy, Kilted and Rolling run it, step by step, every
+number as the C++ computes it (all plugin arithmetic is double; NavFn's is the spec's); what
+Humble does differently follows the list (:data:`FLAVOURS`):
 
 1. ``Costmap2D::worldToMap`` (truncating) on both poses: off the map ->
    ``StartOutsideMapBounds`` / ``GoalOutsideMapBounds``; ``tolerance == 0`` and the goal's
@@ -24,6 +25,15 @@
 6. ``smoothApproachToGoal`` and ``use_final_approach_orientation``; no path ->
    ``NoValidPathCouldBeFound``.
 
+Humble (:class:`Flavour` ``throws=False``) throws nothing: there is no ``Costmap2D::worldToMap``
+check in ``createPlan``; ``makePlan`` returns false with a WARN when its own ``worldToMap`` fails
+for the robot or the goal; the equal-positions case first looks up the start's cost (WARN and an
+empty path when lethal); a failed plan is a WARN and an empty path (``error == "EmptyPath"``).
+Its ``smoothApproachToGoal`` lacks the same-position branch.  ``max_cycles_factor`` is Rolling's
+alone (the others run ``4 * max(size_x, size_y)`` cycles), and so is the WARN of Rolling's
+``calcPath`` when it runs out of cycles.  The log (:attr:`PluginRun.lines`)
+holds every WARN and ERROR line in order, as Nav2 prints them.
+
 Where the C++ has undefined behaviour (an index past an array, a signed overflow) the result
 says so (``error == "UndefinedBehaviour"``) instead of guessing.
 """
@@ -45,6 +55,41 @@ from .params import PlannerParams
 LEGAL_BUT_NO_PLAN = ("Failed to create a plan from potential when a legal potential was found. "
                      "This shouldn't happen.")
 EXCEPTIONS = ("StartOutsideMapBounds", "GoalOutsideMapBounds", "GoalOccupied", "NoValidPathCouldBeFound")
+EMPTY_PATH = "EmptyPath"  # Humble: createPlan returned no pose (it throws nothing)
+WARN, ERROR = 30, 40  # rcutils' severity numbers
+ROBOT_OFF_MAP = ("Cannot create a plan: the robot's start position is off the global costmap. Planning will "
+                 "always fail, are you sure the robot has been properly localized?")
+GOAL_OFF_MAP = "The goal sent to the planner is off the global costmap. Planning will always fail to this goal."
+UNIQUE_POSE_LETHAL = "Failed to create a unique pose path because of obstacles"
+
+
+@dataclass(frozen=True)
+class Flavour:
+    """What ``navfn_planner.cpp`` does differently from one distribution to another."""
+
+    throws: bool  # createPlan checks both poses with Costmap2D::worldToMap and throws (Jazzy on)
+    same_position_smoothing: bool  # smoothApproachToGoal's second branch (Jazzy on)
+    cycles_factor: bool  # the max_cycles_factor parameter (Rolling); else 4
+    exhausted_warning: bool  # navfn.cpp's calcPath warns when it runs out of cycles (Rolling)
+
+
+# checked against each distribution's sources by the live plugin difftest (docs/oracle.md);
+# iron and lyrical are not among the checked sources: they take their neighbours' code
+FLAVOURS = {
+    "humble": Flavour(throws=False, same_position_smoothing=False, cycles_factor=False, exhausted_warning=False),
+    "iron": Flavour(throws=True, same_position_smoothing=False, cycles_factor=False, exhausted_warning=False),
+    "jazzy": Flavour(throws=True, same_position_smoothing=True, cycles_factor=False, exhausted_warning=False),
+    "kilted": Flavour(throws=True, same_position_smoothing=True, cycles_factor=False, exhausted_warning=False),
+    "lyrical": Flavour(throws=True, same_position_smoothing=True, cycles_factor=True, exhausted_warning=True),
+    "rolling": Flavour(throws=True, same_position_smoothing=True, cycles_factor=True, exhausted_warning=True),
+}
+UNCHECKED_FLAVOURS = ("iron", "lyrical")
+
+
+def flavour_of(distro: str) -> Flavour:
+    if distro not in FLAVOURS:
+        raise NavfnInputError(f"no planner plugin model for distribution {distro!r} (known: {', '.join(FLAVOURS)})")
+    return FLAVOURS[distro]
 
 
 @dataclass(frozen=True)
@@ -149,7 +194,7 @@ def plugin_axis_cell(w: float, origin: float, res: float) -> int:
 def max_cycles(cm: Costmap, params: PlannerParams) -> Optional[int]:
     """``getPlanFromPotential``'s ``max(size_x, size_y) * max_cycles_factor`` (int); None when the
     product overflows int (undefined behaviour)."""
-    n = max(cm.size_x, cm.size_y) * params.max_cycles_factor
+    n = max(cm.size_x, cm.size_y) * (params.max_cycles_factor if flavour_of(params.distro).cycles_factor else 4)
     return n if -2**31 <= n <= INT_MAX else None
 
 
@@ -192,7 +237,7 @@ class PluginRun:
     poses: list  # [Pose] from start to goal, as Nav2 publishes them; empty on failure
     error: Optional[str] = None  # one of EXCEPTIONS, or "UndefinedBehaviour"
     message: str = ""
-    log: list = field(default_factory=list)  # the plugin's ERROR lines, in order
+    lines: list = field(default_factory=list)  # the plugin's (level, line) WARN and ERROR lines, in order
     start_cell: Optional[tuple[int, int]] = None  # Costmap2D::worldToMap of the poses
     goal_cell: Optional[tuple[int, int]] = None
     robot_cell: Optional[tuple[int, int]] = None  # NavfnPlanner::worldToMap: NavFn's goal
@@ -216,6 +261,16 @@ class PluginRun:
         return self.error is None
 
     @property
+    def log(self) -> list:
+        """The ERROR lines, in order."""
+        return [line for level, line in self.lines if level == ERROR]
+
+    @property
+    def warnings(self) -> list:
+        """The WARN lines, in order."""
+        return [line for level, line in self.lines if level == WARN]
+
+    @property
     def legal_potential_no_plan(self) -> bool:
         """The case Nav2 issue #4655 reports: a legal potential, then no path from it."""
         return LEGAL_BUT_NO_PLAN in self.log
@@ -228,46 +283,112 @@ def _fail(run: PluginRun, error: str, message: str) -> PluginRun:
 
 def create_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams = PlannerParams(),
                 backend: str = "jit") -> PluginRun:
-    """``NavfnPlanner::createPlan(start, goal)`` on a costmap; never raises for planning outcomes."""
+    """``NavfnPlanner::createPlan(start, goal)`` of ``params.distro`` on a costmap; never raises for
+    planning outcomes."""
+    flavour = flavour_of(params.distro)
     run = PluginRun(poses=[])
-    for what, pose in (("start", start), ("goal", goal)):
-        if _cast_overflows(cm, pose):
-            return _fail(run, "UndefinedBehaviour", f"Costmap2D::worldToMap casts ({cpp_double(pose.x)} - origin) / "
-                                                    f"resolution to unsigned int for the {what}: the quotient is not "
-                                                    f"below 2^32 (or not a number)")
-    run.start_cell = costmap_world_to_map(cm, start.x, start.y)
-    if run.start_cell is None:
-        return _fail(run, "StartOutsideMapBounds", f"Start Coordinates of({cpp_double(start.x)}, "
-                                                   f"{cpp_double(start.y)}) was outside bounds")
-    run.goal_cell = costmap_world_to_map(cm, goal.x, goal.y)
-    if run.goal_cell is None:
-        return _fail(run, "GoalOutsideMapBounds", f"Goal Coordinates of({cpp_double(goal.x)}, "
-                                                  f"{cpp_double(goal.y)}) was outside bounds")
-    gx, gy = run.goal_cell
-    if params.tolerance == 0 and int(cm.costs[gy, gx]) == LETHAL_OBSTACLE:
-        return _fail(run, "GoalOccupied", f"Goal Coordinates of({cpp_double(goal.x)}, "
-                                          f"{cpp_double(goal.y)}) was in lethal cost")
+    if flavour.throws and _checked_poses(cm, start, goal, params, run) is not None:
+        return run
     if start.x == goal.x and start.y == goal.y:
+        if not flavour.throws and _unique_pose_lethal(cm, start, run):
+            return run
         keep = start.orientation == goal.orientation or params.use_final_approach_orientation
         run.poses = [start if keep else Pose(start.x, start.y, *goal.orientation)]
         return run
     make_plan(cm, start, goal, params, run, backend)
     if run.error is None and not run.poses:
-        _fail(run, "NoValidPathCouldBeFound", f"Failed to create plan with tolerance of: {cpp_double(params.tolerance)}")
+        if flavour.throws:
+            _fail(run, "NoValidPathCouldBeFound", f"Failed to create plan with tolerance of: "
+                                                  f"{cpp_double(params.tolerance)}")
+        else:
+            run.lines.append((WARN, f"{params.plugin}: failed to create plan with tolerance {params.tolerance:.2f}."))
+            _fail(run, EMPTY_PATH, "createPlan returned an empty path")
     return run
 
 
-def _plugin_cell(cm: Costmap, pose: Pose, run: PluginRun) -> tuple[int, int]:
+def _checked_poses(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, run: PluginRun) -> Optional[str]:
+    """createPlan's checks (Jazzy on): both poses on the map (``Costmap2D::worldToMap``) and, with
+    no tolerance, the goal's cell not lethal; the error raised, or None."""
+    for what, pose in (("start", start), ("goal", goal)):
+        if _cast_overflows(cm, pose):
+            return _fail(run, "UndefinedBehaviour", f"Costmap2D::worldToMap casts ({cpp_double(pose.x)} - origin) / "
+                                                    f"resolution to unsigned int for the {what}: the quotient is not "
+                                                    f"below 2^32 (or not a number)").error
+    run.start_cell = costmap_world_to_map(cm, start.x, start.y)
+    if run.start_cell is None:
+        return _fail(run, "StartOutsideMapBounds", f"Start Coordinates of({cpp_double(start.x)}, "
+                                                   f"{cpp_double(start.y)}) was outside bounds").error
+    run.goal_cell = costmap_world_to_map(cm, goal.x, goal.y)
+    if run.goal_cell is None:
+        return _fail(run, "GoalOutsideMapBounds", f"Goal Coordinates of({cpp_double(goal.x)}, "
+                                                  f"{cpp_double(goal.y)}) was outside bounds").error
+    gx, gy = run.goal_cell
+    if params.tolerance == 0 and int(cm.costs[gy, gx]) == LETHAL_OBSTACLE:
+        return _fail(run, "GoalOccupied", f"Goal Coordinates of({cpp_double(goal.x)}, "
+                                          f"{cpp_double(goal.y)}) was in lethal cost").error
+    return None
+
+
+def _unique_pose_lethal(cm: Costmap, start: Pose, run: PluginRun) -> bool:
+    """Humble's equal-positions case: ``Costmap2D::worldToMap`` on the start, its result not
+    checked, then ``getCost(mx, my)``; lethal -> a WARN and an empty path (True)."""
+    if start.x < cm.origin_x or start.y < cm.origin_y:
+        _fail(run, "UndefinedBehaviour", "Costmap2D::worldToMap leaves mx, my unset below the origin and "
+                                         "getCost reads them (the start equals the goal, off the map)")
+        return True
+    if _cast_overflows(cm, start):
+        _fail(run, "UndefinedBehaviour", f"Costmap2D::worldToMap casts ({cpp_double(start.x)} - origin) / resolution "
+                                         f"to unsigned int: the quotient is not below 2^32")
+        return True
+    mx = int((start.x - cm.origin_x) / cm.resolution)
+    my = int((start.y - cm.origin_y) / cm.resolution)
+    index = my * cm.size_x + mx
+    if index >= cm.size_x * cm.size_y:
+        _fail(run, "UndefinedBehaviour", f"getCost reads costmap index {index}, past the end of the "
+                                         f"{cm.size_x}x{cm.size_y} costmap (the start equals the goal, off the map)")
+        return True
+    if int(cm.costs.ravel()[index]) != LETHAL_OBSTACLE:
+        return False
+    run.lines.append((WARN, UNIQUE_POSE_LETHAL))
+    _fail(run, EMPTY_PATH, "createPlan returned an empty path")
+    return True
+
+
+def _log_world_to_map_failed(cm: Costmap, run: PluginRun, mx: int, my: int) -> None:
+    run.lines.append((ERROR, f"worldToMap failed: mx,my: {mx},{my}, size_x,size_y: {cm.size_x},{cm.size_y}"))
+
+
+def _plugin_cell(cm: Costmap, pose: Pose, run: PluginRun) -> tuple[bool, Optional[tuple[int, int]]]:
+    """``NavfnPlanner::worldToMap`` on a pose, its ERROR line logged when the rounded cell is off
+    the map (below the origin it returns false without a line)."""
     ok, cell = plugin_world_to_map(cm, pose.x, pose.y)
-    if not ok:  # createPlan's check passed, so only the rounding can fail here
-        run.log.append(f"worldToMap failed: mx,my: {cell[0]},{cell[1]}, size_x,size_y: {cm.size_x},{cm.size_y}")
-    return cell
+    if not ok and cell is not None:
+        _log_world_to_map_failed(cm, run, *cell)
+    return ok, cell
+
+
+def _int_cast_overflows(cm: Costmap, pose: Pose) -> bool:
+    """``static_cast<int>(std::round(q))`` in ``NavfnPlanner::worldToMap`` with q not below 2^31
+    (undefined behaviour; only reachable where createPlan does not check the poses first)."""
+    if pose.x < cm.origin_x or pose.y < cm.origin_y:
+        return False
+    return not all(_round(q) < 2**31 if q == q and q < 2.0**62 else False
+                   for q in ((pose.x - cm.origin_x) / cm.resolution, (pose.y - cm.origin_y) / cm.resolution))
 
 
 def make_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, run: PluginRun, backend: str) -> None:
     """``NavfnPlanner::makePlan``; fills ``run`` (poses empty when no plan)."""
+    flavour = flavour_of(params.distro)
     nx, ny = cm.size_x, cm.size_y
-    robot = run.robot_cell = _plugin_cell(cm, start, run)
+    if not flavour.throws and (_int_cast_overflows(cm, start) or _int_cast_overflows(cm, goal)):
+        _fail(run, "UndefinedBehaviour", "NavfnPlanner::worldToMap casts std::round((w - origin) / resolution) "
+                                         "to int: the value is not below 2^31")
+        return
+    ok, robot = _plugin_cell(cm, start, run)
+    if not ok and not flavour.throws:
+        run.lines.append((WARN, ROBOT_OFF_MAP))
+        return
+    run.robot_cell = robot
     ros = np.array(cm.costs, dtype=np.uint8, copy=True)
     if robot[1] * nx + robot[0] >= nx * ny:
         _fail(run, "UndefinedBehaviour", f"clearRobotCell writes costmap index {robot[1] * nx + robot[0]}, past the "
@@ -275,7 +396,11 @@ def make_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, run: 
         return
     ros.ravel()[robot[1] * nx + robot[0]] = FREE_SPACE  # clearRobotCell: setCost(mx, my) = costmap_[my*nx + mx]
     run.costs = set_costmap(ros, is_ros=True, allow_unknown=params.allow_unknown)
-    target = run.target_cell = _plugin_cell(cm, goal, run)
+    ok, target = _plugin_cell(cm, goal, run)
+    if not ok and not flavour.throws:
+        run.lines.append((WARN, GOAL_OFF_MAP))
+        return
+    run.target_cell = target
     try:
         _propagate(run, target, robot, params.use_astar, backend)
     except UndefinedBehaviour as e:
@@ -289,18 +414,21 @@ def make_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, run: 
     if run.error is not None:
         return
     if not poses:
-        run.log.append(LEGAL_BUT_NO_PLAN)
+        run.lines.append((ERROR, LEGAL_BUT_NO_PLAN))
         return
-    poses = smooth_approach_to_goal(best, poses)
+    poses = smooth_approach_to_goal(best, poses, flavour.same_position_smoothing)
     if params.use_final_approach_orientation:
         poses = _final_approach_orientation(poses, start)
     run.poses = poses
 
 
 def get_point_potential(cm: Costmap, run: PluginRun, wx: float, wy: float) -> float:
-    """``getPointPotential``: DBL_MAX when the plugin's worldToMap fails, else the float potential."""
+    """``getPointPotential``: DBL_MAX when the plugin's worldToMap fails (its ERROR line logged
+    when the point lies past the right or top edge), else the float potential."""
     ok, cell = plugin_world_to_map(cm, wx, wy)
     if not ok:
+        if cell is not None:
+            _log_world_to_map_failed(cm, run, *cell)
         return DBL_MAX
     return float(run.potential[cell[1], cell[0]])
 
@@ -314,6 +442,7 @@ def _legal_pose(cm: Costmap, goal: Pose, tolerance: float, run: PluginRun) -> Op
     run.used_tolerance = True
     xs = tolerance_steps(goal.x - tolerance, goal.x + tolerance, cm.resolution)
     ys = tolerance_steps(goal.y - tolerance, goal.y + tolerance, cm.resolution)
+    _log_tolerance_points(cm, run, xs, ys)
     cols, rows = rounded_cells(xs, cm.origin_x, cm.resolution, cm.size_x), rounded_cells(ys, cm.origin_y,
                                                                                              cm.resolution, cm.size_y)
     xi, yi = np.nonzero(cols >= 0)[0], np.nonzero(rows >= 0)[0]
@@ -327,6 +456,18 @@ def _legal_pose(cm: Costmap, goal: Pose, tolerance: float, run: PluginRun) -> Op
     # the loop's strict '<' keeps the first of the nearest it could take
     k = int(np.argmin(np.where(taken, sdist, np.inf)))
     return goal.with_position(float(xs[xi[k % len(xi)]]), float(ys[yi[k // len(xi)]]))
+
+
+def _log_tolerance_points(cm: Costmap, run: PluginRun, xs: np.ndarray, ys: np.ndarray) -> None:
+    """The ERROR line ``getPointPotential``'s worldToMap logs for every tolerance point, in the
+    loop's (y, x) order, that is not below the origin but rounds to a cell past an edge."""
+    if len(xs) == 0 or len(ys) == 0:
+        return
+    mx, my = rounded_raw(xs, cm.origin_x, cm.resolution), rounded_raw(ys, cm.origin_y, cm.resolution)
+    past = ((xs >= cm.origin_x)[None, :] & (ys >= cm.origin_y)[:, None]
+            & ((mx >= cm.size_x)[None, :] | (my >= cm.size_y)[:, None]))
+    for j, i in zip(*np.nonzero(past)):
+        _log_world_to_map_failed(cm, run, int(mx[i]), int(my[j]))
 
 
 def tolerance_prefers(potential, sdist, best_sdist):
@@ -362,12 +503,18 @@ def _stalled(lo: float, step: float):
                           f"move it past the goal (Nav2's loop would not terminate)")
 
 
-def rounded_cells(w: np.ndarray, origin: float, res: float, size: int) -> np.ndarray:
-    """``NavfnPlanner::worldToMap`` per axis on many points: the rounded cell, or -1 when the call fails."""
+def rounded_raw(w: np.ndarray, origin: float, res: float) -> np.ndarray:
+    """``std::round((w - origin) / res)`` per point (the value ``NavfnPlanner::worldToMap`` writes
+    when ``w >= origin``; meaningless below the origin)."""
     f = (w - origin) / res
     fl = np.floor(f)
-    cell = fl + (f - fl >= 0.5)
-    return np.where((w >= origin) & (cell < size), cell, -1).astype(np.int64)
+    return np.where(np.isfinite(fl), fl + (f - fl >= 0.5), -1).astype(np.int64)
+
+
+def rounded_cells(w: np.ndarray, origin: float, res: float, size: int) -> np.ndarray:
+    """``NavfnPlanner::worldToMap`` per axis on many points: the rounded cell, or -1 when the call fails."""
+    cell = rounded_raw(w, origin, res)
+    return np.where((w >= origin) & (cell < size), cell, -1)
 
 
 def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run: PluginRun, backend: str) -> list:
@@ -389,17 +536,20 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
         _fail(run, "UndefinedBehaviour", str(e))
         return []
     run.path = path
+    if run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
+        run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
     return [Pose(*plugin_map_to_world(cm, px, py)) for px, py in path[::-1].tolist()]
 
 
-def smooth_approach_to_goal(goal: Pose, poses: list) -> list:
+def smooth_approach_to_goal(goal: Pose, poses: list, same_position: bool = True) -> list:
     """``smoothApproachToGoal``: replace the last pose by the goal when it lies farther from the
-    one before than the goal does, or (same position) to take its orientation; else append it."""
+    one before than the goal does, or (same position; Jazzy on) to take its orientation; else
+    append it."""
     if len(poses) >= 2:
         before, last = poses[-2], poses[-1]
         if squared_distance(last, before) > squared_distance(goal, before):
             return poses[:-1] + [goal]
-        if squared_distance(last, goal) < 1e-6:
+        if same_position and squared_distance(last, goal) < 1e-6:
             return poses[:-1] + [goal]
     return poses + [goal]
 

@@ -1,7 +1,7 @@
 """Build Nav2's NavFn from a user's sources, unchanged, as an oracle the spec is tested against.
 
 The sources are the system under test: ``NAV2_SRC`` is a navigation2 checkout or a folder
-holding ``nav2_navfn_planner`` and ``nav2_core``.  Nothing of them is copied into the project
+holding ``nav2_navfn_planner``, ``nav2_core`` and ``nav2_costmap_2d``.  Nothing of them is copied into the project
 and nothing in them is changed.  The build goes to a folder the user names:
 
 - ``navfn-plain``: ``navfn.cpp`` as it is, with the driver ``navfn_driver.cpp`` and the rclcpp
@@ -9,6 +9,15 @@ and nothing in them is changed.  The build goes to a folder the user names:
 - ``navfn-traced``: the same, compiled from a copy of ``navfn.cpp`` in the build folder with
   ``NAVFN_SMT_CYCLE(curP, curPe);`` inserted before each anchor line of the two propagation
   loops (the white-box trace).  When a version moved an anchor the build stops, naming it.
+
+- ``navfn-unbounded``: the traced build with priority buffers that never drop a push: a copy of
+  ``navfn.hpp`` in the build folder whose ``#define PRIORITYBUFSIZE`` line names a variable the
+  driver sets to ``nx * ny`` for each map (the pending flags keep a cell in one buffer at a time);
+- ``navfn-plugin``: ``navfn_planner.cpp`` (the planner plugin), ``navfn.cpp``, ``costmap_2d.cpp``
+  (and ``parameter_handler.cpp`` where the version has one) as they are, with the driver
+  ``plugin_driver.cpp`` and the ROS stub headers of ``plugin_stubs/``; the plugin's signature
+  (``createPlan`` with a cancel checker, with via points; the node type) is read from
+  ``nav2_core/global_planner.hpp``.
 
 ``build.json`` records what was built: the compiler and its version, the flags, the SHA-256
 of every source file used, the git commit when the sources are in a git checkout, and the
@@ -25,6 +34,7 @@ import re
 import shutil
 import subprocess
 import tempfile
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Optional
 
@@ -35,7 +45,8 @@ ANCHOR = "// reset pending flags on current priority buffer"  # once in each pro
 ANCHORS_EXPECTED = 2
 HOOK = "NAVFN_SMT_CYCLE(curP, curPe);"
 FLAGS = ("-std=c++17", "-O2")
-PROGRAMS = ("navfn-plain", "navfn-traced")
+PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin")
+BUFFER_DEFINE = "#define PRIORITYBUFSIZE"  # once in navfn.hpp; the unbounded build replaces its line
 # package.xml's major.minor version -> the distribution it is released in
 DISTRIBUTIONS = {(1, 1): "humble", (1, 2): "iron", (1, 3): "jazzy", (1, 4): "kilted"}
 NEWEST = "rolling"
@@ -49,6 +60,9 @@ def find_sources(root) -> Path:
         raise NavfnInputError(f"{root}: no such directory (give a navigation2 checkout or a folder of its packages)")
     for cand in (root, *sorted(p for p in root.iterdir() if p.is_dir())):
         if (cand / "nav2_navfn_planner" / "src" / "navfn.cpp").is_file() and (cand / "nav2_core").is_dir():
+            if not (cand / "nav2_costmap_2d" / "src" / "costmap_2d.cpp").is_file():
+                raise NavfnInputError(f"{cand}: no nav2_costmap_2d/src/costmap_2d.cpp beside nav2_navfn_planner "
+                                      f"(the planner plugin is built with Nav2's Costmap2D)")
             return cand
     raise NavfnInputError(f"{root}: no nav2_navfn_planner/src/navfn.cpp with nav2_core beside it")
 
@@ -67,6 +81,29 @@ def takes_cancel_checker(src: Path) -> bool:
     """Whether ``propNavFnDijkstra`` takes a ``cancelChecker`` (jazzy and later) or not (humble)."""
     hpp = (src / "nav2_navfn_planner" / "include" / "nav2_navfn_planner" / "navfn.hpp").read_text(encoding="utf-8")
     return bool(re.search(r"propNavFnDijkstra\s*\([^;]*cancelChecker", hpp))
+
+
+def plugin_api(src: Path) -> list[str]:
+    """The defines that fit the version's ``GlobalPlanner`` interface: ``createPlan`` with via
+    points (3), with a cancel checker (2) or neither (1); ``nav2::LifecycleNode`` nodes."""
+    hpp = (src / "nav2_core" / "include" / "nav2_core" / "global_planner.hpp").read_text(encoding="utf-8")
+    api = 3 if "viapoints" in hpp else 2 if "cancel_checker" in hpp else 1
+    return [f"NAVFN_SMT_PLUGIN_API={api}"] + (["NAVFN_SMT_NAV2_NODE"] if "nav2::LifecycleNode" in hpp else [])
+
+
+def unbounded_header(navfn_hpp: Path, include_root: Path) -> Path:
+    """A copy of ``navfn.hpp`` under ``include_root`` whose buffer size is the driver's variable."""
+    lines = navfn_hpp.read_text(encoding="utf-8").splitlines(keepends=True)
+    at = [i for i, line in enumerate(lines) if line.strip().startswith(BUFFER_DEFINE + " ")]
+    if len(at) != 1:
+        raise NavfnInputError(f"{navfn_hpp}: the line {BUFFER_DEFINE!r} is there {len(at)} times, not once: "
+                              f"this version moved it")
+    lines[at[0]] = f"{BUFFER_DEFINE} (::navfn_smt_buffer_size)\n"
+    out = include_root / "nav2_navfn_planner" / "navfn.hpp"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text("extern int navfn_smt_buffer_size;  // navfn-smt: the unbounded build's buffer size\n"
+                   + "".join(lines), encoding="utf-8")
+    return out
 
 
 def traced_copy(navfn_cpp: Path, out: Path) -> Path:
@@ -112,32 +149,68 @@ def _compile(cxx: str, sources, includes, defines, out: Path) -> None:
         raise NavfnInputError(f"the C++ build of {out.name} failed: {first}")
 
 
-def build(nav2_src, out) -> dict:
-    """Build the oracle programs from ``nav2_src`` into the folder ``out``; returns build.json."""
-    src = find_sources(nav2_src)
-    out = Path(out)
-    if out.exists() and not (out / "build.json").is_file():
-        raise NavfnInputError(f"{out}: exists and is not an oracle build folder (no build.json); name a new folder")
-    cxx = compiler()
-    version = subprocess.run([cxx, "--version"], capture_output=True, text=True).stdout.splitlines()[:1]
+def _jobs(src: Path, tmp: Path) -> dict:
+    """Each program's (sources, include folders, defines), and the files the copies were made
+    from; the traced and unbounded copies are written into ``tmp``."""
     pkg = src / "nav2_navfn_planner"
     navfn_cpp = pkg / "src" / "navfn.cpp"
     includes = [HERE / "stubs", pkg / "include", src / "nav2_core" / "include", HERE]
     defines = ["NAVFN_SMT_CANCEL_CHECKER"] if takes_cancel_checker(src) else []
+    driver = HERE / "navfn_driver.cpp"
+    traced = traced_copy(navfn_cpp, tmp / "navfn_traced.cpp")
+    unbounded_header(pkg / "include" / "nav2_navfn_planner" / "navfn.hpp", tmp / "unbounded")
+    plugin = [HERE / "plugin_driver.cpp", pkg / "src" / "navfn_planner.cpp", navfn_cpp,
+              src / "nav2_costmap_2d" / "src" / "costmap_2d.cpp",
+              *[f for f in [pkg / "src" / "parameter_handler.cpp"] if f.is_file()]]
+    plugin_includes = [HERE / "plugin_stubs", pkg / "include", src / "nav2_core" / "include",
+                       src / "nav2_costmap_2d" / "include"]
+    return {
+        "navfn-plain": ([driver, navfn_cpp], includes, defines),
+        "navfn-traced": ([driver, traced], includes, [*defines, "NAVFN_SMT_TRACED"]),
+        "navfn-unbounded": ([driver, traced], [tmp / "unbounded", *includes],
+                            [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_UNBOUNDED"]),
+        "navfn-plugin": (plugin, plugin_includes, plugin_api(src)),
+    }
+
+
+def _used(src: Path) -> list[Path]:
+    """The Nav2 files a build reads (hashed into build.json)."""
+    pkg, core, costmap = src / "nav2_navfn_planner", src / "nav2_core" / "include" / "nav2_core", src / "nav2_costmap_2d"
+    files = [pkg / "src" / "navfn.cpp", pkg / "src" / "navfn_planner.cpp", pkg / "src" / "parameter_handler.cpp",
+             pkg / "include" / "nav2_navfn_planner" / "navfn.hpp",
+             pkg / "include" / "nav2_navfn_planner" / "navfn_planner.hpp",
+             pkg / "include" / "nav2_navfn_planner" / "parameter_handler.hpp",
+             core / "global_planner.hpp", core / "planner_exceptions.hpp", costmap / "src" / "costmap_2d.cpp",
+             costmap / "include" / "nav2_costmap_2d" / "costmap_2d.hpp",
+             costmap / "include" / "nav2_costmap_2d" / "cost_values.hpp"]
+    return [f for f in files if f.is_file()]
+
+
+def build(nav2_src, out, programs=PROGRAMS) -> dict:
+    """Build the oracle ``programs`` (all by default) from ``nav2_src`` into the folder ``out``,
+    compiling them side by side, one per core; returns build.json."""
+    src = find_sources(nav2_src)
+    out = Path(out)
+    if out.exists() and not (out / "build.json").is_file():
+        raise NavfnInputError(f"{out}: exists and is not an oracle build folder (no build.json); name a new folder")
+    unknown = [p for p in programs if p not in PROGRAMS]
+    if unknown:
+        raise NavfnInputError(f"no oracle program {unknown[0]!r} (there are: {', '.join(PROGRAMS)})")
+    cxx = compiler()
+    version = subprocess.run([cxx, "--version"], capture_output=True, text=True).stdout.splitlines()[:1]
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
     try:
-        driver = HERE / "navfn_driver.cpp"
-        _compile(cxx, [driver, navfn_cpp], includes, defines, tmp / "navfn-plain")
-        traced = traced_copy(navfn_cpp, tmp / "navfn_traced.cpp")
-        _compile(cxx, [driver, traced], includes, [*defines, "NAVFN_SMT_TRACED"], tmp / "navfn-traced")
-        used = [navfn_cpp, pkg / "include" / "nav2_navfn_planner" / "navfn.hpp",
-                src / "nav2_core" / "include" / "nav2_core" / "planner_exceptions.hpp"]
+        jobs = _jobs(src, tmp)
+        with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+            running = [pool.submit(_compile, cxx, *jobs[name], tmp / name) for name in programs]
+            for job in running:
+                job.result()
         doc = {
             "sources": str(src.resolve()), "distribution": distribution(src), "git_commit": _git_commit(src),
             "compiler": cxx, "compiler_version": version[0] if version else "", "flags": list(FLAGS),
-            "defines": defines, "programs": list(PROGRAMS),
-            "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in used if p.is_file()},
+            "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs),
+            "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src)},
             "anchor": ANCHOR,
         }
         (tmp / "build.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
@@ -158,7 +231,7 @@ def load_build(folder) -> dict:
     except (OSError, ValueError) as e:
         raise NavfnInputError(f"{folder}: not an oracle build folder (build.json: "
                               f"{getattr(e, 'strerror', None) or e}); run `navfn-smt oracle build`") from None
-    missing = [p for p in PROGRAMS if not os.access(folder / p, os.X_OK)]
+    missing = [p for p in doc.get("programs", PROGRAMS) if not os.access(folder / p, os.X_OK)]
     if missing:
         raise NavfnInputError(f"{folder}: the build is incomplete ({', '.join(missing)} missing); build it again")
     return doc

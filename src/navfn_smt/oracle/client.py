@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import struct
 import subprocess
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Optional
 
 import numpy as np
 
@@ -18,21 +20,24 @@ from ..spec.planner import PlanResult
 from .build import load_build
 
 
-class Oracle:
-    """A running C++ NavFn of an oracle build folder (``traced``: with the white-box trace)."""
+class _Program:
+    """One program of an oracle build, running, answering requests on its pipes."""
 
-    def __init__(self, folder, traced: bool = True):
+    program = ""
+    END = struct.pack("<4i", 0, 0, 0, 0)
+
+    def __init__(self, folder):
         self.folder = Path(folder)
         self.build = load_build(self.folder)
-        self.traced = traced
-        self.planning_seconds = 0.0  # the C++'s own time planning the last request's cases
-        program = self.folder / ("navfn-traced" if traced else "navfn-plain")
-        self.proc = subprocess.Popen([str(program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+        if self.program not in self.build["programs"]:
+            raise NavfnInputError(f"{self.folder}: this build has no {self.program} (it has "
+                                  f"{', '.join(self.build['programs'])}); build it again with `navfn-smt oracle build`")
+        self.proc = subprocess.Popen([str(self.folder / self.program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
 
     def close(self) -> None:
         if self.proc.poll() is None:
             try:
-                self.proc.stdin.write(struct.pack("<4i", 0, 0, 0, 0))
+                self.proc.stdin.write(self.END)
                 self.proc.stdin.close()
             except OSError:
                 pass
@@ -54,6 +59,21 @@ class Oracle:
                                   f"{self.proc.poll()}); is the build folder intact?")
         return data
 
+
+VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded"}
+
+
+class Oracle(_Program):
+    """A running C++ NavFn of an oracle build folder: ``traced`` (with the white-box trace),
+    ``plain`` (as Nav2 compiles it), or ``unbounded`` (traced, buffers that never drop a push)."""
+
+    def __init__(self, folder, traced: bool = True, variant: Optional[str] = None):
+        variant = variant or ("traced" if traced else "plain")
+        self.program = VARIANTS[variant]
+        self.traced = variant != "plain"
+        self.planning_seconds = 0.0  # the C++'s own time planning the last request's cases
+        super().__init__(folder)
+
     def plan(self, costs: np.ndarray, cases, astar: bool) -> list[PlanResult]:
         """Every ``(sx, sy, gx, gy)`` of ``cases`` on the (ny, nx) NavFn cost array ``costs``."""
         costs = np.ascontiguousarray(costs, dtype=np.uint8)
@@ -70,5 +90,56 @@ class Oracle:
             trace = np.frombuffer(self._read(4 * ntrace), dtype="<i4").copy() if self.traced else None
             out.append(PlanResult(start_reached=bool(reached), start_potential=pot[sy, sx], path=path, potential=pot,
                                   trace=trace, cycles=cycles, updates=updates))
+        (self.planning_seconds,) = struct.unpack("<d", self._read(8))
+        return out
+
+
+PLUGIN_OUTCOMES = (None, "StartOutsideMapBounds", "GoalOutsideMapBounds", "GoalOccupied", "NoValidPathCouldBeFound",
+                   "OtherException")
+
+
+@dataclass
+class PluginAnswer:
+    """What Nav2's ``createPlan`` did: the exception (None when it returned), its message, the
+    published poses as (x, y, qx, qy, qz, qw) doubles, the (level, line) WARN and ERROR log."""
+
+    error: Optional[str]
+    message: str
+    poses: np.ndarray  # float64 (n, 6)
+    lines: list
+
+
+class PluginOracle(_Program):
+    """A running C++ planner plugin (``navfn-plugin``): ``createPlan`` on a costmap, as Nav2's
+    planner server calls it, many pose pairs per configured plugin."""
+
+    program = "navfn-plugin"
+    END = struct.pack("<3i", 0, 0, 0)
+
+    def __init__(self, folder):
+        self.planning_seconds = 0.0
+        super().__init__(folder)
+
+    def create_plans(self, cm, params, pairs) -> list[PluginAnswer]:
+        """``createPlan(start, goal)`` for every (start, goal) :class:`~navfn_smt.nav2.plugin.Pose`
+        pair of ``pairs`` on the :class:`~navfn_smt.nav2.plugin.Costmap` ``cm``, by a plugin
+        configured with the :class:`~navfn_smt.nav2.params.PlannerParams` ``params``."""
+        costs = np.ascontiguousarray(cm.costs, dtype=np.uint8)
+        poses = np.array([[s.x, s.y, *s.orientation, g.x, g.y, *g.orientation] for s, g in pairs], dtype="<f8")
+        head = struct.pack("<3i4d4i", cm.size_x, cm.size_y, len(pairs), cm.origin_x, cm.origin_y, cm.resolution,
+                           params.tolerance, int(params.use_astar), int(params.allow_unknown),
+                           int(params.max_cycles_factor), int(params.use_final_approach_orientation))
+        self.proc.stdin.write(head + costs.tobytes() + poses.tobytes())
+        self.proc.stdin.flush()
+        out = []
+        for _ in pairs:
+            outcome, npose, nlog, nmsg = struct.unpack("<4i", self._read(16))
+            message = self._read(nmsg).decode("utf-8", "replace")
+            got = np.frombuffer(self._read(48 * npose), dtype="<f8").reshape(npose, 6).copy()
+            lines = []
+            for _ in range(nlog):
+                level, n = struct.unpack("<2i", self._read(8))
+                lines.append((level, self._read(n).decode("utf-8", "replace")))
+            out.append(PluginAnswer(PLUGIN_OUTCOMES[outcome], message, got, lines))
         (self.planning_seconds,) = struct.unpack("<d", self._read(8))
         return out

@@ -10,6 +10,8 @@
 // A request with nx == 0 ends the process.  Each case is run as the suite's README states:
 // the map bytes as costarr, setGoal, setStart, setupNavFn(true), priInc = 2 * COST_NEUTRAL,
 // propNavFnAstar / propNavFnDijkstra(max(nx*ny/20, nx+ny)[, atStart = true]), calcPath(4 * nx).
+// The unbounded build (NAVFN_SMT_UNBOUNDED, with a navfn.hpp whose PRIORITYBUFSIZE is
+// navfn_smt_buffer_size) gives each buffer nx * ny cells, so no push is ever dropped.
 // The traced build (NAVFN_SMT_TRACED, its navfn.cpp with the trace hook) reports cycles, updates
 // and the trace; the plain build reports -1 and an empty trace.
 #include <algorithm>
@@ -40,6 +42,10 @@ void navfn_smt_cycle(const int * cells, int n)
   g_trace.insert(g_trace.end(), cells, cells + n);
 }
 
+#ifdef NAVFN_SMT_UNBOUNDED
+int navfn_smt_buffer_size = 0;  // PRIORITYBUFSIZE of the unbounded build: nx * ny, set per map
+#endif
+
 static bool read_all(void * p, size_t n) {return n == 0 || fread(p, 1, n, stdin) == n;}
 static void write_all(const void * p, size_t n) {if (n) {fwrite(p, 1, n, stdout);}}
 
@@ -61,6 +67,9 @@ int main()
     }
     if (nav == nullptr || nx != cur_nx || ny != cur_ny) {
       delete nav;
+#ifdef NAVFN_SMT_UNBOUNDED
+      navfn_smt_buffer_size = nx * ny;  // the constructor allocates the buffers
+#endif
       nav = new NavFn(nx, ny);
       cur_nx = nx;
       cur_ny = ny;

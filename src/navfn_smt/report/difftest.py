@@ -81,3 +81,21 @@ def write_json(path, suite, backend: str, modes, summary: dict) -> None:
 def closing_line(summary: dict) -> None:
     """Print ``N passed, M failed``."""
     print(f"{summary['passed']} passed, {summary['failed']} failed")
+
+
+def level_table(summary: dict) -> None:
+    """The plugin or costmap level: counts by the C++'s outcome, then the first disagreements."""
+    t = Table(title=f"difftest --level {summary['level']}: the model against the C++ of {summary['distribution']}")
+    t.add_column("C++ outcome")
+    t.add_column("cases", justify="right")
+    for outcome, n in summary["outcomes"].items():
+        t.add_row(str(outcome), str(n))
+    console.print(t)
+    for d in summary["disagreements"][:5]:
+        print(f"{d['config']} case {d['case']}: {d['field']}: model {d['model']!r}, C++ {d['cpp']!r}")
+    extra = [f"{summary[k]} {k.replace('_', ' ')}" for k in ("undefined_behaviour", "log_lines") if k in summary]
+    print(f"{summary['passed']} passed, {summary['failed']} failed" + (f" ({', '.join(extra)})" if extra else ""))
+
+
+def write_level_json(path, summary: dict) -> None:
+    atomic_write_text(path, json.dumps(summary, indent=1))

@@ -1,0 +1,2 @@
+// navfn-smt: included by the planner plugin; it uses nothing of it.
+#pragma once

@@ -1,0 +1,151 @@
+// navfn-smt: the names of rclcpp that Nav2's planner plugin uses, written for the oracle build
+// (no ROS installation).  WARN and ERROR lines are formatted as rclcpp formats them (printf)
+// and kept, in order, for the driver to report; DEBUG and INFO go nowhere.  Nothing here
+// computes anything the plugin's results depend on.
+#ifndef NAVFN_SMT_PLUGIN_STUB_RCLCPP_HPP_
+#define NAVFN_SMT_PLUGIN_STUB_RCLCPP_HPP_
+
+#include <cstdarg>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace navfn_smt
+{
+// (level, line): 30 WARN, 40 ERROR, as rcutils numbers them
+inline std::vector<std::pair<int, std::string>> & log_lines()
+{
+  static std::vector<std::pair<int, std::string>> lines;
+  return lines;
+}
+inline void log(int level, const char * fmt, ...)
+{
+  char buf[4096];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(buf, sizeof(buf), fmt, ap);
+  va_end(ap);
+  log_lines().emplace_back(level, buf);
+}
+}  // namespace navfn_smt
+
+namespace rcl_interfaces
+{
+namespace msg
+{
+struct ParameterType
+{
+  enum : uint8_t {PARAMETER_NOT_SET = 0, PARAMETER_BOOL = 1, PARAMETER_INTEGER = 2, PARAMETER_DOUBLE = 3,
+    PARAMETER_STRING = 4};
+};
+struct SetParametersResult
+{
+  bool successful = false;
+  std::string reason;
+};
+}  // namespace msg
+}  // namespace rcl_interfaces
+
+namespace rclcpp
+{
+struct Logger
+{
+  std::string name;
+};
+inline Logger get_logger(const std::string & name) {return Logger{name};}
+
+struct Time
+{
+  int64_t nanoseconds = 0;
+};
+struct Duration
+{
+  int64_t nanoseconds = 0;
+};
+class Clock
+{
+public:
+  using SharedPtr = std::shared_ptr<Clock>;
+  Time now() const {return Time{};}  // stamps are not compared
+};
+
+// A parameter value of one of the types the plugin declares (bool, int, double, string).
+class ParameterValue
+{
+public:
+  ParameterValue() = default;
+  explicit ParameterValue(bool v) : type_(rcl_interfaces::msg::ParameterType::PARAMETER_BOOL), b_(v) {}
+  explicit ParameterValue(int v) : type_(rcl_interfaces::msg::ParameterType::PARAMETER_INTEGER), i_(v) {}
+  explicit ParameterValue(int64_t v) : type_(rcl_interfaces::msg::ParameterType::PARAMETER_INTEGER), i_(v) {}
+  explicit ParameterValue(double v) : type_(rcl_interfaces::msg::ParameterType::PARAMETER_DOUBLE), d_(v) {}
+  explicit ParameterValue(const std::string & v)
+  : type_(rcl_interfaces::msg::ParameterType::PARAMETER_STRING), s_(v) {}
+  uint8_t get_type() const {return type_;}
+  bool as_bool() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_BOOL); return b_;}
+  int64_t as_int() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_INTEGER); return i_;}
+  double as_double() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_DOUBLE); return d_;}
+  const std::string & as_string() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_STRING); return s_;}
+  template<typename T> T get() const;
+
+private:
+  void check(uint8_t t) const
+  {
+    if (t != type_) {throw std::runtime_error("parameter of another type");}
+  }
+  uint8_t type_ = rcl_interfaces::msg::ParameterType::PARAMETER_NOT_SET;
+  bool b_ = false;
+  int64_t i_ = 0;
+  double d_ = 0.0;
+  std::string s_;
+};
+template<> inline bool ParameterValue::get<bool>() const {return as_bool();}
+template<> inline int ParameterValue::get<int>() const {return static_cast<int>(as_int());}
+template<> inline int64_t ParameterValue::get<int64_t>() const {return as_int();}
+template<> inline double ParameterValue::get<double>() const {return as_double();}
+template<> inline std::string ParameterValue::get<std::string>() const {return as_string();}
+
+class Parameter
+{
+public:
+  Parameter() = default;
+  Parameter(const std::string & name, const ParameterValue & value) : name_(name), value_(value) {}
+  const std::string & get_name() const {return name_;}
+  uint8_t get_type() const {return value_.get_type();}
+  bool as_bool() const {return value_.as_bool();}
+  int64_t as_int() const {return value_.as_int();}
+  double as_double() const {return value_.as_double();}
+  const ParameterValue & get_parameter_value() const {return value_;}
+
+private:
+  std::string name_;
+  ParameterValue value_;
+};
+
+namespace node_interfaces
+{
+struct OnSetParametersCallbackHandle
+{
+  using SharedPtr = std::shared_ptr<OnSetParametersCallbackHandle>;
+  using OnParametersSetCallbackType =
+    std::function<rcl_interfaces::msg::SetParametersResult(const std::vector<rclcpp::Parameter> &)>;
+};
+struct PostSetParametersCallbackHandle
+{
+  using SharedPtr = std::shared_ptr<PostSetParametersCallbackHandle>;
+};
+}  // namespace node_interfaces
+}  // namespace rclcpp
+
+#define RCLCPP_DEBUG(logger, ...) do {(void)(logger);} while (0)
+#define RCLCPP_INFO(logger, ...) do {(void)(logger);} while (0)
+#define RCLCPP_WARN(logger, ...) ::navfn_smt::log(30, __VA_ARGS__)
+#define RCLCPP_ERROR(logger, ...) ::navfn_smt::log(40, __VA_ARGS__)
+#define RCLCPP_FATAL(logger, ...) ::navfn_smt::log(50, __VA_ARGS__)
+
+#endif  // NAVFN_SMT_PLUGIN_STUB_RCLCPP_HPP_
