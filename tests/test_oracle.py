@@ -259,3 +259,29 @@ def test_the_unbounded_build_agrees_with_the_unbounded_spec_where_buffers_overfl
         differ = [not np.array_equal(x.path, y.path) for x, y in zip(u.plan(m.costs, m.cases, False),
                                                                      b.plan(m.costs, m.cases, False))]
     assert any(differ)
+
+
+# --------------------------------------------------------------------------- navfn-smt ci
+def test_ci_builds_difftests_every_level_and_writes_junit(nav2_src, tmp_path, capsys):
+    import xml.etree.ElementTree as ET
+
+    out = tmp_path / "ci"
+    assert main(["ci", str(nav2_src / "jazzy"), "--out", str(out), "--configs", "20", "--no-prove"]) == 0
+    suite = ET.parse(out / "junit.xml").getroot().find("testsuite")
+    names = [tc.get("name") for tc in suite.iter("testcase")]
+    assert names[:4] == ["build", "difftest navfn", "difftest navfn unbounded", "difftest plugin"]
+    assert suite.get("failures") == "0" and suite.get("name") == "navfn-smt ci jazzy"
+
+
+def test_ci_fails_on_a_seeded_bug_and_says_where(nav2_src, tmp_path, capsys):
+    import xml.etree.ElementTree as ET
+
+    src = tmp_path / "src"
+    shutil.copytree(nav2_src / "rolling", src)
+    cpp = src / "nav2_navfn_planner" / "src" / "navfn.cpp"
+    cpp.write_text(cpp.read_text().replace("pathStep = 0.5;", "pathStep = 0.25;"))
+    out = tmp_path / "ci"
+    assert main(["ci", str(src), "--out", str(out), "--configs", "20", "--no-prove"]) == 1
+    failed = {tc.get("name"): tc.find("failure").get("message")
+              for tc in ET.parse(out / "junit.xml").getroot().iter("testcase") if tc.find("failure") is not None}
+    assert "difftest navfn" in failed and "0 failed" not in failed["difftest navfn"]

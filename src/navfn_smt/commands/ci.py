@@ -1,0 +1,117 @@
+"""``navfn-smt ci NAV2_SRC``: the whole chain of trust for a Nav2 checkout in one command.
+
+For a Nav2 fork's CI (the workflow file is in ``docs/ci.md``): build the checkout's NavFn,
+planner plugin and costmap layers (``oracle build``), difftest every level live against the
+specification and the models (NavFn on a suite, white-box, with Nav2's buffers and with
+unbounded ones; the plugin on generated costmaps, poses and parameters; the costmap layers on
+generated maps), prove the obligations, and write one JUnit file of every step.  Exit 0 when
+every step agrees; 1 when one disagrees (or a proof contradicts what is known); a step the
+sources cannot run (no Eigen for Rolling's inflation layer, say) is skipped and named.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from ..errors import NavfnInputError
+from .common import check_files
+
+DEFAULT_OUT = "build/nav2-ci"
+
+
+class _Steps:
+    """The steps run so far, as JUnit test cases, and what is printed of each."""
+
+    def __init__(self):
+        self.cases = []
+
+    def add(self, name: str, seconds: float, failure=None, skipped=None, out: str = "") -> None:
+        self.cases.append({"name": name, "seconds": seconds, "failure": failure, "skipped": skipped, "out": out})
+        state = "FAILED" if failure else "skipped" if skipped else "ok"
+        print(f"{name:<28} {state:<8} {seconds:7.1f} s  {failure or skipped or out}")
+
+    @property
+    def failed(self) -> bool:
+        return any(c["failure"] for c in self.cases)
+
+
+def _summary_step(steps: _Steps, name: str, run) -> None:
+    t0 = time.perf_counter()
+    try:
+        s = run()
+    except NavfnInputError as e:
+        steps.add(name, time.perf_counter() - t0, skipped=str(e))
+        return
+    text = f"{s['passed']} passed, {s['failed']} failed"
+    steps.add(name, time.perf_counter() - t0, failure=text if s["failed"] else None, out=text)
+
+
+def _navfn(args, folder: Path, unbounded: bool):
+    from ..difftest.live import run_live
+    from ..maps.suite import MODES
+    from ..oracle.client import Oracle
+    from .common import suite_or_example
+
+    with Oracle(folder, variant="unbounded" if unbounded else "traced") as oracle:
+        return run_live(suite_or_example(args.suite), MODES, "jit", oracle, unbounded=unbounded).as_dict()
+
+
+def _plugin(args, folder: Path):
+    from ..difftest.plugin_live import generated_configs, run_plugin_live
+    from ..oracle.client import PluginOracle
+
+    with PluginOracle(folder) as oracle:
+        return run_plugin_live(generated_configs(oracle.build["distribution"], args.configs, args.seed),
+                               oracle).as_dict()
+
+
+def _prove(args, steps: _Steps, junit: Path) -> None:
+    from ..cli import main
+
+    t0 = time.perf_counter()
+    rc = main(["prove", "--timeout", str(args.timeout), "--junit", str(junit)])
+    steps.add("prove", time.perf_counter() - t0, failure="a verdict contradicts what is known" if rc else None,
+              out=f"JUnit of every obligation: {junit}")
+
+
+def cmd_ci(args) -> int:
+    """Build, difftest every level, prove; one JUnit file; exit 1 on any disagreement."""
+    from ..oracle.build import build
+    from ..report.ci import write_junit
+
+    check_files(args.junit)
+    out = Path(args.out)
+    steps = _Steps()
+    t0 = time.perf_counter()
+    doc = build(args.nav2_src, out / "oracle")
+    steps.add("build", time.perf_counter() - t0, out=f"{doc['distribution']}: {', '.join(doc['programs'])}")
+    folder = out / "oracle"
+    _summary_step(steps, "difftest navfn", lambda: _navfn(args, folder, False))
+    _summary_step(steps, "difftest navfn unbounded", lambda: _navfn(args, folder, True))
+    _summary_step(steps, "difftest plugin", lambda: _plugin(args, folder))
+    prove_junit = out / "prove-junit.xml"
+    if not args.no_prove:
+        _prove(args, steps, prove_junit)
+    write_junit(args.junit or out / "junit.xml", f"navfn-smt ci {doc['distribution']}", steps.cases,
+                prove_junit if not args.no_prove else None)
+    print(f"JUnit: {args.junit or out / 'junit.xml'}")
+    return 1 if steps.failed else 0
+
+
+def register(sub) -> None:
+    """The command's parser, its options and its handler."""
+    c = sub.add_parser("ci", help="build a Nav2 checkout, difftest every level against it, prove; write JUnit",
+                       description="The chain of trust for a Nav2 checkout in one command: oracle build, the live "
+                       "difftest of NavFn (white-box, Nav2's buffers and unbounded ones), of the planner plugin, "
+                       "then prove; one JUnit file.  See docs/ci.md for a workflow file.")
+    c.add_argument("nav2_src", metavar="NAV2_SRC", help="a navigation2 checkout, or a folder of its packages")
+    c.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="build and report folder (default: %(default)s)")
+    c.add_argument("--suite", help="the NavFn suite (default: the example suite shipped with the package)")
+    c.add_argument("--configs", type=int, default=200, metavar="N",
+                   help="generated plugin and costmap configurations (default: %(default)s)")
+    c.add_argument("--seed", type=int, default=0, help="the generators' seed (default: %(default)s)")
+    c.add_argument("--timeout", type=float, default=60.0, help="prove: seconds per query (default: %(default)s)")
+    c.add_argument("--no-prove", action="store_true", help="skip the proofs (they do not depend on NAV2_SRC)")
+    c.add_argument("--junit", metavar="FILE", help="the JUnit file (default: DIR/junit.xml)")
+    c.set_defaults(func=cmd_ci)
