@@ -285,3 +285,30 @@ def test_ci_fails_on_a_seeded_bug_and_says_where(nav2_src, tmp_path, capsys):
     failed = {tc.get("name"): tc.find("failure").get("message")
               for tc in ET.parse(out / "junit.xml").getroot().iter("testcase") if tc.find("failure") is not None}
     assert "difftest navfn" in failed and "0 failed" not in failed["difftest navfn"]
+
+
+# --------------------------------------------------------------------------- the distributions
+def test_each_distribution_difference_shows_on_the_cpp_as_the_table_says(builds):
+    """Every row of nav2/distributions.py (and docs/distributions.md): the C++ of each
+    distribution gives the outcome the docs table states, the model of each the same bit for
+    bit, and the outcomes differ between distributions (the row shows a difference)."""
+    from dataclasses import replace
+
+    from navfn_smt.difftest.plugin_live import first_difference
+    from navfn_smt.nav2.distributions import DIFFERENCES, costmap_of, summary_of
+    from navfn_smt.nav2.plugin import create_plan
+
+    page = (Path(__file__).resolve().parent.parent / "docs" / "distributions.md").read_text()
+    rows = {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[4:8]]
+            for line in page.splitlines() if line.startswith("| `")}
+    for d in DIFFERENCES:
+        seen = []
+        for distro in DISTROS:
+            params = replace(d.params, distro=distro)
+            with PluginOracle(builds[distro][1]) as oracle:
+                (answer,) = oracle.create_plans(costmap_of(d), params, [(d.start, d.goal)])
+            run = create_plan(costmap_of(d), d.start, d.goal, params)
+            assert first_difference(run, answer) is None, (d.key, distro)
+            seen.append(summary_of(answer.error, len(answer.poses), answer.lines))
+        assert rows[d.key] == seen, d.key
+        assert len(set(seen)) > 1, d.key

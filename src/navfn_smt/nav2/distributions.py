@@ -1,0 +1,74 @@
+"""What the planner plugin does differently in Humble, Jazzy, Kilted and Rolling, each difference
+with the smallest case that shows it.
+
+Every row is checked against the C++ of all four distributions (built from their sources by
+``navfn-smt oracle build``; ``tests/test_oracle.py``) and against the model of each
+(:data:`~navfn_smt.nav2.plugin.FLAVOURS`); ``docs/distributions.md`` shows the same table.
+NavFn itself (``navfn.cpp``'s arithmetic) is the same in all four: the live difftest of the
+shared suite agrees with each distribution's build on every case.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .params import PlannerParams
+from .plugin import EMPTY_PATH, Costmap, Pose
+
+DISTROS = ("humble", "jazzy", "kilted", "rolling")
+
+
+@dataclass(frozen=True)
+class Difference:
+    key: str
+    what: str  # the difference, in the plugin's terms
+    case: str  # the case, in words
+    costs: tuple  # rows of the costmap (row 0 at the origin), 0.05 m cells, origin (0, 0)
+    params: PlannerParams
+    start: Pose
+    goal: Pose
+
+
+def _grid(w: int, h: int, lethal=()) -> tuple:
+    g = np.zeros((h, w), dtype=np.uint8)
+    for x, y in lethal:
+        g[y, x] = 254
+    return tuple(map(tuple, g.tolist()))
+
+
+_U = np.zeros((12, 12), dtype=np.uint8)
+_U[2:10, 5] = 254
+_U[2, 2:10] = 254
+
+DIFFERENCES = (
+    Difference("pose-checks", "createPlan checks both poses with Costmap2D::worldToMap and throws (Jazzy on); "
+               "Humble warns in makePlan and returns an empty path",
+               "8x6 free map, start (-0.2, 0.1) below the origin, goal (0.2, 0.2)",
+               _grid(8, 6), PlannerParams(), Pose(-0.2, 0.1), Pose(0.2, 0.2)),
+    Difference("equal-positions-lethal", "equal start and goal positions: Humble first looks up the start's "
+               "cost and returns an empty path on a lethal cell; later versions return the one pose",
+               "8x6 map, cell (2, 2) lethal, start = goal = (0.125, 0.125), the goal turned 90 degrees",
+               _grid(8, 6, [(2, 2)]), PlannerParams(), Pose(0.125, 0.125),
+               Pose(0.125, 0.125, 0.0, 0.0, 0.7071067811865476, 0.7071067811865476)),
+    Difference("same-position-smoothing", "smoothApproachToGoal replaces a last pose at the goal's position "
+               "(Jazzy on); Humble appends the goal after it, publishing the position twice",
+               "8x6 free map, start (0.1, 0.1), goal (0.25, 0.1) on a cell corner",
+               _grid(8, 6), PlannerParams(), Pose(0.1, 0.1), Pose(0.25, 0.1)),
+    Difference("max-cycles-factor", "max_cycles_factor (Rolling) sets calcPath's budget; the others always "
+               "give it 4 * max(size_x, size_y) cycles, and Rolling's calcPath warns when it runs out",
+               "12x12 U-shaped wall, start (0.175, 0.175), goal (0.425, 0.175), max_cycles_factor 1",
+               tuple(map(tuple, _U.tolist())), PlannerParams(max_cycles_factor=1), Pose(0.175, 0.175),
+               Pose(0.425, 0.175)),
+)
+
+
+def costmap_of(d: Difference) -> Costmap:
+    return Costmap(np.array(d.costs, dtype=np.uint8), 0.0, 0.0, 0.05)
+
+
+def summary_of(error, poses: int, lines: list) -> str:
+    """An outcome in a few words: the exception or the pose count, then the log's first words."""
+    head = error if error not in (None, EMPTY_PATH) else f"{poses} pose" + ("" if poses == 1 else "s")
+    return head + "".join(f"; {'WARN' if level == 30 else 'ERROR'} \"{line[:32]}...\"" for level, line in lines)
