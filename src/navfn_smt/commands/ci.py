@@ -80,8 +80,11 @@ def cmd_ci(args) -> int:
     from ..oracle.build import build
     from ..report.ci import write_junit
 
-    check_files(args.junit)
     out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise NavfnInputError(f"{out}: not a folder (--out names the build and report folder)")
+    out.mkdir(parents=True, exist_ok=True)
+    check_files(args.junit)
     steps = _Steps()
     t0 = time.perf_counter()
     doc = build(args.nav2_src, out / "oracle")
