@@ -67,10 +67,16 @@ def _plugin(args, folder: Path):
 
 
 def _prove(args, steps: _Steps, junit: Path) -> None:
-    from ..cli import main
+    """``navfn-smt prove --timeout T --junit FILE``, parsed by prove's own parser."""
+    import argparse
 
+    from . import prove
+
+    parser = argparse.ArgumentParser(prog="navfn-smt")
+    prove.register(parser.add_subparsers())
+    pargs = parser.parse_args(["prove", "--timeout", str(args.timeout), "--junit", str(junit)])
     t0 = time.perf_counter()
-    rc = main(["prove", "--timeout", str(args.timeout), "--junit", str(junit)])
+    rc = pargs.func(pargs)
     steps.add("prove", time.perf_counter() - t0, failure="a verdict contradicts what is known" if rc else None,
               out=f"JUnit of every obligation: {junit}")
 
