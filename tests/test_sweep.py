@@ -198,3 +198,17 @@ def test_bench_sweep_command(tmp_path, capsys):
     assert rows[0]["goals"] == 5 and rows[1]["goals"] > 100 and all(r["goals_per_second"] > 0 for r in rows)
     assert "goals/s" in capsys.readouterr().out
     assert main(["bench", "--sweep", "10"]) == 2
+
+
+@pytest.mark.parametrize("distro", ["humble", "jazzy"])
+def test_every_distributions_plugin_swept(distro):
+    """Humble's plugin checks nothing before makePlan: its lethal goals with tolerance 0 and its
+    equal-position goal are planned by create_plan itself; the sweep still equals it per goal."""
+    cm = small_map(4)
+    start = goal_pose(cm, (6, 7))
+    for astar in (False, True):
+        params = PlannerParams(use_astar=astar, tolerance=0.0, max_cycles_factor=1, distro=distro)
+        c = assert_equal_per_goal(cm, start, params, goals="all").counts()
+        assert (c["goal_occupied"] > 0) == (distro != "humble") and c["no_legal"] > 0
+    off = sweep(cm, Pose(cm.origin_x - 1.0, cm.origin_y), PlannerParams(distro=distro), goals=5)
+    assert off.counts()["start_outside"] == 5

@@ -30,7 +30,12 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..nav2.params import PlannerParams
 from ..nav2.plugin import (
+    EMPTY_PATH,
+    GOAL_OFF_MAP,
+    ROBOT_OFF_MAP,
+    UNIQUE_POSE_LETHAL,
     Costmap,
+    flavour_of,
     PluginRun,
     Pose,
     rounded_cells,
@@ -165,8 +170,12 @@ def outcome_of_run(run: PluginRun) -> str:
         if run.robot_cell is None:
             return "same_pose"
         return "ok_tolerance" if run.used_tolerance else "ok"
-    if run.error == "NoValidPathCouldBeFound":
-        return "legal_no_plan" if run.legal_potential_no_plan else "no_legal"
+    if run.error in ("NoValidPathCouldBeFound", EMPTY_PATH):  # Humble: no exception, an empty path
+        if run.legal_potential_no_plan:
+            return "legal_no_plan"
+        warned = run.warnings
+        return ("start_outside" if ROBOT_OFF_MAP in warned else "goal_outside" if GOAL_OFF_MAP in warned
+                else "goal_occupied" if UNIQUE_POSE_LETHAL in warned else "no_legal")
     return {"GoalOccupied": "goal_occupied", "GoalOutsideMapBounds": "goal_outside",
             "StartOutsideMapBounds": "start_outside", "UndefinedBehaviour": "undefined_behaviour"}[run.error]
 
@@ -218,8 +227,10 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         path_length=np.zeros(G))
     report = progress or (lambda d, t: None)
 
-    # createPlan's checks before makePlan, by the plugin's own functions
-    if costmap_world_to_map(cm, start.x, start.y) is None:
+    # createPlan's checks before makePlan, by the plugin's own functions (Jazzy on; Humble's
+    # plugin has none, and its goals that would meet them are planned by create_plan alone)
+    throws = flavour_of(params.distro).throws
+    if throws and costmap_world_to_map(cm, start.x, start.y) is None:
         res.outcome[:] = _CODE["start_outside"]
         return _finish(res, t0, report)
     planned = []  # goals for the compiled loops
@@ -229,9 +240,11 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
     exotic = not robot_ok or n_cycles is None or n_cycles < 0
     for k, ((x, y), (wx, wy)) in enumerate(zip(cells.tolist(), gxy.tolist())):
         gc = costmap_world_to_map(cm, wx, wy)
-        if gc is None:
+        if not throws and (gc is None or start.x == wx and start.y == wy):
+            fallback.append(k)
+        elif gc is None:
             res.outcome[k] = _CODE["goal_outside"]
-        elif params.tolerance == 0 and int(cm.costs[gc[1], gc[0]]) == LETHAL_OBSTACLE:
+        elif throws and params.tolerance == 0 and int(cm.costs[gc[1], gc[0]]) == LETHAL_OBSTACLE:
             res.outcome[k] = _CODE["goal_occupied"]
         elif start.x == wx and start.y == wy:
             res.outcome[k] = _CODE["same_pose"]
