@@ -1,15 +1,9 @@
-// navfn-smt: nav2::declare_parameter_if_not_declared (rolling), for the oracle build.
+// navfn-smt: nav2::declare_parameter_if_not_declared (rolling): nav2_util's, under its new name.
 #ifndef NAVFN_SMT_PLUGIN_STUB_NAV2_NODE_UTILS_HPP_
 #define NAVFN_SMT_PLUGIN_STUB_NAV2_NODE_UTILS_HPP_
-#include <string>
-#include "rclcpp_lifecycle/lifecycle_node.hpp"
+#include "nav2_util/node_utils.hpp"
 namespace nav2
 {
-template<typename NodeT>
-void declare_parameter_if_not_declared(
-  NodeT node, const std::string & name, const rclcpp::ParameterValue & default_value)
-{
-  if (!node->has_parameter(name)) {node->declare_parameter(name, default_value);}
+using nav2_util::declare_parameter_if_not_declared;
 }
-}  // namespace nav2
 #endif
