@@ -269,7 +269,7 @@ def test_ci_builds_difftests_every_level_and_writes_junit(nav2_src, tmp_path, ca
     assert main(["ci", str(nav2_src / "jazzy"), "--out", str(out), "--configs", "20", "--no-prove"]) == 0
     suite = ET.parse(out / "junit.xml").getroot().find("testsuite")
     names = [tc.get("name") for tc in suite.iter("testcase")]
-    assert names[:4] == ["build", "difftest navfn", "difftest navfn unbounded", "difftest plugin"]
+    assert names[:5] == ["build", "difftest navfn", "difftest navfn unbounded", "difftest plugin", "difftest costmap"]
     assert suite.get("failures") == "0" and suite.get("name") == "navfn-smt ci jazzy"
 
 
@@ -312,3 +312,65 @@ def test_each_distribution_difference_shows_on_the_cpp_as_the_table_says(builds)
             seen.append(summary_of(answer.error, len(answer.poses), answer.lines))
         assert rows[d.key] == seen, d.key
         assert len(set(seen)) > 1, d.key
+
+
+# --------------------------------------------------------------------------- the costmap level
+def _layers(builds, distro):
+    doc, folder = builds[distro]
+    if "costmap-layers" not in doc["programs"]:
+        pytest.skip(doc.get("skipped", {}).get("costmap-layers", "costmap-layers not built"))
+    return folder
+
+
+def test_the_costmap_model_of_each_distribution_agrees_with_its_layers(builds):
+    """Generated occupancy grids x costmap parameters x layer lists (every inflation layer the
+    version has): the master costmap byte for byte and the footprint's radii bit for bit."""
+    from navfn_smt.difftest.layers_live import generated_configs, run_layers_live
+    from navfn_smt.oracle.client import LayersOracle
+
+    for distro in DISTROS:
+        with LayersOracle(_layers(builds, distro)) as oracle:
+            s = run_layers_live(generated_configs(distro, 150, seed=5), oracle).as_dict()
+        assert s["failed"] == 0 and s["passed"] == 150, (distro, s["disagreements"][:1])
+        kinds = {"legacy"} if distro != "rolling" else {"legacy", "current"}
+        assert kinds == {k for o in s["outcomes"] for k in o.split(" + ")[1:]}, (distro, s["outcomes"])
+
+
+def test_the_sqrt_probe_tells_this_cpus_square_root(builds):
+    """The probe's 12 cells differ between the model's two square roots; this machine's C++
+    matches exactly one of them (which one is a fact about the CPU and the build, reported)."""
+    from navfn_smt.difftest.layers_live import model_costmap, sqrt_probe
+    from navfn_smt.nav2.inflation import SQRT_MODES
+    from navfn_smt.oracle.client import LayersOracle
+
+    cfg = sqrt_probe()
+    models = {m: model_costmap(cfg, "rolling", m).costmap for m in SQRT_MODES}
+    assert int((models["eigen-sse-amd"] != models["exact"]).sum()) == 12
+    with LayersOracle(_layers(builds, "rolling")) as oracle:
+        cpp = oracle.costmap(cfg.occupancy, cfg.resolution, cfg.origin, cfg.params).costmap
+    assert sum(bool((cpp == m).all()) for m in models.values()) == 1
+
+
+def test_a_bug_seeded_in_a_layer_is_caught(nav2_src, tmp_path, builds):
+    """The static layer's lethal test '>=' turned into '>': the costmap level fails."""
+    from navfn_smt.difftest.layers_live import generated_configs, run_layers_live
+    from navfn_smt.oracle.client import LayersOracle
+
+    _layers(builds, "kilted")
+    src = tmp_path / "src"
+    shutil.copytree(nav2_src / "kilted", src)
+    cpp = src / "nav2_costmap_2d" / "plugins" / "static_layer.cpp"
+    text = cpp.read_text()
+    assert text.count("value >= lethal_threshold_") == 1
+    cpp.write_text(text.replace("value >= lethal_threshold_", "value > lethal_threshold_"))
+    build(src, tmp_path / "bug", programs=("costmap-layers",))
+    with LayersOracle(tmp_path / "bug") as oracle:
+        s = run_layers_live(generated_configs("kilted", 60, seed=3), oracle).as_dict()
+    assert s["failed"] > 0 and s["disagreements"][0]["field"].startswith("cell")
+
+
+def test_the_cli_costmap_level(builds, capsys):
+    folder = _layers(builds, "rolling")
+    assert main(["difftest", "--level", "costmap", "--oracle", str(folder), "--configs", "40", "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "40 passed, 0 failed" in out and "square root" in out

@@ -66,6 +66,19 @@ def _plugin(args, folder: Path):
                                oracle).as_dict()
 
 
+def _costmap(args, folder: Path):
+    from ..difftest.layers_live import generated_configs, run_layers_live
+    from ..oracle.client import LayersOracle
+    from ..report.difftest import sqrt_verdict
+
+    with LayersOracle(folder) as oracle:
+        s = run_layers_live(generated_configs(oracle.build["distribution"], args.configs, args.seed),
+                            oracle).as_dict()
+    if s["sqrt_match"]:
+        print(f"  square roots:{sqrt_verdict(s['sqrt_match'])}")
+    return s
+
+
 def _prove(args, steps: _Steps, junit: Path) -> None:
     """``navfn-smt prove --timeout T --junit FILE``, parsed by prove's own parser."""
     import argparse
@@ -99,6 +112,10 @@ def cmd_ci(args) -> int:
     _summary_step(steps, "difftest navfn", lambda: _navfn(args, folder, False))
     _summary_step(steps, "difftest navfn unbounded", lambda: _navfn(args, folder, True))
     _summary_step(steps, "difftest plugin", lambda: _plugin(args, folder))
+    if "costmap-layers" in doc["programs"]:
+        _summary_step(steps, "difftest costmap", lambda: _costmap(args, folder))
+    else:
+        steps.add("difftest costmap", 0.0, skipped=doc.get("skipped", {}).get("costmap-layers", "not built"))
     prove_junit = out / "prove-junit.xml"
     if not args.no_prove:
         _prove(args, steps, prove_junit)
@@ -112,8 +129,8 @@ def register(sub) -> None:
     """The command's parser, its options and its handler."""
     c = sub.add_parser("ci", help="build a Nav2 checkout, difftest every level against it, prove; write JUnit",
                        description="The chain of trust for a Nav2 checkout in one command: oracle build, the live "
-                       "difftest of NavFn (white-box, Nav2's buffers and unbounded ones), of the planner plugin, "
-                       "then prove; one JUnit file.  See docs/ci.md for a workflow file.")
+                       "difftest of NavFn (white-box, Nav2's buffers and unbounded ones), of the planner plugin and of "
+                       "the costmap layers, then prove; one JUnit file.  See docs/ci.md for a workflow file.")
     c.add_argument("nav2_src", metavar="NAV2_SRC", help="a navigation2 checkout, or a folder of its packages")
     c.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="build and report folder (default: %(default)s)")
     c.add_argument("--suite", help="the NavFn suite (default: the example suite shipped with the package)")

@@ -98,8 +98,6 @@ def cmd_diagnose(args) -> int:
 
 def _sweep(args, start) -> int:
     """Every free cell (or a sample of N) as a goal from one robot pose: outcome counts, JSON, picture."""
-    import json
-
     from ..report.sweep import render_sweep, write_summary_json
     from ..diagnose.inputs import load_inputs
     from ..diagnose.sweep import summary, sweep

@@ -57,12 +57,34 @@ def _live(args, suite, modes) -> int:
 
 
 def _level(args) -> int:
-    """``--level plugin``: the model of that level against the C++ built in ``--oracle DIR``."""
+    """``--level plugin|costmap``: the model of that level against the C++ built in ``--oracle DIR``."""
     if not args.oracle:
         raise NavfnInputError(f"--level {args.level} runs against the C++: give --oracle DIR (navfn-smt oracle build)")
     if args.suite:
         raise NavfnInputError(f"--level {args.level} generates its own cases (or takes --map): no suite")
-    return _plugin_level(args)
+    if args.level == "plugin":
+        return _plugin_level(args)
+    return _costmap_level(args)
+
+
+def _costmap_level(args) -> int:
+    from ..difftest.layers_live import generated_configs, run_layers_live
+    from ..oracle.client import LayersOracle
+    from ..report import difftest as report
+    from ..report.tables import progress_bar
+
+    if args.map or args.sweep or args.params:
+        raise NavfnInputError("--level costmap generates its maps: --map, --params and --sweep are for --level plugin")
+    with LayersOracle(args.oracle) as oracle:
+        distro = oracle.build["distribution"]
+        label = f"difftest --level costmap (the layer models against the C++ layers of {distro})"
+        with progress_bar(args.configs, label, enabled=not args.quiet) as advance:
+            summary = run_layers_live(generated_configs(distro, args.configs, args.seed), oracle,
+                                      progress=advance).as_dict()
+    report.level_table(summary)
+    if args.json:
+        report.write_level_json(args.json, summary)
+    return 0 if summary["failed"] == 0 else 1
 
 
 def _plugin_level(args) -> int:
@@ -101,9 +123,10 @@ def register(sub) -> None:
                     "build), run live on every case, instead of the golden files")
     dt.add_argument("--unbounded", action="store_true", help="with --oracle: the C++ and the spec both with "
                     "priority buffers that never drop a push")
-    dt.add_argument("--level", choices=("navfn", "plugin"), default="navfn",
+    dt.add_argument("--level", choices=("navfn", "plugin", "costmap"), default="navfn",
                     help="navfn: NavFn on a suite (default); plugin: Nav2's createPlan on generated costmaps, poses "
-                    "and parameters (or --map), with --oracle")
+                    "and parameters (or --map); costmap: the static and inflation layers on generated grids and "
+                    "parameters; plugin and costmap need --oracle")
     dt.add_argument("--configs", type=int, default=200, metavar="N",
                     help="--level plugin|costmap: generated configurations (default: %(default)s)")
     dt.add_argument("--pairs", type=int, default=24, metavar="N",

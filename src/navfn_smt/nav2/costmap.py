@@ -331,6 +331,7 @@ def build_global_costmap(
     distro: Optional[str] = None,
     resolution: Optional[float] = None,
     origin: tuple[float, float] = (0.0, 0.0),
+    sqrt: str = "eigen-sse-amd",
 ) -> GlobalCostmap:
     """The global costmap's costs after one full update on a static map.
 
@@ -338,7 +339,8 @@ def build_global_costmap(
     ``params``; resolution and origin are the map's) or a uint8 costmap array taken as the
     static layer's output (resolution: ``resolution`` if given, else ``params.resolution``).
     ``params`` default: :class:`CostmapParams` (Nav2's code defaults); see
-    :func:`bringup_params`.  ``distro`` default: the map's, else ``"rolling"``.
+    :func:`bringup_params`.  ``distro`` default: the map's, else ``"rolling"``.  ``sqrt``: how
+    the distance-transform layer takes its square root (:func:`~.inflation.matrix_sqrt`).
     """
     params = params if params is not None else CostmapParams()
     distro = distro or (source.distro if isinstance(source, MapServerMap) else DEFAULT_DISTRO)
@@ -352,14 +354,14 @@ def build_global_costmap(
     master = np.full(static.shape, NO_INFORMATION if params.track_unknown_space else FREE_SPACE, np.uint8)
     ran, notes = [], list(params.notes)
     for layer in params.plugins:
-        ran.append(_run_layer(layer, master, static, params, distro, res, fp.inscribed_radius, notes))
+        ran.append(_run_layer(layer, master, static, params, distro, res, fp.inscribed_radius, notes, sqrt))
     notes += [f"filter '{f}' not modelled (needs a filter mask); skipped" for f in params.filters]
     return GlobalCostmap(static, master, res, org, distro, fp.inscribed_radius, fp.circumscribed_radius,
                          tuple(r for r in ran if r), tuple(notes))
 
 
 def _run_layer(layer: LayerSpec, master, static, params: CostmapParams, distro: str, res: float,
-               inscribed: float, notes: list) -> Optional[str]:
+               inscribed: float, notes: list, sqrt: str = "eigen-sse-amd") -> Optional[str]:
     if layer.type in SENSOR_LAYERS:
         notes.append(f"{layer.name} ({layer.type}) needs sensor data; skipped")
         return None
@@ -374,7 +376,7 @@ def _run_layer(layer: LayerSpec, master, static, params: CostmapParams, distro: 
         raise NavfnInputError(f"'{layer.name}.plugin' {layer.type} does not exist in Nav2 {distro}")
     ip = layer.inflation or InflationParams()
     radius = ip.custom_inscribed_radius if ip.custom_inscribed_radius >= 0.0 else inscribed
-    fn = inflate_current if kind == "current" else inflate_legacy
-    master[...] = fn(master, res, radius, ip.inflation_radius, ip.cost_scaling_factor,
-                     ip.inflate_unknown, ip.inflate_around_unknown)
+    args = (master, res, radius, ip.inflation_radius, ip.cost_scaling_factor, ip.inflate_unknown,
+            ip.inflate_around_unknown)
+    master[...] = inflate_current(*args, sqrt=sqrt) if kind == "current" else inflate_legacy(*args)
     return f"{layer.name} ({kind})"

@@ -45,7 +45,11 @@ ANCHOR = "// reset pending flags on current priority buffer"  # once in each pro
 ANCHORS_EXPECTED = 2
 HOOK = "NAVFN_SMT_CYCLE(curP, curPe);"
 FLAGS = ("-std=c++17", "-O2")
-PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin")
+PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers")
+EIGEN_DIRS = ("/usr/include/eigen3", "/usr/local/include/eigen3")
+LAYER_SOURCES = ("src/costmap_2d.cpp", "src/layer.cpp", "src/layered_costmap.cpp", "src/costmap_layer.cpp",
+                 "src/footprint.cpp", "src/costmap_math.cpp", "src/array_parser.cpp", "plugins/static_layer.cpp",
+                 "plugins/inflation_layer.cpp", "plugins/legacy_inflation_layer.cpp")
 BUFFER_DEFINE = "#define PRIORITYBUFSIZE"  # once in navfn.hpp; the unbounded build replaces its line
 # package.xml's major.minor version -> the distribution it is released in
 DISTRIBUTIONS = {(1, 1): "humble", (1, 2): "iron", (1, 3): "jazzy", (1, 4): "kilted"}
@@ -140,8 +144,8 @@ def _git_commit(src: Path) -> Optional[str]:
     return r.stdout.strip() if r.returncode == 0 else None
 
 
-def _compile(cxx: str, sources, includes, defines, out: Path) -> None:
-    cmd = [cxx, *FLAGS, *(f"-I{i}" for i in includes), *(f"-D{d}" for d in defines), *map(str, sources),
+def _compile(cxx: str, sources, includes, defines, out: Path, extra=()) -> None:
+    cmd = [cxx, *FLAGS, *extra, *(f"-I{i}" for i in includes), *(f"-D{d}" for d in defines), *map(str, sources),
            "-o", str(out)]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
@@ -164,13 +168,30 @@ def _jobs(src: Path, tmp: Path) -> dict:
               *[f for f in [pkg / "src" / "parameter_handler.cpp"] if f.is_file()]]
     plugin_includes = [HERE / "plugin_stubs", pkg / "include", src / "nav2_core" / "include",
                        src / "nav2_costmap_2d" / "include"]
+    costmap = src / "nav2_costmap_2d"
+    layers = [HERE / "layers_driver.cpp", *[costmap / f for f in LAYER_SOURCES if (costmap / f).is_file()]]
+    layer_defines = [d for d in plugin_api(src) if d == "NAVFN_SMT_NAV2_NODE"] + (
+        ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])
     return {
+        "costmap-layers": (layers, [HERE / "plugin_stubs", costmap / "include", *eigen_include()], layer_defines,
+                           ["-fopenmp"]),
         "navfn-plain": ([driver, navfn_cpp], includes, defines),
         "navfn-traced": ([driver, traced], includes, [*defines, "NAVFN_SMT_TRACED"]),
         "navfn-unbounded": ([driver, traced], [tmp / "unbounded", *includes],
                             [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_UNBOUNDED"]),
         "navfn-plugin": (plugin, plugin_includes, plugin_api(src)),
     }
+
+
+def eigen_include() -> list[Path]:
+    """Eigen 3's include folder (Rolling's inflation layer needs it), or none."""
+    return [Path(d) for d in EIGEN_DIRS if (Path(d) / "Eigen" / "Core").is_file()][:1]
+
+
+def needs_missing_eigen(src: Path) -> bool:
+    """The version's inflation layer includes Eigen and this machine has none."""
+    hpp = src / "nav2_costmap_2d" / "include" / "nav2_costmap_2d" / "inflation_layer.hpp"
+    return hpp.is_file() and "<Eigen/" in hpp.read_text(encoding="utf-8") and not eigen_include()
 
 
 def _used(src: Path) -> list[Path]:
@@ -182,7 +203,11 @@ def _used(src: Path) -> list[Path]:
              pkg / "include" / "nav2_navfn_planner" / "parameter_handler.hpp",
              core / "global_planner.hpp", core / "planner_exceptions.hpp", costmap / "src" / "costmap_2d.cpp",
              costmap / "include" / "nav2_costmap_2d" / "costmap_2d.hpp",
-             costmap / "include" / "nav2_costmap_2d" / "cost_values.hpp"]
+             costmap / "include" / "nav2_costmap_2d" / "cost_values.hpp",
+             *[costmap / f for f in LAYER_SOURCES],
+             *[costmap / "include" / "nav2_costmap_2d" / f"{n}.hpp" for n in (
+                 "layer", "layered_costmap", "costmap_layer", "footprint", "costmap_math", "static_layer",
+                 "inflation_layer", "legacy_inflation_layer", "inflation_layer_interface", "distance_transform")]]
     return [f for f in files if f.is_file()]
 
 
@@ -198,18 +223,23 @@ def build(nav2_src, out, programs=PROGRAMS) -> dict:
         raise NavfnInputError(f"no oracle program {unknown[0]!r} (there are: {', '.join(PROGRAMS)})")
     cxx = compiler()
     version = subprocess.run([cxx, "--version"], capture_output=True, text=True).stdout.splitlines()[:1]
+    skipped = {}
+    if "costmap-layers" in programs and needs_missing_eigen(src):
+        skipped["costmap-layers"] = ("this version's inflation layer needs Eigen 3, which is not installed "
+                                     "(libeigen3-dev); the costmap level is left out")
+        programs = tuple(p for p in programs if p != "costmap-layers")
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
     try:
         jobs = _jobs(src, tmp)
         with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-            running = [pool.submit(_compile, cxx, *jobs[name], tmp / name) for name in programs]
+            running = [pool.submit(_compile, cxx, *jobs[name][:3], tmp / name, *jobs[name][3:]) for name in programs]
             for job in running:
                 job.result()
         doc = {
             "sources": str(src.resolve()), "distribution": distribution(src), "git_commit": _git_commit(src),
             "compiler": cxx, "compiler_version": version[0] if version else "", "flags": list(FLAGS),
-            "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs),
+            "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs), "skipped": skipped,
             "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src)},
             "anchor": ANCHOR,
         }

@@ -143,3 +143,50 @@ class PluginOracle(_Program):
             out.append(PluginAnswer(PLUGIN_OUTCOMES[outcome], message, got, lines))
         (self.planning_seconds,) = struct.unpack("<d", self._read(8))
         return out
+
+
+LAYER_KINDS = {"nav2_costmap_2d::StaticLayer": 0, "nav2_costmap_2d::InflationLayer": 1,
+               "nav2_costmap_2d::LegacyInflationLayer": 2}
+
+
+@dataclass
+class LayersAnswer:
+    """The master costmap after Nav2's layers ran (None when the version lacks a layer type),
+    and the footprint's radii as LayeredCostmap computed them."""
+
+    costmap: Optional[np.ndarray]  # uint8 (size_y, size_x)
+    inscribed_radius: float
+    circumscribed_radius: float
+
+
+class LayersOracle(_Program):
+    """A running C++ global costmap (``costmap-layers``): Nav2's static and inflation layers on
+    an occupancy grid, one full update per request."""
+
+    program = "costmap-layers"
+    END = struct.pack("<3i", 0, 0, 0)
+
+    def costmap(self, occupancy: np.ndarray, resolution: float, origin, params) -> LayersAnswer:
+        """The layers of the :class:`~navfn_smt.nav2.costmap.CostmapParams` ``params`` (in order;
+        only static and inflation types) on the int8 (height, width) ``occupancy`` grid of a map
+        with the float32 ``resolution`` and ``origin`` (x, y)."""
+        occ = np.ascontiguousarray(occupancy, dtype=np.int8)
+        h, w = occ.shape
+        out = [struct.pack("<3if2d6idf", w, h, len(params.plugins), np.float32(resolution), float(origin[0]),
+                           float(origin[1]), int(params.track_unknown_space), int(params.use_maximum),
+                           int(params.lethal_cost_threshold), int(params.unknown_cost_value),
+                           int(params.trinary_costmap), int(params.inscribed_obstacle_cost_value),
+                           float(params.robot_radius), np.float32(params.footprint_padding))]
+        for layer in params.plugins:
+            ip = layer.inflation
+            kind = LAYER_KINDS.get(layer.type, -1)
+            enabled = layer.enabled and (ip is None or ip.enabled)
+            out.append(struct.pack("<4i3d", kind, int(enabled), int(bool(ip and ip.inflate_unknown)),
+                                   int(bool(ip and ip.inflate_around_unknown)), ip.inflation_radius if ip else 0.0,
+                                   ip.cost_scaling_factor if ip else 0.0, ip.custom_inscribed_radius if ip else -1.0))
+        self.proc.stdin.write(b"".join(out) + occ.tobytes())
+        self.proc.stdin.flush()
+        sx, sy, status = struct.unpack("<3i", self._read(12))
+        costs = np.frombuffer(self._read(sx * sy), dtype=np.uint8).reshape(sy, sx).copy()
+        radii = struct.unpack("<2d", self._read(16))
+        return LayersAnswer(None if status else costs, *radii)

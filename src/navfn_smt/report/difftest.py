@@ -91,6 +91,9 @@ def level_table(summary: dict) -> None:
     for outcome, n in summary["outcomes"].items():
         t.add_row(str(outcome), str(n))
     console.print(t)
+    if summary.get("sqrt_match"):
+        print("the distance-transform layer's square roots, per configuration that has one: " + ", ".join(
+            f"{k}: {v}" for k, v in summary["sqrt_match"].items()) + sqrt_verdict(summary["sqrt_match"]))
     for d in summary["disagreements"][:5]:
         print(f"{d['config']} case {d['case']}: {d['field']}: model {d['model']!r}, C++ {d['cpp']!r}")
     extra = [f"{summary[k]} {k.replace('_', ' ')}" for k in ("undefined_behaviour", "log_lines") if k in summary]
@@ -99,3 +102,13 @@ def level_table(summary: dict) -> None:
 
 def write_level_json(path, summary: dict) -> None:
     atomic_write_text(path, json.dumps(summary, indent=1))
+
+
+def sqrt_verdict(match: dict) -> str:
+    """What the square-root counts say about this machine (``docs/distributions.md``)."""
+    told = {k: v for k, v in match.items() if k.endswith(" only")}
+    if "none" in match:
+        return " - this machine matches none of the model's square roots"
+    if not told:
+        return " - no configuration told the square roots apart"
+    return f" - this machine's C++ takes the {' and '.join(k[:-5] for k in told)} square root"

@@ -3,8 +3,12 @@
 #define NAVFN_SMT_PLUGIN_STUB_NAV2_LIFECYCLE_NODE_HPP_
 #include <string>
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
+#include "nav2_ros_common/qos_profiles.hpp"
 namespace nav2
 {
+template<typename MessageT>
+using Subscription = rclcpp::Subscription<MessageT>;
+
 class LifecycleNode : public rclcpp_lifecycle::LifecycleNode
 {
 public:

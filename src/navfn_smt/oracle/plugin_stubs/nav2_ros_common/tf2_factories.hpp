@@ -1,10 +1,11 @@
-// navfn-smt: the transform buffer type of nav2_ros_common (rolling); the plugin only keeps it.
+// navfn-smt: the transform buffer type of nav2_ros_common (rolling): see tf2_ros/buffer.h.
 #ifndef NAVFN_SMT_PLUGIN_STUB_TF2_FACTORIES_HPP_
 #define NAVFN_SMT_PLUGIN_STUB_TF2_FACTORIES_HPP_
 #include <memory>
+#include "tf2_ros/buffer.h"
 namespace nav2
 {
-struct TransformBuffer
+struct TransformBuffer : tf2_ros::Buffer
 {
   using SharedPtr = std::shared_ptr<TransformBuffer>;
 };

@@ -11,5 +11,11 @@ void declare_parameter_if_not_declared(
 {
   if (!node->has_parameter(name)) {node->declare_parameter(name, default_value);}
 }
+template<typename NodeT>
+void declare_parameter_if_not_declared(
+  NodeT node, const std::string & name, const rclcpp::ParameterType & type)
+{
+  if (!node->has_parameter(name)) {node->declare_parameter(name, type);}
+}
 }  // namespace nav2_util
 #endif

@@ -5,6 +5,7 @@
 #ifndef NAVFN_SMT_PLUGIN_STUB_RCLCPP_HPP_
 #define NAVFN_SMT_PLUGIN_STUB_RCLCPP_HPP_
 
+#include <atomic>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -54,6 +56,11 @@ struct SetParametersResult
 
 namespace rclcpp
 {
+enum ParameterType : uint8_t
+{
+  PARAMETER_NOT_SET = 0, PARAMETER_BOOL = 1, PARAMETER_INTEGER = 2, PARAMETER_DOUBLE = 3, PARAMETER_STRING = 4
+};
+
 struct Logger
 {
   std::string name;
@@ -67,11 +74,21 @@ struct Time
 struct Duration
 {
   int64_t nanoseconds = 0;
+  Duration() = default;
+  Duration(int32_t seconds, uint32_t nanos) : nanoseconds(int64_t(seconds) * 1000000000 + nanos) {}
+  static Duration from_seconds(double s) {Duration d; d.nanoseconds = static_cast<int64_t>(s * 1e9); return d;}
+  double seconds() const {return nanoseconds * 1e-9;}
 };
+enum rcl_clock_type_t {RCL_ROS_TIME = 1, RCL_SYSTEM_TIME = 2, RCL_STEADY_TIME = 3};
+}  // namespace rclcpp
+using rclcpp::RCL_ROS_TIME;
+namespace rclcpp
+{
 class Clock
 {
 public:
   using SharedPtr = std::shared_ptr<Clock>;
+  explicit Clock(rcl_clock_type_t = RCL_ROS_TIME) {}
   Time now() const {return Time{};}  // stamps are not compared
 };
 
@@ -86,12 +103,28 @@ public:
   explicit ParameterValue(double v) : type_(rcl_interfaces::msg::ParameterType::PARAMETER_DOUBLE), d_(v) {}
   explicit ParameterValue(const std::string & v)
   : type_(rcl_interfaces::msg::ParameterType::PARAMETER_STRING), s_(v) {}
+  explicit ParameterValue(const char * v)
+  : type_(rcl_interfaces::msg::ParameterType::PARAMETER_STRING), s_(v) {}
   uint8_t get_type() const {return type_;}
   bool as_bool() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_BOOL); return b_;}
   int64_t as_int() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_INTEGER); return i_;}
   double as_double() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_DOUBLE); return d_;}
   const std::string & as_string() const {check(rcl_interfaces::msg::ParameterType::PARAMETER_STRING); return s_;}
-  template<typename T> T get() const;
+  // as rclcpp's get<T>: a bool, any integer type (cast from the int64), a float or double
+  // (cast from the double), a string
+  template<typename T>
+  T get() const
+  {
+    if constexpr (std::is_same_v<T, bool>) {
+      return as_bool();
+    } else if constexpr (std::is_integral_v<T>) {
+      return static_cast<T>(as_int());
+    } else if constexpr (std::is_floating_point_v<T>) {
+      return static_cast<T>(as_double());
+    } else {
+      return as_string();
+    }
+  }
 
 private:
   void check(uint8_t t) const
@@ -104,12 +137,6 @@ private:
   double d_ = 0.0;
   std::string s_;
 };
-template<> inline bool ParameterValue::get<bool>() const {return as_bool();}
-template<> inline int ParameterValue::get<int>() const {return static_cast<int>(as_int());}
-template<> inline int64_t ParameterValue::get<int64_t>() const {return as_int();}
-template<> inline double ParameterValue::get<double>() const {return as_double();}
-template<> inline std::string ParameterValue::get<std::string>() const {return as_string();}
-
 class Parameter
 {
 public:
@@ -125,6 +152,34 @@ public:
 private:
   std::string name_;
   ParameterValue value_;
+};
+
+// A subscription's quality of service: kept, never used (the oracle delivers messages itself).
+class QoS
+{
+public:
+  explicit QoS(size_t depth = 10) : depth_(depth) {}
+  QoS & transient_local() {return *this;}
+  QoS & reliable() {return *this;}
+  QoS & best_effort() {return *this;}
+  QoS & keep_last(size_t depth) {depth_ = depth; return *this;}
+
+private:
+  size_t depth_;
+};
+struct SystemDefaultsQoS : QoS {};
+struct CallbackGroup
+{
+  using SharedPtr = std::shared_ptr<CallbackGroup>;
+};
+template<typename MessageT>
+struct Subscription
+{
+  using SharedPtr = std::shared_ptr<Subscription>;
+};
+struct SubscriptionOptions
+{
+  CallbackGroup::SharedPtr callback_group;
 };
 
 namespace node_interfaces
@@ -147,5 +202,18 @@ struct PostSetParametersCallbackHandle
 #define RCLCPP_WARN(logger, ...) ::navfn_smt::log(30, __VA_ARGS__)
 #define RCLCPP_ERROR(logger, ...) ::navfn_smt::log(40, __VA_ARGS__)
 #define RCLCPP_FATAL(logger, ...) ::navfn_smt::log(50, __VA_ARGS__)
+#define RCLCPP_DEBUG_ONCE(logger, ...) RCLCPP_DEBUG(logger, __VA_ARGS__)
+#define RCLCPP_INFO_ONCE(logger, ...) RCLCPP_INFO(logger, __VA_ARGS__)
+#define RCLCPP_WARN_ONCE(logger, ...) RCLCPP_WARN(logger, __VA_ARGS__)
+#define RCLCPP_ERROR_ONCE(logger, ...) RCLCPP_ERROR(logger, __VA_ARGS__)
+#define RCLCPP_DEBUG_EXPRESSION(logger, expr, ...) do {if (expr) {RCLCPP_DEBUG(logger, __VA_ARGS__);}} while (0)
+#define RCLCPP_INFO_EXPRESSION(logger, expr, ...) do {if (expr) {RCLCPP_INFO(logger, __VA_ARGS__);}} while (0)
+#define RCLCPP_WARN_EXPRESSION(logger, expr, ...) do {if (expr) {RCLCPP_WARN(logger, __VA_ARGS__);}} while (0)
+#define RCLCPP_ERROR_EXPRESSION(logger, expr, ...) do {if (expr) {RCLCPP_ERROR(logger, __VA_ARGS__);}} while (0)
+#define RCLCPP_FATAL_EXPRESSION(logger, expr, ...) do {if (expr) {RCLCPP_FATAL(logger, __VA_ARGS__);}} while (0)
+#define RCLCPP_WARN_THROTTLE(logger, clock, ms, ...) RCLCPP_WARN(logger, __VA_ARGS__)
+#define RCLCPP_ERROR_THROTTLE(logger, clock, ms, ...) RCLCPP_ERROR(logger, __VA_ARGS__)
+#define RCLCPP_INFO_THROTTLE(logger, clock, ms, ...) RCLCPP_INFO(logger, __VA_ARGS__)
+#define RCLCPP_DEBUG_THROTTLE(logger, clock, ms, ...) RCLCPP_DEBUG(logger, __VA_ARGS__)
 
 #endif  // NAVFN_SMT_PLUGIN_STUB_RCLCPP_HPP_

@@ -4,9 +4,13 @@
 #ifndef NAVFN_SMT_PLUGIN_STUB_LIFECYCLE_NODE_HPP_
 #define NAVFN_SMT_PLUGIN_STUB_LIFECYCLE_NODE_HPP_
 
+#include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <typeindex>
 #include <vector>
 
 #include "rclcpp/rclcpp.hpp"
@@ -33,12 +37,22 @@ public:
       it->second : default_value;
     return params_[name];
   }
+  // declared by type alone: it takes the override of that type, else stays unset
+  void declare_parameter(const std::string & name, rclcpp::ParameterType type)
+  {
+    auto it = overrides.find(name);
+    if (it != overrides.end() && it->second.get_type() == type) {params_[name] = it->second;}
+  }
   template<typename T>
   bool get_parameter(const std::string & name, T & out) const
   {
     auto it = params_.find(name);
     if (it == params_.end()) {return false;}
-    out = it->second.get<T>();
+    try {
+      out = it->second.get<T>();
+    } catch (const std::runtime_error &) {
+      throw std::runtime_error("parameter " + name + " read as another type than declared");
+    }
     return true;
   }
   rclcpp::Parameter get_parameter(const std::string & name) const
@@ -51,9 +65,58 @@ public:
     return std::make_shared<rclcpp::node_interfaces::OnSetParametersCallbackHandle>();
   }
   void remove_on_set_parameters_callback(const rclcpp::node_interfaces::OnSetParametersCallbackHandle *) {}
+  template<typename CallbackT>
+  rclcpp::node_interfaces::PostSetParametersCallbackHandle::SharedPtr add_post_set_parameters_callback(CallbackT)
+  {
+    return std::make_shared<rclcpp::node_interfaces::PostSetParametersCallbackHandle>();
+  }
+  void remove_post_set_parameters_callback(const rclcpp::node_interfaces::PostSetParametersCallbackHandle *) {}
+  const char * get_namespace() const {return "/";}
+  const char * get_name() const {return "global_costmap";}
+
+  // Subscriptions: the callback is kept under its topic; the driver delivers a message to it
+  // as a publisher would (``deliver``).
+  template<typename MessageT, typename... Args>
+  typename rclcpp::Subscription<MessageT>::SharedPtr create_subscription(const std::string & topic, Args && ... args)
+  {
+    // the callback is whichever argument takes the message: (topic, callback[, qos]) from
+    // Jazzy on, (topic, qos, callback) before
+    std::function<void(std::shared_ptr<MessageT>)> f;
+    auto take = [&f](auto && a) {
+        if constexpr (std::is_invocable_v<decltype(a), std::shared_ptr<MessageT>>) {
+          if (!f) {f = a;}
+        }
+      };
+    (take(args), ...);
+    subscribers_.push_back({topic, typeid(MessageT), [f](const void * msg) {
+          f(std::make_shared<MessageT>(*static_cast<const MessageT *>(msg)));
+        }});
+    return std::make_shared<rclcpp::Subscription<MessageT>>();
+  }
+  // every subscription to messages of this type, whatever its topic (the layers resolve their
+  // topic names against the node's namespace); the topics reached
+  template<typename MessageT>
+  std::vector<std::string> deliver(const MessageT & msg)
+  {
+    std::vector<std::string> topics;
+    for (auto & sub : subscribers_) {
+      if (sub.type == std::type_index(typeid(MessageT))) {
+        sub.call(&msg);
+        topics.push_back(sub.topic);
+      }
+    }
+    return topics;
+  }
 
 protected:
   std::map<std::string, rclcpp::ParameterValue> params_;
+  struct Subscriber
+  {
+    std::string topic;
+    std::type_index type;
+    std::function<void(const void *)> call;
+  };
+  std::vector<Subscriber> subscribers_;
 };
 }  // namespace rclcpp_lifecycle
 

@@ -3,6 +3,7 @@
 #ifndef NAVFN_SMT_PLUGIN_STUB_OCCUPANCY_GRID_HPP_
 #define NAVFN_SMT_PLUGIN_STUB_OCCUPANCY_GRID_HPP_
 #include <cstdint>
+#include <memory>
 #include <vector>
 #include "geometry_msgs/msg/pose.hpp"
 #include "std_msgs/msg/header.hpp"
@@ -19,6 +20,8 @@ struct MapMetaData
 };
 struct OccupancyGrid
 {
+  using SharedPtr = std::shared_ptr<OccupancyGrid>;
+  using ConstSharedPtr = std::shared_ptr<const OccupancyGrid>;
   std_msgs::msg::Header header;
   MapMetaData info;
   std::vector<int8_t> data;

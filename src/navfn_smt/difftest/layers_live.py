@@ -1,0 +1,175 @@
+"""The costmap level of the live difftest: Nav2's global costmap layers, built from the user's
+sources (``costmap-layers`` of an oracle build), against the model of :mod:`navfn_smt.nav2.costmap`
+for the distribution the sources were detected as.
+
+A configuration is an occupancy grid as map_server publishes it, the costmap node's
+parameters and a list of layers (the static layer, then zero to two inflation layers of every
+type the version has).  The two agree when the master costmap is the same byte for byte and
+the footprint's inscribed and circumscribed radii are the same doubles.
+
+Rolling's ``InflationLayer`` takes its distances' square roots with Eigen, whose result
+depends on the CPU's ``rsqrtps`` (see :func:`~navfn_smt.nav2.inflation.matrix_sqrt`).  Where
+such a configuration is run with each of the model's square roots; the summary counts which
+of them this machine's C++ matches (``sqrt_match``: ``all`` when the configuration does not
+tell them apart, ``eigen-sse-amd only`` when this CPU's square roots are the emulated ones
+where they differ from the correctly rounded ones), and a configuration no variant matches is
+a disagreement.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Callable, Iterator, Optional
+
+import numpy as np
+
+from ..nav2.costmap import (INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, InflationParams, LayerSpec,
+                            build_global_costmap, inflation_types)
+from ..nav2.inflation import SQRT_MODES
+from ..nav2.mapserver import MapServerMap
+
+MAX_DETAILS = 20
+OCCUPANCY = (-1, 0, 0, 0, 0, 100, 100, 100, 99, 98, 65, 50, 1, 30)
+RESOLUTIONS = (0.05, 0.1, 0.025, 0.2, 1.0, 0.07)
+
+
+@dataclass
+class LayersConfig:
+    occupancy: np.ndarray  # int8 (height, width)
+    resolution: float  # as the map's YAML writes it (the grid holds its float32)
+    origin: tuple
+    params: CostmapParams
+    name: str = ""
+
+
+@dataclass
+class LayersSummary:
+    distribution: str
+    configs: int = 0
+    agreeing: int = 0
+    outcomes: dict = field(default_factory=dict)  # the layer types that ran -> configurations
+    sqrt_match: dict = field(default_factory=dict)  # configs with a distance-transform layer -> the variant matched
+    disagreements: list = field(default_factory=list)
+    cpp_seconds: float = 0.0
+    model_seconds: float = 0.0
+
+    def as_dict(self) -> dict:
+        return {"level": "costmap", "distribution": self.distribution, "cases": self.configs,
+                "passed": self.agreeing, "failed": self.configs - self.agreeing,
+                "outcomes": dict(sorted(self.outcomes.items())), "sqrt_match": dict(sorted(self.sqrt_match.items())),
+                "cpp_seconds": round(self.cpp_seconds, 3), "model_seconds": round(self.model_seconds, 3),
+                "disagreements": self.disagreements}
+
+
+def model_costmap(cfg: LayersConfig, distro: str, sqrt: str = SQRT_MODES[0]):
+    """The model's global costmap of ``cfg`` (:func:`~navfn_smt.nav2.costmap.build_global_costmap`
+    on the grid as a map_server map of ``distro``)."""
+    h, w = cfg.occupancy.shape
+    m = MapServerMap(Path("generated"), Path("generated"), cfg.resolution, float(np.float32(cfg.resolution)),
+                     (cfg.origin[0], cfg.origin[1], 0.0), w, h, "trinary", False, distro, 0.65, 0.25,
+                     cfg.occupancy, None, None)
+    return build_global_costmap(m, cfg.params, distro, sqrt=sqrt)
+
+
+def _first_difference(model, answer) -> Optional[tuple]:
+    if model.costmap.shape != answer.costmap.shape:
+        return "size", list(model.costmap.shape), list(answer.costmap.shape)
+    diff = np.argwhere(model.costmap != answer.costmap)
+    if len(diff):
+        j, i = (int(v) for v in diff[0])
+        return f"cell ({i}, {j}) of {len(diff)}", int(model.costmap[j, i]), int(answer.costmap[j, i])
+    for key in ("inscribed_radius", "circumscribed_radius"):
+        a, b = getattr(model, key), getattr(answer, key)
+        if a != b:
+            return key, a.hex(), b.hex()
+    return None
+
+
+def compare_config(cfg: LayersConfig, oracle, summary: LayersSummary) -> None:
+    distro = summary.distribution
+    t0 = time.perf_counter()
+    answer = oracle.costmap(cfg.occupancy, cfg.resolution, cfg.origin, cfg.params)
+    summary.cpp_seconds += time.perf_counter() - t0
+    summary.configs += 1
+    kinds = inflation_types(distro)
+    ran = "static" + "".join(f" + {kinds[lay.type]}" for lay in cfg.params.plugins if lay.type in kinds)
+    summary.outcomes[ran] = summary.outcomes.get(ran, 0) + 1
+    has_dt = any(kinds.get(lay.type) == "current" for lay in cfg.params.plugins)
+    t1 = time.perf_counter()
+    diffs = {sqrt: _first_difference(model_costmap(cfg, distro, sqrt), answer)
+             for sqrt in (SQRT_MODES if has_dt else SQRT_MODES[:1])}
+    summary.model_seconds += time.perf_counter() - t1
+    matched = [sqrt for sqrt, d in diffs.items() if d is None]
+    diff = None if matched else diffs[SQRT_MODES[0]]
+    if has_dt:
+        # "eigen-sse-amd only": this CPU's square roots are the emulated ones where they differ
+        # from the correctly rounded ones; "all": the configuration does not tell them apart
+        key = "none" if not matched else "all" if len(matched) == len(diffs) else f"{'+'.join(matched)} only"
+        summary.sqrt_match[key] = summary.sqrt_match.get(key, 0) + 1
+    if diff is None:
+        summary.agreeing += 1
+    elif len(summary.disagreements) < MAX_DETAILS:
+        summary.disagreements.append({"config": cfg.name, "case": 0, "field": diff[0], "model": diff[1],
+                                      "cpp": diff[2], "layers": ran, "params": repr(cfg.params),
+                                      "occupancy": cfg.occupancy.tolist(), "resolution": cfg.resolution,
+                                      "origin": list(cfg.origin)})
+
+
+def run_layers_live(configs, oracle, progress: Optional[Callable[[int], None]] = None) -> LayersSummary:
+    summary = LayersSummary(oracle.build["distribution"])
+    for cfg in configs:
+        compare_config(cfg, oracle, summary)
+        if progress:
+            progress(1)
+    return summary
+
+
+def _inflation(rng, kind: str) -> InflationParams:
+    return InflationParams(enabled=bool(rng.random() < 0.95),
+                           inflation_radius=float(rng.choice([0.0, 0.1, 0.22, 0.3, 0.55, 0.7, 1.0])),
+                           cost_scaling_factor=float(rng.choice([1.0, 3.0, 5.5, 10.0])),
+                           inflate_unknown=bool(rng.random() < 0.3), inflate_around_unknown=bool(rng.random() < 0.3),
+                           custom_inscribed_radius=float(rng.choice([-1.0, -1.0, 0.05, 0.2])) if kind == "current"
+                           else -1.0)
+
+
+def sqrt_probe() -> LayersConfig:
+    """One lethal cell in the middle of a free 61x61 grid, inflated 30 cells out by the
+    distance-transform layer: 12 of its cells get another cost from the emulated Eigen square
+    root than from the correctly rounded one, so the configuration tells a CPU's apart."""
+    occ = np.zeros((61, 61), dtype=np.int8)
+    occ[30, 30] = 100
+    layers = (LayerSpec("static_layer", STATIC),
+              LayerSpec("inflation_layer", INFLATION, InflationParams(inflation_radius=1.5, cost_scaling_factor=1.0)))
+    return LayersConfig(occ, 0.05, (0.0, 0.0), replace(CostmapParams(), plugins=layers, robot_radius=0.0,
+                                                       footprint_padding=0.0), name="sqrt probe")
+
+
+def generated_configs(distro: str, count: int, seed: int = 0) -> Iterator[LayersConfig]:
+    """``count`` generated configurations for ``distro`` (seeded); with a distance-transform
+    layer in the version, the first is :func:`sqrt_probe`."""
+    rng = np.random.default_rng(seed)
+    types = [t for t in (INFLATION, LEGACY_INFLATION) if t in inflation_types(distro)]
+    if count > 0 and inflation_types(distro).get(INFLATION) == "current":
+        count -= 1
+        yield sqrt_probe()
+    for c in range(count):
+        w, h = int(rng.integers(1, 41)), int(rng.integers(1, 41))
+        occ = rng.choice(np.array(OCCUPANCY, dtype=np.int8), size=(h, w))
+        res = float(rng.choice(RESOLUTIONS))
+        origin = (float(rng.choice([0.0, -1.5, 0.3, -w * res / 2])), float(rng.choice([0.0, 2.0, -h * res / 2])))
+        layers = [LayerSpec("static_layer", STATIC)]
+        for k in range(int(rng.integers(0, 3))):
+            t = types[int(rng.integers(len(types)))]
+            layers.append(LayerSpec(f"inflation_{k}", t, _inflation(rng, inflation_types(distro)[t])))
+        params = replace(CostmapParams(), plugins=tuple(layers), robot_radius=float(rng.choice([0.05, 0.1, 0.22, 0.3])),
+                         footprint_padding=float(rng.choice([0.0, 0.01, 0.03])),
+                         track_unknown_space=bool(rng.random() < 0.6),
+                         lethal_cost_threshold=int(rng.choice([100, 100, 65, 50, 0, 120, -5])),
+                         trinary_costmap=bool(rng.random() < 0.7),
+                         unknown_cost_value=int(rng.choice([255, 255, 0, 99])),
+                         inscribed_obstacle_cost_value=int(rng.choice([99, 99, 98, 50])),
+                         use_maximum=bool(rng.random() < 0.3))
+        yield LayersConfig(occ, res, origin, params, name=f"seed {seed} config {c}")

@@ -1,0 +1,2 @@
+// navfn-smt: included by Humble's layers; the oracle's layers subscribe to nothing through it.
+#pragma once

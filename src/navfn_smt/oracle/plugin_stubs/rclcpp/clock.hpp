@@ -1,0 +1,3 @@
+// navfn-smt: rclcpp/clock.hpp is part of the rclcpp stub.
+#pragma once
+#include "rclcpp/rclcpp.hpp"
