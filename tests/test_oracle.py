@@ -336,19 +336,26 @@ def test_the_costmap_model_of_each_distribution_agrees_with_its_layers(builds):
         assert kinds == {k for o in s["outcomes"] for k in o.split(" + ")[1:]}, (distro, s["outcomes"])
 
 
-def test_the_sqrt_probe_tells_this_cpus_square_root(builds):
-    """The probe's 12 cells differ between the model's two square roots; this machine's C++
-    matches exactly one of them (which one is a fact about the CPU and the build, reported)."""
-    from navfn_smt.difftest.layers_live import model_costmap, sqrt_probe
+def test_the_costmap_level_says_which_square_root_this_cpu_takes(builds):
+    """The probe's 12 cells differ between the model's two square roots; the build's own Eigen
+    square root is compared with both on 2^20 integers; when it equals one of them, the probe's
+    C++ costmap is that one's (which one, or neither, is a fact about the CPU, reported)."""
+    from navfn_smt.difftest.layers_live import cpu_sqrt, model_costmap, sqrt_probe
     from navfn_smt.nav2.inflation import SQRT_MODES
     from navfn_smt.oracle.client import LayersOracle
 
     cfg = sqrt_probe()
     models = {m: model_costmap(cfg, "rolling", m).costmap for m in SQRT_MODES}
     assert int((models["eigen-sse-amd"] != models["exact"]).sum()) == 12
-    with LayersOracle(_layers(builds, "rolling")) as oracle:
+    folder = _layers(builds, "rolling")
+    with LayersOracle(folder) as oracle:
         cpp = oracle.costmap(cfg.occupancy, cfg.resolution, cfg.origin, cfg.params).costmap
-    assert sum(bool((cpp == m).all()) for m in models.values()) == 1
+    c = cpu_sqrt(folder)
+    assert c["values"] == 1 << 20 and set(c["differ"]) == set(SQRT_MODES)
+    if c["matches"]:
+        assert c["differ"][c["matches"]] == 0 and (cpp == models[c["matches"]]).all()
+    else:
+        assert min(c["differ"].values()) > 0
 
 
 def test_a_bug_seeded_in_a_layer_is_caught(nav2_src, tmp_path, builds):

@@ -69,13 +69,13 @@ def _plugin(args, folder: Path):
 def _costmap(args, folder: Path):
     from ..difftest.layers_live import generated_configs, run_layers_live
     from ..oracle.client import LayersOracle
-    from ..report.difftest import sqrt_verdict
+    from ..report.difftest import cpu_sqrt_line
 
     with LayersOracle(folder) as oracle:
         s = run_layers_live(generated_configs(oracle.build["distribution"], args.configs, args.seed),
                             oracle).as_dict()
-    if s["sqrt_match"]:
-        print(f"  square roots:{sqrt_verdict(s['sqrt_match'])}")
+    if s["cpu_sqrt"]:
+        print("  " + cpu_sqrt_line(s["cpu_sqrt"]))
     return s
 
 

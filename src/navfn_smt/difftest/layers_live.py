@@ -54,9 +54,10 @@ class LayersSummary:
     disagreements: list = field(default_factory=list)
     cpp_seconds: float = 0.0
     model_seconds: float = 0.0
+    cpu_sqrt: Optional[dict] = None  # this machine's Eigen square root against the model's (cpu_sqrt)
 
     def as_dict(self) -> dict:
-        return {"level": "costmap", "distribution": self.distribution, "cases": self.configs,
+        return {"level": "costmap", "cpu_sqrt": self.cpu_sqrt, "distribution": self.distribution, "cases": self.configs,
                 "passed": self.agreeing, "failed": self.configs - self.agreeing,
                 "outcomes": dict(sorted(self.outcomes.items())), "sqrt_match": dict(sorted(self.sqrt_match.items())),
                 "cpp_seconds": round(self.cpp_seconds, 3), "model_seconds": round(self.model_seconds, 3),
@@ -123,7 +124,28 @@ def run_layers_live(configs, oracle, progress: Optional[Callable[[int], None]] =
         compare_config(cfg, oracle, summary)
         if progress:
             progress(1)
+    if "eigen-sqrt" in oracle.build["programs"]:
+        summary.cpu_sqrt = cpu_sqrt(oracle.folder)
     return summary
+
+
+CPU_SQRT_VALUES = 1 << 20  # the squared distances (integers) of maps up to 724 cells across
+
+
+def cpu_sqrt(folder) -> dict:
+    """This machine's Eigen square root (the build's ``eigen-sqrt``) on the integers below
+    :data:`CPU_SQRT_VALUES`, against each of the model's: how many differ, and ``sqrt(49)``."""
+    from ..nav2.inflation import matrix_sqrt
+    from ..oracle.client import EigenSqrt
+
+    x = np.arange(CPU_SQRT_VALUES, dtype=np.float32)
+    with EigenSqrt(folder) as e:
+        got = e.sqrt(x)
+    differ = {m: int(np.count_nonzero(got.view(np.uint32) != matrix_sqrt(x, m).view(np.uint32)))
+              for m in SQRT_MODES}
+    match = [m for m, k in differ.items() if k == 0]
+    return {"values": CPU_SQRT_VALUES, "differ": differ, "sqrt_49": float(got[49]),
+            "matches": match[0] if match else None}
 
 
 def _inflation(rng, kind: str) -> InflationParams:

@@ -45,7 +45,8 @@ ANCHOR = "// reset pending flags on current priority buffer"  # once in each pro
 ANCHORS_EXPECTED = 2
 HOOK = "NAVFN_SMT_CYCLE(curP, curPe);"
 FLAGS = ("-std=c++17", "-O2")
-PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers")
+PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers", "eigen-sqrt")
+EIGEN_PROGRAMS = ("costmap-layers", "eigen-sqrt")  # left out, and named, when Eigen is missing
 EIGEN_DIRS = ("/usr/include/eigen3", "/usr/local/include/eigen3")
 LAYER_SOURCES = ("src/costmap_2d.cpp", "src/layer.cpp", "src/layered_costmap.cpp", "src/costmap_layer.cpp",
                  "src/footprint.cpp", "src/costmap_math.cpp", "src/array_parser.cpp", "plugins/static_layer.cpp",
@@ -175,6 +176,7 @@ def _jobs(src: Path, tmp: Path) -> dict:
     return {
         "costmap-layers": (layers, [HERE / "plugin_stubs", costmap / "include", *eigen_include()], layer_defines,
                            ["-fopenmp"]),
+        "eigen-sqrt": ([HERE / "eigen_sqrt.cpp"], eigen_include(), [], ["-fopenmp"]),
         "navfn-plain": ([driver, navfn_cpp], includes, defines),
         "navfn-traced": ([driver, traced], includes, [*defines, "NAVFN_SMT_TRACED"]),
         "navfn-unbounded": ([driver, traced], [tmp / "unbounded", *includes],
@@ -188,10 +190,15 @@ def eigen_include() -> list[Path]:
     return [Path(d) for d in EIGEN_DIRS if (Path(d) / "Eigen" / "Core").is_file()][:1]
 
 
+def uses_eigen(src: Path) -> bool:
+    """The version's inflation layer includes Eigen (Rolling's distance-transform layer)."""
+    hpp = src / "nav2_costmap_2d" / "include" / "nav2_costmap_2d" / "inflation_layer.hpp"
+    return hpp.is_file() and "<Eigen/" in hpp.read_text(encoding="utf-8")
+
+
 def needs_missing_eigen(src: Path) -> bool:
     """The version's inflation layer includes Eigen and this machine has none."""
-    hpp = src / "nav2_costmap_2d" / "include" / "nav2_costmap_2d" / "inflation_layer.hpp"
-    return hpp.is_file() and "<Eigen/" in hpp.read_text(encoding="utf-8") and not eigen_include()
+    return uses_eigen(src) and not eigen_include()
 
 
 def _used(src: Path) -> list[Path]:
@@ -224,10 +231,12 @@ def build(nav2_src, out, programs=PROGRAMS) -> dict:
     cxx = compiler()
     version = subprocess.run([cxx, "--version"], capture_output=True, text=True).stdout.splitlines()[:1]
     skipped = {}
-    if "costmap-layers" in programs and needs_missing_eigen(src):
-        skipped["costmap-layers"] = ("this version's inflation layer needs Eigen 3, which is not installed "
-                                     "(libeigen3-dev); the costmap level is left out")
-        programs = tuple(p for p in programs if p != "costmap-layers")
+    for name in EIGEN_PROGRAMS:
+        if name in programs and (needs_missing_eigen(src) if name == "costmap-layers" else not uses_eigen(src)
+                                 or not eigen_include()):
+            skipped[name] = ("this version's inflation layer needs Eigen 3, which is not installed (libeigen3-dev)"
+                             if needs_missing_eigen(src) else "this version's inflation layer does not use Eigen")
+    programs = tuple(p for p in programs if p not in skipped)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
     try:

@@ -190,3 +190,16 @@ class LayersOracle(_Program):
         costs = np.frombuffer(self._read(sx * sy), dtype=np.uint8).reshape(sy, sx).copy()
         radii = struct.unpack("<2d", self._read(16))
         return LayersAnswer(None if status else costs, *radii)
+
+
+class EigenSqrt(_Program):
+    """This machine's Eigen ``cwiseSqrt`` (``eigen-sqrt``), as the distance-transform layer takes it."""
+
+    program = "eigen-sqrt"
+    END = struct.pack("<i", 0)
+
+    def sqrt(self, values: np.ndarray) -> np.ndarray:
+        x = np.ascontiguousarray(values, dtype="<f4").ravel()
+        self.proc.stdin.write(struct.pack("<i", len(x)) + x.tobytes())
+        self.proc.stdin.flush()
+        return np.frombuffer(self._read(4 * len(x)), dtype="<f4").copy()

@@ -93,7 +93,9 @@ def level_table(summary: dict) -> None:
     console.print(t)
     if summary.get("sqrt_match"):
         print("the distance-transform layer's square roots, per configuration that has one: " + ", ".join(
-            f"{k}: {v}" for k, v in summary["sqrt_match"].items()) + sqrt_verdict(summary["sqrt_match"]))
+            f"{k}: {v}" for k, v in summary["sqrt_match"].items()))
+    if summary.get("cpu_sqrt"):
+        print(cpu_sqrt_line(summary["cpu_sqrt"]))
     for d in summary["disagreements"][:5]:
         print(f"{d['config']} case {d['case']}: {d['field']}: model {d['model']!r}, C++ {d['cpp']!r}")
     extra = [f"{summary[k]} {k.replace('_', ' ')}" for k in ("undefined_behaviour", "log_lines") if k in summary]
@@ -104,11 +106,13 @@ def write_level_json(path, summary: dict) -> None:
     atomic_write_text(path, json.dumps(summary, indent=1))
 
 
-def sqrt_verdict(match: dict) -> str:
-    """What the square-root counts say about this machine (``docs/distributions.md``)."""
-    told = {k: v for k, v in match.items() if k.endswith(" only")}
-    if "none" in match:
-        return " - this machine matches none of the model's square roots"
-    if not told:
-        return " - no configuration told the square roots apart"
-    return f" - this machine's C++ takes the {' and '.join(k[:-5] for k in told)} square root"
+def cpu_sqrt_line(c: dict) -> str:
+    """What this machine's Eigen square root is, against the model's (docs/distributions.md)."""
+    counts = ", ".join(f"{k} {v}" for k, v in c["differ"].items())
+    head = f"this machine's Eigen sqrt on the integers below {c['values']}: differs from the model's {counts}; "
+    if c["matches"] == "eigen-sse-amd":
+        return head + "it is the emulated AMD Zen rsqrtps: the model's default reproduces it"
+    if c["matches"] == "exact":
+        return head + "it is correctly rounded: plan with sqrt='exact' to reproduce it"
+    return head + (f"sqrt(49) = {c['sqrt_49']!r}: this CPU's rsqrtps is not modelled, so the distance-transform "
+                   f"layer may differ where a distance rounds across a cost-table step or the cut-off")
