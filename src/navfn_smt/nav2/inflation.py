@@ -178,7 +178,8 @@ def eigen_sse_sqrt(x: np.ndarray, table: np.ndarray) -> np.ndarray:
     return np.where(x < np.finfo(np.float32).tiny, f(0.0), y).astype(np.float32)
 
 
-SQRT_MODES = ("eigen-sse-amd", "exact")
+SQRT_MODES = ("eigen-sse-amd", "exact", "eigen-sse-intel")
+RSQRT_TABLE_OF = {"eigen-sse-amd": "amd-zen", "eigen-sse-intel": "intel-xeon-6-167"}
 
 
 def matrix_sqrt(sq: np.ndarray, sqrt: str = "eigen-sse-amd") -> np.ndarray:
@@ -188,17 +189,18 @@ def matrix_sqrt(sq: np.ndarray, sqrt: str = "eigen-sse-amd") -> np.ndarray:
     packets of 4 (:func:`eigen_sse_sqrt`, with the ``rsqrtps`` table measured on AMD Zen) and
     does the last ``size % 4`` elements with the scalar, correctly rounded ``std::sqrt``.
     ``"exact"``: the correctly rounded float square root everywhere (a build whose Eigen
-    takes ``sqrtps``).
+    takes ``sqrtps``).  ``"eigen-sse-intel"``: as ``"eigen-sse-amd"`` with the ``rsqrtps``
+    table measured on an Intel Xeon (family 6, model 167).
     """
     if sqrt not in SQRT_MODES:
         raise NavfnInputError(f"unknown sqrt mode {sqrt!r} (choose from {', '.join(SQRT_MODES)})")
     flat = np.ascontiguousarray(sq, dtype=np.float32).ravel()
     out = np.sqrt(flat)
-    if sqrt == "eigen-sse-amd":
+    if sqrt in RSQRT_TABLE_OF:
         from .rsqrt_tables import rsqrt_table
 
         n = flat.size - flat.size % 4
-        out[:n] = eigen_sse_sqrt(flat[:n], rsqrt_table("amd-zen"))
+        out[:n] = eigen_sse_sqrt(flat[:n], rsqrt_table(RSQRT_TABLE_OF[sqrt]))
     return out.reshape(sq.shape)
 
 

@@ -113,6 +113,8 @@ def cpu_sqrt_line(c: dict) -> str:
     if c["matches"] == "eigen-sse-amd":
         return head + "it is the emulated AMD Zen rsqrtps: the model's default reproduces it"
     if c["matches"] == "exact":
-        return head + "it is correctly rounded: plan with sqrt='exact' to reproduce it"
+        return head + "it is correctly rounded: the model reproduces it with sqrt='exact'"
+    if c["matches"]:
+        return head + f"it is the model's {c['matches']} (the model's default is eigen-sse-amd)"
     return head + (f"sqrt(49) = {c['sqrt_49']!r}: this CPU's rsqrtps is not modelled, so the distance-transform "
                    f"layer may differ where a distance rounds across a cost-table step or the cut-off")
