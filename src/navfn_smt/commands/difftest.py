@@ -68,19 +68,27 @@ def _level(args) -> int:
 
 
 def _costmap_level(args) -> int:
-    from ..difftest.layers_live import generated_configs, run_layers_live
+    from ..difftest.layers_live import generated_configs, map_config, run_layers_live
     from ..oracle.client import LayersOracle
     from ..report import difftest as report
     from ..report.tables import progress_bar
 
-    if args.map or args.sweep or args.params:
-        raise NavfnInputError("--level costmap generates its maps: --map, --params and --sweep are for --level plugin")
+    if args.sweep:
+        raise NavfnInputError("--sweep is for --level plugin")
+    if args.params and not args.map:
+        raise NavfnInputError("--params goes with --map")
     with LayersOracle(args.oracle) as oracle:
         distro = oracle.build["distribution"]
+        if args.map:
+            cfg, notes = map_config(args.map, args.params, distro)
+            configs = [cfg]
+            for note in notes:
+                print(note)
+        else:
+            configs = generated_configs(distro, args.configs, args.seed)
         label = f"difftest --level costmap (the layer models against the C++ layers of {distro})"
-        with progress_bar(args.configs, label, enabled=not args.quiet) as advance:
-            summary = run_layers_live(generated_configs(distro, args.configs, args.seed), oracle,
-                                      progress=advance).as_dict()
+        with progress_bar(1 if args.map else args.configs, label, enabled=not args.quiet) as advance:
+            summary = run_layers_live(configs, oracle, progress=advance).as_dict()
     report.level_table(summary)
     if args.json:
         report.write_level_json(args.json, summary)
@@ -132,9 +140,9 @@ def register(sub) -> None:
     dt.add_argument("--pairs", type=int, default=24, metavar="N",
                     help="--level plugin: pose pairs per configuration (default: %(default)s)")
     dt.add_argument("--seed", type=int, default=0, help="--level plugin|costmap: the generator's seed")
-    dt.add_argument("--map", metavar="YAML", help="--level plugin: a map_server map (with --params, its global "
-                    "costmap and planner parameters) instead of generated costmaps")
-    dt.add_argument("--params", metavar="FILE", help="--level plugin --map: a Nav2 params file")
+    dt.add_argument("--map", metavar="YAML", help="--level plugin|costmap: a map_server map (with --params, its "
+                    "global costmap and planner parameters) instead of generated costmaps")
+    dt.add_argument("--params", metavar="FILE", help="--level plugin|costmap --map: a Nav2 params file")
     dt.add_argument("--sweep", nargs="+", type=float, metavar="X", help="--level plugin --map: from the start "
                     "pose X Y [YAW] to the centre of every cell of the map")
     add_engine_arguments(dt, what="difftest chunks")

@@ -195,3 +195,20 @@ def generated_configs(distro: str, count: int, seed: int = 0) -> Iterator[Layers
                          inscribed_obstacle_cost_value=int(rng.choice([99, 99, 98, 50])),
                          use_maximum=bool(rng.random() < 0.3))
         yield LayersConfig(occ, res, origin, params, name=f"seed {seed} config {c}")
+
+
+def map_config(map_yaml, params_file, distro: str) -> tuple[LayersConfig, list]:
+    """A user's map_server map and params file (its global costmap section; nav2_bringup's when
+    none is given) as one configuration: the static and inflation layers of the file, in order;
+    the notes name the layers left out (they need sensor data or filter masks)."""
+    from ..nav2.costmap import bringup_params, load_costmap_params
+    from ..nav2.mapserver import load_map_yaml
+    from ..oracle.client import LAYER_KINDS
+
+    m = load_map_yaml(Path(map_yaml), distro=distro)
+    params = load_costmap_params(params_file, distro) if params_file else bringup_params(distro)
+    kept = tuple(lay for lay in params.plugins if lay.type in LAYER_KINDS)
+    notes = [f"{lay.name} ({lay.type}) left out: not a static or inflation layer" for lay in params.plugins
+             if lay.type not in LAYER_KINDS]
+    return LayersConfig(m.occupancy, m.resolution, (m.origin[0], m.origin[1]), replace(params, plugins=kept),
+                        name=str(map_yaml)), notes

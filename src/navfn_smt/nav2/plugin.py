@@ -571,7 +571,7 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
 
     Cells one past the edge (see :func:`plugin_world_to_map`) reach NavFn unchecked; their index
     ``y * nx + x`` then names cell (0, y + 1), and their coordinates enter the A* heuristic
-    and the path's last point: that case runs on the reference spec with the raw coordinates.
+    and the path's last point: that case runs with the raw coordinates (:func:`_propagate_raw`).
     """
     from ..backends import get_backend
     from ..spec.propagation import cycle_limit
@@ -588,13 +588,27 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
         if c[1] * nx + c[0] >= nx * ny:
             raise UndefinedBehaviour(f"NavFn's {what} cell {c} indexes {c[1] * nx + c[0]}, past the end of potarr "
                                      f"({nx * ny} cells)")
-    _propagate_raw(run, navfn_start, navfn_goal, astar)
+    _propagate_raw(run, navfn_start, navfn_goal, astar, backend)
 
 
-def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool) -> None:
+def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend: str = "jit") -> None:
+    """Propagation with a cell one past the edge, its coordinates as they are: on the reference
+    spec, or compiled (the JIT's loop, without its heuristic memo, which assumes cells on the map)."""
     from ..spec.propagation import propagate, setup
 
     ny, nx = run.costs.shape
+    if backend == "jit":
+        from ..backends import jit as J
+
+        planner = J.JitPlanner(add_border(run.costs))
+        no_memo = np.empty(0, np.float32)
+        run.reached = bool(J.propagate(planner.costs, nx, ny, navfn_start[0], navfn_start[1], navfn_goal[0],
+                                       navfn_goal[1], astar, run.cycle_limit, planner.pot, planner.pending, planner.pb,
+                                       planner.fill, planner.role, planner.curt, planner.no_trace, planner.counters,
+                                       no_memo))
+        run.potential = planner.pot.reshape(ny, nx).copy()
+        run.cycles, run.dropped = int(planner.counters[J.CYCLES]), int(planner.counters[J.DROPPED])
+        return
     st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal)
     run.reached = bool(propagate(st, navfn_start, navfn_goal, astar, run.cycle_limit, at_start=True,
                                  record_trace=False))
