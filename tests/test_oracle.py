@@ -381,3 +381,33 @@ def test_the_cli_costmap_level(builds, capsys):
     assert main(["difftest", "--level", "costmap", "--oracle", str(folder), "--configs", "40", "--quiet"]) == 0
     out = capsys.readouterr().out
     assert "40 passed, 0 failed" in out and "square root" in out
+
+
+def test_each_costmap_difference_shows_on_the_cpp_as_the_table_says(builds):
+    """Every row of nav2/distributions.py's LAYER_DIFFERENCES (and docs/distributions.md): each
+    distribution's compiled layers give the costmap the table states, its model the same bytes
+    (or, where the version lacks the layer type, an error), and the rows differ between versions."""
+    import numpy as np
+
+    from navfn_smt.difftest.layers_live import LayersConfig, model_costmap
+    from navfn_smt.errors import NavfnInputError
+    from navfn_smt.nav2.distributions import LAYER_DIFFERENCES, layer_params, layer_summary
+    from navfn_smt.oracle.client import LayersOracle
+
+    page = (Path(__file__).resolve().parent.parent / "docs" / "distributions.md").read_text()
+    rows = {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[4:8]]
+            for line in page.splitlines() if line.startswith("| `")}
+    for d in LAYER_DIFFERENCES:
+        seen = []
+        for distro in DISTROS:
+            cfg = LayersConfig(np.array(d.occupancy, np.int8), 0.05, (0.0, 0.0), layer_params(d))
+            with LayersOracle(_layers(builds, distro)) as oracle:
+                cpp = oracle.costmap(cfg.occupancy, cfg.resolution, cfg.origin, cfg.params).costmap
+            if cpp is None:
+                with pytest.raises(NavfnInputError, match="does not exist"):
+                    model_costmap(cfg, distro)
+            else:
+                assert (model_costmap(cfg, distro).costmap == cpp).all(), (d.key, distro)
+            seen.append(layer_summary(cpp))
+        assert rows[d.key] == seen, d.key
+        assert len(set(seen)) > 1, d.key

@@ -1,7 +1,8 @@
 """What the planner plugin does differently in Humble, Jazzy, Kilted and Rolling, each difference
 with the smallest case that shows it.
 
-Every row is checked against the C++ of all four distributions (built from their sources by
+Every row (plugin rows, then the costmap layers' :data:`LAYER_DIFFERENCES`) is checked
+against the C++ of all four distributions (built from their sources by
 ``navfn-smt oracle build``; ``tests/test_oracle.py``) and against the model of each
 (:data:`~navfn_smt.nav2.plugin.FLAVOURS`); ``docs/distributions.md`` shows the same table.
 NavFn itself (``navfn.cpp``'s arithmetic) is the same in all four: the live difftest of the
@@ -10,10 +11,12 @@ shared suite agrees with each distribution's build on every case.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import Optional
 
 import numpy as np
 
+from .costmap import INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, InflationParams, LayerSpec
 from .params import PlannerParams
 from .plugin import EMPTY_PATH, Costmap, Pose
 
@@ -72,3 +75,49 @@ def summary_of(error, poses: int, lines: list) -> str:
     """An outcome in a few words: the exception or the pose count, then the log's first words."""
     head = error if error not in (None, EMPTY_PATH) else f"{poses} pose" + ("" if poses == 1 else "s")
     return head + "".join(f"; {'WARN' if level == 30 else 'ERROR'} \"{line[:32]}...\"" for level, line in lines)
+
+
+# ----------------------------------------------------------------------- the costmap layers
+@dataclass(frozen=True)
+class LayerDifference:
+    key: str
+    what: str
+    case: str
+    occupancy: tuple  # rows of the occupancy grid (row 0 at the origin), 0.05 m cells, origin (0, 0)
+    layer_type: Optional[str]  # the inflation plugin type after the static layer, or None
+    inflation: Optional[InflationParams] = None
+
+
+LAYER_DIFFERENCES = (
+    LayerDifference("inscribed-obstacle-cost", "the static layer turns occupancy 99 into INSCRIBED_INFLATED_OBSTACLE "
+                    "(253) in Rolling; before, 99 is below the lethal threshold and trinary makes it free",
+                    "3x1 grid of occupancy 0, 99, 100, the static layer alone", ((0, 99, 100),), None),
+    LayerDifference("inflation-layer", "nav2_costmap_2d::InflationLayer is the breadth-first layer up to Kilted and "
+                    "the distance-transform layer in Rolling (its cost table is sampled every 1/100 cell)",
+                    "7x7 grid, one occupied cell in the middle, InflationLayer with inflation_radius 0.1, "
+                    "cost_scaling_factor 5.0, robot_radius 0; the cell diagonal to the obstacle",
+                    tuple(tuple(100 if (x, y) == (3, 3) else 0 for x in range(7)) for y in range(7)), INFLATION,
+                    InflationParams(inflation_radius=0.1, cost_scaling_factor=5.0)),
+    LayerDifference("legacy-inflation-layer", "nav2_costmap_2d::LegacyInflationLayer exists from Nav2 1.5 on "
+                    "(Rolling): the breadth-first layer under its new name",
+                    "the same 7x7 case with LegacyInflationLayer", tuple(tuple(100 if (x, y) == (3, 3) else 0
+                                                                              for x in range(7)) for y in range(7)),
+                    LEGACY_INFLATION, InflationParams(inflation_radius=0.1, cost_scaling_factor=5.0)),
+)
+
+
+def layer_params(d: LayerDifference) -> CostmapParams:
+    layers = [LayerSpec("static_layer", STATIC)]
+    if d.layer_type is not None:
+        layers.append(LayerSpec("inflation_layer", d.layer_type, d.inflation))
+    return replace(CostmapParams(), plugins=tuple(layers), robot_radius=0.0, footprint_padding=0.0)
+
+
+def layer_summary(costmap) -> str:
+    """A layer case's outcome in a few words: no such layer, the costs of a one-row grid, or the
+    cost of the cell diagonal to the middle of a 7x7 grid."""
+    if costmap is None:
+        return "no such layer"
+    if costmap.shape[0] == 1:
+        return "costs " + " ".join(str(int(v)) for v in costmap[0])
+    return f"cell (2, 2): {int(costmap[2, 2])}"
