@@ -74,16 +74,22 @@ SEEDED = {
 FIELDS = ("path", "potential", "trace", "start_reached", "cycles", "updates")
 
 
+def seeded_copy(nav2_src: Path, tmp_path: Path, distro: str, rel: str, line: str, bug: str) -> Path:
+    """A copy of a distribution's sources with ``line`` of file ``rel`` (there once) turned into ``bug``."""
+    src = tmp_path / "src"
+    shutil.copytree(nav2_src / distro, src)
+    text = (src / rel).read_text()
+    assert text.count(line) == 1, f"{rel} no longer has {line!r} once"
+    (src / rel).write_text(text.replace(line, bug))
+    return src
+
+
 @pytest.mark.parametrize("bug", SEEDED)
 def test_a_bug_seeded_in_the_cpp_is_caught_and_named(nav2_src, tmp_path, bug):
     """The live difftest of the example suite fails on the seeded copy, and each disagreement
     names the first field that differs."""
     rel, line, seeded, mode = SEEDED[bug]
-    src = tmp_path / "src"
-    shutil.copytree(nav2_src / "rolling", src)
-    text = (src / rel).read_text()
-    assert text.count(line) == 1, f"{rel} no longer has {line!r} once"
-    (src / rel).write_text(text.replace(line, seeded))
+    src = seeded_copy(nav2_src, tmp_path, "rolling", rel, line, seeded)
     build(src, tmp_path / "bug", programs=("navfn-traced",))
     with Oracle(tmp_path / "bug") as oracle:
         summary = run_live(EXAMPLE, (mode,), "jit", oracle).as_dict()
@@ -202,15 +208,12 @@ def test_every_plugin_case_directory_replays_on_the_cpp(builds):
 
 
 def test_a_bug_seeded_in_the_plugin_is_caught(nav2_src, tmp_path):
-    """navfn_planner.cpp's worldToMap truncating instead of rounding: the plugin level fails."""
+    """navfn_planner.cpp's worldToMap truncating x instead of rounding it: the plugin level fails."""
     from navfn_smt.difftest.plugin_live import generated_configs, run_plugin_live
 
-    src = tmp_path / "src"
-    shutil.copytree(nav2_src / "rolling", src)
-    cpp = src / "nav2_navfn_planner" / "src" / "navfn_planner.cpp"
-    text = cpp.read_text()
-    assert text.count("std::round(") == 2
-    cpp.write_text(text.replace("std::round(", "std::floor("))
+    rel = "nav2_navfn_planner/src/navfn_planner.cpp"
+    src = seeded_copy(nav2_src, tmp_path, "rolling", rel, "mx = static_cast<int>(\n    std::round(",
+                      "mx = static_cast<int>(\n    std::floor(")
     build(src, tmp_path / "bug", programs=("navfn-plugin",))
     with PluginOracle(tmp_path / "bug") as oracle:
         s = run_plugin_live(generated_configs("rolling", 40, seed=3), oracle).as_dict()
@@ -364,12 +367,8 @@ def test_a_bug_seeded_in_a_layer_is_caught(nav2_src, tmp_path, builds):
     from navfn_smt.oracle.client import LayersOracle
 
     _layers(builds, "kilted")
-    src = tmp_path / "src"
-    shutil.copytree(nav2_src / "kilted", src)
-    cpp = src / "nav2_costmap_2d" / "plugins" / "static_layer.cpp"
-    text = cpp.read_text()
-    assert text.count("value >= lethal_threshold_") == 1
-    cpp.write_text(text.replace("value >= lethal_threshold_", "value > lethal_threshold_"))
+    src = seeded_copy(nav2_src, tmp_path, "kilted", "nav2_costmap_2d/plugins/static_layer.cpp",
+                      "value >= lethal_threshold_", "value > lethal_threshold_")
     build(src, tmp_path / "bug", programs=("costmap-layers",))
     with LayersOracle(tmp_path / "bug") as oracle:
         s = run_layers_live(generated_configs("kilted", 60, seed=3), oracle).as_dict()

@@ -36,13 +36,7 @@
 #include "nav2_costmap_2d/legacy_inflation_layer.hpp"
 #endif
 
-#ifdef NAVFN_SMT_NAV2_NODE
-using Node = nav2::LifecycleNode;
-using TfBuffer = nav2::TransformBuffer;
-#else
-using Node = rclcpp_lifecycle::LifecycleNode;
-using TfBuffer = tf2_ros::Buffer;
-#endif
+#include "navfn_smt/node_types.hpp"
 
 static bool read_all(void * p, size_t n) {return n == 0 || fread(p, 1, n, stdin) == n;}
 static void write_all(const void * p, size_t n) {if (n) {fwrite(p, 1, n, stdout);}}

@@ -31,13 +31,7 @@
 #include "nav2_core/planner_exceptions.hpp"
 #endif
 
-#ifdef NAVFN_SMT_NAV2_NODE
-using Node = nav2::LifecycleNode;
-using TfBuffer = nav2::TransformBuffer;
-#else
-using Node = rclcpp_lifecycle::LifecycleNode;
-using TfBuffer = tf2_ros::Buffer;
-#endif
+#include "navfn_smt/node_types.hpp"
 
 static bool read_all(void * p, size_t n) {return fread(p, 1, n, stdin) == n;}
 static void write_all(const void * p, size_t n) {fwrite(p, 1, n, stdout);}
