@@ -291,6 +291,13 @@ def test_ci_fails_on_a_seeded_bug_and_says_where(nav2_src, tmp_path, capsys):
 
 
 # --------------------------------------------------------------------------- the distributions
+def distribution_table() -> dict:
+    """docs/distributions.md's case rows: key -> the humble, jazzy, kilted and rolling cells."""
+    page = (Path(__file__).resolve().parent.parent / "docs" / "distributions.md").read_text()
+    return {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[4:8]]
+            for line in page.splitlines() if line.startswith("| `")}
+
+
 def test_each_distribution_difference_shows_on_the_cpp_as_the_table_says(builds):
     """Every row of nav2/distributions.py (and docs/distributions.md): the C++ of each
     distribution gives the outcome the docs table states, the model of each the same bit for
@@ -301,9 +308,7 @@ def test_each_distribution_difference_shows_on_the_cpp_as_the_table_says(builds)
     from navfn_smt.nav2.distributions import DIFFERENCES, costmap_of, summary_of
     from navfn_smt.nav2.plugin import create_plan
 
-    page = (Path(__file__).resolve().parent.parent / "docs" / "distributions.md").read_text()
-    rows = {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[4:8]]
-            for line in page.splitlines() if line.startswith("| `")}
+    rows = distribution_table()
     for d in DIFFERENCES:
         seen = []
         for distro in DISTROS:
@@ -393,9 +398,7 @@ def test_each_costmap_difference_shows_on_the_cpp_as_the_table_says(builds):
     from navfn_smt.nav2.distributions import LAYER_DIFFERENCES, layer_params, layer_summary
     from navfn_smt.oracle.client import LayersOracle
 
-    page = (Path(__file__).resolve().parent.parent / "docs" / "distributions.md").read_text()
-    rows = {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[4:8]]
-            for line in page.splitlines() if line.startswith("| `")}
+    rows = distribution_table()
     for d in LAYER_DIFFERENCES:
         seen = []
         for distro in DISTROS:
