@@ -413,3 +413,21 @@ def test_each_costmap_difference_shows_on_the_cpp_as_the_table_says(builds):
             seen.append(layer_summary(cpp))
         assert rows[d.key] == seen, d.key
         assert len(set(seen)) > 1, d.key
+
+
+def test_the_costmap_level_on_a_users_map_and_what_it_refuses(builds, tmp_path, capsys):
+    from conftest import REPO
+
+    folder = str(_layers(builds, "jazzy"))
+    room = str(REPO / "src/navfn_smt/examples/mapserver/room.yaml")
+    params = str(REPO / "src/navfn_smt/examples/nav2/nav2_params.yaml")
+    assert main(["difftest", "--level", "costmap", "--oracle", folder, "--map", room, "--params", params,
+                 "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "1 passed, 0 failed" in out and "obstacle_layer" in out  # the layer left out is named
+    fp = tmp_path / "fp.yaml"
+    fp.write_text('global_costmap:\n  global_costmap:\n    ros__parameters:\n'
+                  '      footprint: "[[0.1, 0.1], [0.1, -0.1], [-0.1, -0.1], [-0.1, 0.1]]"\n')
+    assert main(["difftest", "--level", "costmap", "--oracle", folder, "--map", room, "--params", str(fp)]) == 2
+    err = capsys.readouterr().err
+    assert "footprint polygon" in err and err.count("\n") == 1

@@ -28,6 +28,7 @@ import numpy as np
 from ..nav2.costmap import (INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, InflationParams, LayerSpec,
                             build_global_costmap, inflation_types)
 from ..nav2.inflation import SQRT_MODES
+from ..errors import NavfnInputError
 from ..nav2.mapserver import MapServerMap
 
 MAX_DETAILS = 20
@@ -207,6 +208,9 @@ def map_config(map_yaml, params_file, distro: str) -> tuple[LayersConfig, list]:
 
     m = load_map_yaml(Path(map_yaml), distro=distro)
     params = load_costmap_params(params_file, distro) if params_file else bringup_params(distro)
+    if params.footprint.strip() not in ("", "[]"):
+        raise NavfnInputError(f"{params_file}: a footprint polygon is not passed to the C++ layers (the driver makes "
+                              f"the footprint from robot_radius); compare with robot_radius instead")
     kept = tuple(lay for lay in params.plugins if lay.type in LAYER_KINDS)
     notes = [f"{lay.name} ({lay.type}) left out: not a static or inflation layer" for lay in params.plugins
              if lay.type not in LAYER_KINDS]
