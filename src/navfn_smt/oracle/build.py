@@ -1,28 +1,35 @@
-"""Build Nav2's NavFn from a user's sources, unchanged, as an oracle the spec is tested against.
+"""Build Nav2's NavFn, planner plugin and costmap layers from a user's sources, unchanged, as
+oracles the spec and the models are tested against.
 
 The sources are the system under test: ``NAV2_SRC`` is a navigation2 checkout or a folder
-holding ``nav2_navfn_planner``, ``nav2_core`` and ``nav2_costmap_2d``.  Nothing of them is copied into the project
-and nothing in them is changed.  The build goes to a folder the user names:
+holding ``nav2_navfn_planner``, ``nav2_core`` and ``nav2_costmap_2d``.  Nothing of them is
+copied into the project and nothing in them is changed.  The build goes to a folder the user
+names, the programs compiled side by side:
 
 - ``navfn-plain``: ``navfn.cpp`` as it is, with the driver ``navfn_driver.cpp`` and the rclcpp
   stub headers (``stubs/``, no ROS installation);
 - ``navfn-traced``: the same, compiled from a copy of ``navfn.cpp`` in the build folder with
   ``NAVFN_SMT_CYCLE(curP, curPe);`` inserted before each anchor line of the two propagation
-  loops (the white-box trace).  When a version moved an anchor the build stops, naming it.
-
+  loops (the white-box trace).  When a version moved an anchor the build stops, naming it;
 - ``navfn-unbounded``: the traced build with priority buffers that never drop a push: a copy of
   ``navfn.hpp`` in the build folder whose ``#define PRIORITYBUFSIZE`` line names a variable the
   driver sets to ``nx * ny`` for each map (the pending flags keep a cell in one buffer at a time);
 - ``navfn-plugin``: ``navfn_planner.cpp`` (the planner plugin), ``navfn.cpp``, ``costmap_2d.cpp``
   (and ``parameter_handler.cpp`` where the version has one) as they are, with the driver
-  ``plugin_driver.cpp`` and the ROS stub headers of ``plugin_stubs/``; the plugin's signature
+  ``plugin_driver.cpp`` and the ROS stub headers of ``ros_stubs/``; the plugin's signature
   (``createPlan`` with a cancel checker, with via points; the node type) is read from
-  ``nav2_core/global_planner.hpp``.
+  ``nav2_core/global_planner.hpp``;
+- ``costmap-layers``: the global costmap's sources and its static and inflation layers
+  (:data:`LAYER_SOURCES`, those the version has) with ``layers_driver.cpp``, ``ros_stubs/``,
+  ``-fopenmp`` and Eigen 3 where the version's inflation layer needs it;
+- ``eigen-sqrt``: where the version's inflation layer uses Eigen, Eigen's square root built with
+  the layers' flags (``eigen_sqrt.cpp``), to tell which one this machine takes.
 
-``build.json`` records what was built: the compiler and its version, the flags, the SHA-256
-of every source file used, the git commit when the sources are in a git checkout, and the
-distribution read from ``nav2_navfn_planner/package.xml``.  The folder is written whole or not
-at all (built beside it, then renamed).
+Without Eigen the last two are left out of a version that needs it, and ``build.json`` says
+why.  ``build.json`` records what was built: the compiler and its version, the flags and each
+program's defines, the SHA-256 of every source file used, the git commit when the sources are
+in a git checkout, and the distribution read from ``nav2_navfn_planner/package.xml``.  The
+folder is written whole or not at all (built beside it, then renamed).
 """
 
 from __future__ import annotations
@@ -167,14 +174,14 @@ def _jobs(src: Path, tmp: Path) -> dict:
     plugin = [HERE / "plugin_driver.cpp", pkg / "src" / "navfn_planner.cpp", navfn_cpp,
               src / "nav2_costmap_2d" / "src" / "costmap_2d.cpp",
               *[f for f in [pkg / "src" / "parameter_handler.cpp"] if f.is_file()]]
-    plugin_includes = [HERE / "plugin_stubs", pkg / "include", src / "nav2_core" / "include",
+    plugin_includes = [HERE / "ros_stubs", pkg / "include", src / "nav2_core" / "include",
                        src / "nav2_costmap_2d" / "include"]
     costmap = src / "nav2_costmap_2d"
     layers = [HERE / "layers_driver.cpp", *[costmap / f for f in LAYER_SOURCES if (costmap / f).is_file()]]
     layer_defines = [d for d in plugin_api(src) if d == "NAVFN_SMT_NAV2_NODE"] + (
         ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])
     return {
-        "costmap-layers": (layers, [HERE / "plugin_stubs", costmap / "include", *eigen_include()], layer_defines,
+        "costmap-layers": (layers, [HERE / "ros_stubs", costmap / "include", *eigen_include()], layer_defines,
                            ["-fopenmp"]),
         "eigen-sqrt": ([HERE / "eigen_sqrt.cpp"], eigen_include(), [], ["-fopenmp"]),
         "navfn-plain": ([driver, navfn_cpp], includes, defines),
