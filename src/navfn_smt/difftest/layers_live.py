@@ -190,10 +190,11 @@ def generated_configs(distro: str, count: int, seed: int = 0) -> Iterator[Layers
         params = replace(CostmapParams(), plugins=tuple(layers), robot_radius=float(rng.choice([0.05, 0.1, 0.22, 0.3])),
                          footprint_padding=float(rng.choice([0.0, 0.01, 0.03])),
                          track_unknown_space=bool(rng.random() < 0.6),
-                         lethal_cost_threshold=int(rng.choice([100, 100, 65, 50, 0, 120, -5])),
+                         lethal_cost_threshold=int(rng.choice([100, 100, 65, 50, 0, 120, -5, 2**32 + 50,
+                                                               2**31 + 50])),
                          trinary_costmap=bool(rng.random() < 0.7),
-                         unknown_cost_value=int(rng.choice([255, 255, 0, 99])),
-                         inscribed_obstacle_cost_value=int(rng.choice([99, 99, 98, 50])),
+                         unknown_cost_value=int(rng.choice([255, 255, 0, 99, 511, -1])),
+                         inscribed_obstacle_cost_value=int(rng.choice([99, 99, 98, 50, 355, -157])),
                          use_maximum=bool(rng.random() < 0.3))
         yield LayersConfig(occ, res, origin, params, name=f"seed {seed} config {c}")
 

@@ -303,12 +303,27 @@ def _check_distro(distro: str) -> None:
         raise NavfnInputError(f"unknown Nav2 distro {distro!r} (choose from {', '.join(DISTROS)})")
 
 
+def as_int(v: int) -> int:
+    """An int64 parameter read into an ``int`` (the low 32 bits, two's complement)."""
+    return ((int(v) + 2**31) % 2**32) - 2**31
+
+
+def as_unsigned_char(v: int) -> int:
+    """An int64 parameter read into an ``unsigned char`` (modulo 256)."""
+    return int(v) % 256
+
+
 def _static_costs(source, params: CostmapParams, distro: str) -> np.ndarray:
+    """The static layer's costs: its parameters as ``StaticLayer::getParameters`` holds them
+    (``lethal_cost_threshold`` read into an int, then clamped; ``unknown_cost_value`` and
+    ``inscribed_obstacle_cost_value`` into unsigned chars), then ``interpretValue`` per cell."""
     if isinstance(source, MapServerMap):
-        inscribed = params.inscribed_obstacle_cost_value if DISTROS[distro][1] is not None else None
+        inscribed = as_unsigned_char(params.inscribed_obstacle_cost_value) if DISTROS[distro][1] is not None else None
         return static_layer_costs(source.occupancy, track_unknown_space=params.track_unknown_space,
-                                  lethal_threshold=params.lethal_cost_threshold, trinary_costmap=params.trinary_costmap,
-                                  unknown_cost_value=params.unknown_cost_value, inscribed_cost_value=inscribed)
+                                  lethal_threshold=as_int(params.lethal_cost_threshold),
+                                  trinary_costmap=params.trinary_costmap,
+                                  unknown_cost_value=as_unsigned_char(params.unknown_cost_value),
+                                  inscribed_cost_value=inscribed)
     a = np.asarray(source)
     if a.ndim != 2 or a.dtype != np.uint8 or a.size == 0:
         raise NavfnInputError(f"costmap must be a non-empty 2-D uint8 array, got {a.dtype} with shape {a.shape}")

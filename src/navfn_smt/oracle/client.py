@@ -7,6 +7,7 @@ golden-file recorder and the live difftest take the C++'s answers where they tak
 
 from __future__ import annotations
 
+import os
 import struct
 import subprocess
 from dataclasses import dataclass
@@ -25,6 +26,7 @@ class _Program:
 
     program = ""
     END = struct.pack("<4i", 0, 0, 0, 0)
+    ENV: dict = {}
 
     def __init__(self, folder):
         self.folder = Path(folder)
@@ -32,7 +34,9 @@ class _Program:
         if self.program not in self.build["programs"]:
             raise NavfnInputError(f"{self.folder}: this build has no {self.program} (it has "
                                   f"{', '.join(self.build['programs'])}); build it again with `navfn-smt oracle build`")
-        self.proc = subprocess.Popen([str(self.folder / self.program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+        env = {**os.environ, **self.ENV} if self.ENV else None
+        self.proc = subprocess.Popen([str(self.folder / self.program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     env=env)
 
     def close(self) -> None:
         if self.proc.poll() is None:
@@ -165,6 +169,8 @@ class LayersOracle(_Program):
 
     program = "costmap-layers"
     END = struct.pack("<3i", 0, 0, 0)
+    # OpenMP threads that spin between requests take the CPU the model needs meanwhile
+    ENV = {"OMP_WAIT_POLICY": "passive"}
 
     def costmap(self, occupancy: np.ndarray, resolution: float, origin, params) -> LayersAnswer:
         """The layers of the :class:`~navfn_smt.nav2.costmap.CostmapParams` ``params`` (in order;
@@ -172,7 +178,7 @@ class LayersOracle(_Program):
         with the float32 ``resolution`` and ``origin`` (x, y)."""
         occ = np.ascontiguousarray(occupancy, dtype=np.int8)
         h, w = occ.shape
-        out = [struct.pack("<3if2d6idf", w, h, len(params.plugins), np.float32(resolution), float(origin[0]),
+        out = [struct.pack("<3if2d6qdf", w, h, len(params.plugins), np.float32(resolution), float(origin[0]),
                            float(origin[1]), int(params.track_unknown_space), int(params.use_maximum),
                            int(params.lethal_cost_threshold), int(params.unknown_cost_value),
                            int(params.trinary_costmap), int(params.inscribed_obstacle_cost_value),

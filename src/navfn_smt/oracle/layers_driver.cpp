@@ -5,8 +5,9 @@
 //
 // One process serves many requests on stdin, answers on stdout (little-endian, native ints):
 //   request:  int32 width, height, nlayers; float32 resolution; float64 origin_x, origin_y;
-//             int32 track_unknown_space, use_maximum, lethal_cost_threshold, unknown_cost_value,
-//             trinary_costmap, inscribed_obstacle_cost_value; float64 robot_radius;
+//             int64 track_unknown_space, use_maximum, lethal_cost_threshold, unknown_cost_value,
+//             trinary_costmap, inscribed_obstacle_cost_value (the int64 of a ROS integer parameter);
+//             float64 robot_radius;
 //             float32 footprint_padding;
 //             per layer: int32 kind (0 StaticLayer, 1 InflationLayer, 2 LegacyInflationLayer),
 //             enabled, inflate_unknown, inflate_around_unknown; float64 inflation_radius,
@@ -65,7 +66,7 @@ int main()
     int32_t head[3];
     float resolution, padding;
     double origin[2], radius;
-    int32_t p[6];
+    int64_t p[6];
     if (!read_all(head, sizeof(head)) || head[0] == 0) {return 0;}
     if (!read_all(&resolution, 4) || !read_all(origin, 16) || !read_all(p, sizeof(p)) || !read_all(&radius, 8) ||
       !read_all(&padding, 4)) {return 1;}
@@ -87,10 +88,10 @@ int main()
     auto node = std::make_shared<Node>();
     node->declare_parameter("track_unknown_space", rclcpp::ParameterValue(p[0] != 0));
     node->declare_parameter("use_maximum", rclcpp::ParameterValue(p[1] != 0));
-    node->declare_parameter("lethal_cost_threshold", rclcpp::ParameterValue(static_cast<int>(p[2])));
-    node->declare_parameter("unknown_cost_value", rclcpp::ParameterValue(static_cast<int>(p[3])));
+    node->declare_parameter("lethal_cost_threshold", rclcpp::ParameterValue(p[2]));
+    node->declare_parameter("unknown_cost_value", rclcpp::ParameterValue(p[3]));
     node->declare_parameter("trinary_costmap", rclcpp::ParameterValue(p[4] != 0));
-    node->declare_parameter("inscribed_obstacle_cost_value", rclcpp::ParameterValue(static_cast<int>(p[5])));
+    node->declare_parameter("inscribed_obstacle_cost_value", rclcpp::ParameterValue(p[5]));
     node->declare_parameter("transform_tolerance", rclcpp::ParameterValue(0.3));
     node->declare_parameter("map_topic", rclcpp::ParameterValue(std::string("map")));
 
