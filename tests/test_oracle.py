@@ -431,3 +431,16 @@ def test_the_costmap_level_on_a_users_map_and_what_it_refuses(builds, tmp_path, 
     assert main(["difftest", "--level", "costmap", "--oracle", folder, "--map", room, "--params", str(fp)]) == 2
     err = capsys.readouterr().err
     assert "footprint polygon" in err and err.count("\n") == 1
+
+
+def test_a_ci_step_that_cannot_finish_fails(capsys):
+    """The C++ stopping mid-run (a NavfnInputError from its client) fails the step, never skips it."""
+    from navfn_smt.commands.ci import _Steps, _summary_step
+    from navfn_smt.errors import NavfnInputError
+
+    def crashed():
+        raise NavfnInputError("the C++ navfn-traced stopped answering (exit status -6)")
+
+    steps = _Steps()
+    _summary_step(steps, "difftest navfn", crashed)
+    assert steps.failed and "stopped answering" in steps.cases[0]["failure"] and not steps.cases[0]["skipped"]

@@ -37,11 +37,12 @@ class _Steps:
 
 
 def _summary_step(steps: _Steps, name: str, run) -> None:
+    """Run one difftest step; a step that cannot finish (the C++ stopped answering, say) fails."""
     t0 = time.perf_counter()
     try:
         s = run()
     except NavfnInputError as e:
-        steps.add(name, time.perf_counter() - t0, skipped=str(e))
+        steps.add(name, time.perf_counter() - t0, failure=str(e))
         return
     text = f"{s['passed']} passed, {s['failed']} failed"
     steps.add(name, time.perf_counter() - t0, failure=text if s["failed"] else None, out=text)
