@@ -67,10 +67,19 @@ def _level(args) -> int:
     return _costmap_level(args)
 
 
+def _level_report(args, summary: dict) -> int:
+    """The level's table, its JSON with ``--json``, exit 1 on any disagreement."""
+    from ..report import difftest as report
+
+    report.level_table(summary)
+    if args.json:
+        report.write_level_json(args.json, summary)
+    return 0 if summary["failed"] == 0 else 1
+
+
 def _costmap_level(args) -> int:
     from ..difftest.layers_live import generated_configs, map_config, run_layers_live
     from ..oracle.client import LayersOracle
-    from ..report import difftest as report
     from ..report.tables import progress_bar
 
     if args.sweep:
@@ -89,16 +98,12 @@ def _costmap_level(args) -> int:
         label = f"difftest --level costmap (the layer models against the C++ layers of {distro})"
         with progress_bar(1 if args.map else args.configs, label, enabled=not args.quiet) as advance:
             summary = run_layers_live(configs, oracle, progress=advance).as_dict()
-    report.level_table(summary)
-    if args.json:
-        report.write_level_json(args.json, summary)
-    return 0 if summary["failed"] == 0 else 1
+    return _level_report(args, summary)
 
 
 def _plugin_level(args) -> int:
     from ..difftest.plugin_live import generated_configs, map_configs, run_plugin_live
     from ..oracle.client import PluginOracle
-    from ..report import difftest as report
     from ..report.tables import progress_bar
 
     with PluginOracle(args.oracle) as oracle:
@@ -111,10 +116,7 @@ def _plugin_level(args) -> int:
         label = f"difftest --level plugin ({args.backend} model against the C++ plugin of {distro})"
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_plugin_live(configs, oracle, args.backend, progress=advance).as_dict()
-    report.level_table(summary)
-    if args.json:
-        report.write_level_json(args.json, summary)
-    return 0 if summary["failed"] == 0 else 1
+    return _level_report(args, summary)
 
 
 def register(sub) -> None:

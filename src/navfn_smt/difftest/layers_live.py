@@ -8,12 +8,12 @@ type the version has).  The two agree when the master costmap is the same byte f
 the footprint's inscribed and circumscribed radii are the same doubles.
 
 Rolling's ``InflationLayer`` takes its distances' square roots with Eigen, whose result
-depends on the CPU's ``rsqrtps`` (see :func:`~navfn_smt.nav2.inflation.matrix_sqrt`).  Where
-such a configuration is run with each of the model's square roots; the summary counts which
-of them this machine's C++ matches (``sqrt_match``: ``all`` when the configuration does not
-tell them apart, ``eigen-sse-amd only`` when this CPU's square roots are the emulated ones
-where they differ from the correctly rounded ones), and a configuration no variant matches is
-a disagreement.
+depends on the CPU's ``rsqrtps`` (see :func:`~navfn_smt.nav2.inflation.matrix_sqrt`).  A
+configuration with that layer is run with each of the model's square roots, and agrees when
+one of them gives the C++'s bytes.  The summary counts which ones did (``sqrt_match``: ``all``
+when the configuration does not tell them apart, else the names of those that match, ``none``
+when none does), and :func:`cpu_sqrt` compares the build's own Eigen square root with each of
+the model's on every integer below 2^20.
 """
 
 from __future__ import annotations
@@ -106,8 +106,8 @@ def compare_config(cfg: LayersConfig, oracle, summary: LayersSummary) -> None:
     matched = [sqrt for sqrt, d in diffs.items() if d is None]
     diff = None if matched else diffs[SQRT_MODES[0]]
     if has_dt:
-        # "eigen-sse-amd only": this CPU's square roots are the emulated ones where they differ
-        # from the correctly rounded ones; "all": the configuration does not tell them apart
+        # "all": the configuration does not tell the square roots apart; "<names> only": the ones
+        # this machine's C++ agrees with where they differ
         key = "none" if not matched else "all" if len(matched) == len(diffs) else f"{'+'.join(matched)} only"
         summary.sqrt_match[key] = summary.sqrt_match.get(key, 0) + 1
     if diff is None:
@@ -160,8 +160,8 @@ def _inflation(rng, kind: str) -> InflationParams:
 
 def sqrt_probe() -> LayersConfig:
     """One lethal cell in the middle of a free 61x61 grid, inflated 30 cells out by the
-    distance-transform layer: 12 of its cells get another cost from the emulated Eigen square
-    root than from the correctly rounded one, so the configuration tells a CPU's apart."""
+    distance-transform layer: 12 of its cells get another cost from the emulated AMD Zen square
+    root than from the correctly rounded one, so the configuration tells those two apart."""
     occ = np.zeros((61, 61), dtype=np.int8)
     occ[30, 30] = 100
     layers = (LayerSpec("static_layer", STATIC),

@@ -372,7 +372,8 @@ def _int_cast_overflows(cm: Costmap, pose: Pose) -> bool:
     (undefined behaviour; only reachable where createPlan does not check the poses first)."""
     if pose.x < cm.origin_x or pose.y < cm.origin_y:
         return False
-    return not all(_round(q) < 2**31 if q == q and q < 2.0**62 else False
+    # round(q) < 2^31 exactly when q < 2^31 - 0.5 (halves away from zero; q >= 0); NaN is not below
+    return not all(q < 2.0**31 - 0.5
                    for q in ((pose.x - cm.origin_x) / cm.resolution, (pose.y - cm.origin_y) / cm.resolution))
 
 

@@ -162,8 +162,8 @@ def _compile(cxx: str, sources, includes, defines, out: Path, extra=()) -> None:
 
 
 def _jobs(src: Path, tmp: Path) -> dict:
-    """Each program's (sources, include folders, defines), and the files the copies were made
-    from; the traced and unbounded copies are written into ``tmp``."""
+    """Each program's (sources, include folders, defines[, extra flags]); the traced and
+    unbounded copies are written into ``tmp``."""
     pkg = src / "nav2_navfn_planner"
     navfn_cpp = pkg / "src" / "navfn.cpp"
     includes = [HERE / "stubs", pkg / "include", src / "nav2_core" / "include", HERE]
@@ -178,7 +178,8 @@ def _jobs(src: Path, tmp: Path) -> dict:
                        src / "nav2_costmap_2d" / "include"]
     costmap = src / "nav2_costmap_2d"
     layers = [HERE / "layers_driver.cpp", *[costmap / f for f in LAYER_SOURCES if (costmap / f).is_file()]]
-    layer_defines = [d for d in plugin_api(src) if d == "NAVFN_SMT_NAV2_NODE"] + (
+    plugin_defines = plugin_api(src)
+    layer_defines = [d for d in plugin_defines if d == "NAVFN_SMT_NAV2_NODE"] + (
         ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])
     return {
         "costmap-layers": (layers, [HERE / "ros_stubs", costmap / "include", *eigen_include()], layer_defines,
@@ -188,7 +189,7 @@ def _jobs(src: Path, tmp: Path) -> dict:
         "navfn-traced": ([driver, traced], includes, [*defines, "NAVFN_SMT_TRACED"]),
         "navfn-unbounded": ([driver, traced], [tmp / "unbounded", *includes],
                             [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_UNBOUNDED"]),
-        "navfn-plugin": (plugin, plugin_includes, plugin_api(src)),
+        "navfn-plugin": (plugin, plugin_includes, plugin_defines),
     }
 
 
@@ -203,26 +204,33 @@ def uses_eigen(src: Path) -> bool:
     return hpp.is_file() and "<Eigen/" in hpp.read_text(encoding="utf-8")
 
 
-def needs_missing_eigen(src: Path) -> bool:
-    """The version's inflation layer includes Eigen and this machine has none."""
-    return uses_eigen(src) and not eigen_include()
+HEADERS = ("nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp",
+           "nav2_navfn_planner/include/nav2_navfn_planner/navfn_planner.hpp",
+           "nav2_navfn_planner/include/nav2_navfn_planner/parameter_handler.hpp",
+           "nav2_core/include/nav2_core/global_planner.hpp", "nav2_core/include/nav2_core/planner_exceptions.hpp",
+           *(f"nav2_costmap_2d/include/nav2_costmap_2d/{n}.hpp" for n in (
+               "costmap_2d", "cost_values", "layer", "layered_costmap", "costmap_layer", "footprint", "costmap_math",
+               "static_layer", "inflation_layer", "legacy_inflation_layer", "inflation_layer_interface",
+               "distance_transform")))
 
 
-def _used(src: Path) -> list[Path]:
-    """The Nav2 files a build reads (hashed into build.json)."""
-    pkg, core, costmap = src / "nav2_navfn_planner", src / "nav2_core" / "include" / "nav2_core", src / "nav2_costmap_2d"
-    files = [pkg / "src" / "navfn.cpp", pkg / "src" / "navfn_planner.cpp", pkg / "src" / "parameter_handler.cpp",
-             pkg / "include" / "nav2_navfn_planner" / "navfn.hpp",
-             pkg / "include" / "nav2_navfn_planner" / "navfn_planner.hpp",
-             pkg / "include" / "nav2_navfn_planner" / "parameter_handler.hpp",
-             core / "global_planner.hpp", core / "planner_exceptions.hpp", costmap / "src" / "costmap_2d.cpp",
-             costmap / "include" / "nav2_costmap_2d" / "costmap_2d.hpp",
-             costmap / "include" / "nav2_costmap_2d" / "cost_values.hpp",
-             *[costmap / f for f in LAYER_SOURCES],
-             *[costmap / "include" / "nav2_costmap_2d" / f"{n}.hpp" for n in (
-                 "layer", "layered_costmap", "costmap_layer", "footprint", "costmap_math", "static_layer",
-                 "inflation_layer", "legacy_inflation_layer", "inflation_layer_interface", "distance_transform")]]
-    return [f for f in files if f.is_file()]
+def _used(src: Path, jobs: dict) -> list[Path]:
+    """The Nav2 files a build reads (hashed into build.json): every program's sources from
+    ``src`` and the headers of :data:`HEADERS` the version has."""
+    sources = {f for job in jobs.values() for f in job[0] if src in f.parents}
+    return sorted(sources | {src / h for h in HEADERS if (src / h).is_file()})
+
+
+def _skipped(src: Path, name: str) -> Optional[str]:
+    """Why ``name`` is left out of this build (None: it is built): the Eigen programs without
+    Eigen, or ``eigen-sqrt`` for a version whose inflation layer does not use it."""
+    if name not in EIGEN_PROGRAMS:
+        return None
+    if not uses_eigen(src):
+        return None if name == "costmap-layers" else "this version's inflation layer does not use Eigen"
+    if not eigen_include():
+        return "this version's inflation layer needs Eigen 3, which is not installed (libeigen3-dev)"
+    return None
 
 
 def build(nav2_src, out, programs=PROGRAMS) -> dict:
@@ -237,12 +245,7 @@ def build(nav2_src, out, programs=PROGRAMS) -> dict:
         raise NavfnInputError(f"no oracle program {unknown[0]!r} (there are: {', '.join(PROGRAMS)})")
     cxx = compiler()
     version = subprocess.run([cxx, "--version"], capture_output=True, text=True).stdout.splitlines()[:1]
-    skipped = {}
-    for name in EIGEN_PROGRAMS:
-        if name in programs and (needs_missing_eigen(src) if name == "costmap-layers" else not uses_eigen(src)
-                                 or not eigen_include()):
-            skipped[name] = ("this version's inflation layer needs Eigen 3, which is not installed (libeigen3-dev)"
-                             if needs_missing_eigen(src) else "this version's inflation layer does not use Eigen")
+    skipped = {name: why for name in programs if (why := _skipped(src, name))}
     programs = tuple(p for p in programs if p not in skipped)
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
@@ -256,7 +259,7 @@ def build(nav2_src, out, programs=PROGRAMS) -> dict:
             "sources": str(src.resolve()), "distribution": distribution(src), "git_commit": _git_commit(src),
             "compiler": cxx, "compiler_version": version[0] if version else "", "flags": list(FLAGS),
             "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs), "skipped": skipped,
-            "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src)},
+            "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src, jobs)},
             "anchor": ANCHOR,
         }
         (tmp / "build.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")

@@ -1,8 +1,11 @@
-"""The built C++ NavFn as a planner: one process serves every case (no process per case).
+"""The programs of an oracle build, running: one process serves every request (no process per case).
 
-:class:`Oracle` speaks the driver's protocol (``navfn_driver.cpp``): :meth:`Oracle.plan` gives
-every case of a map as the spec's :class:`~navfn_smt.spec.planner.PlanResult`, so the
-golden-file recorder and the live difftest take the C++'s answers where they take the spec's.
+- :class:`Oracle` speaks ``navfn_driver.cpp``'s protocol: :meth:`Oracle.plan` gives every case
+  of a map as the spec's :class:`~navfn_smt.spec.planner.PlanResult`, so the golden-file
+  recorder and the live difftest take the C++'s answers where they take the spec's;
+- :class:`PluginOracle` (``plugin_driver.cpp``): ``createPlan`` on a costmap;
+- :class:`LayersOracle` (``layers_driver.cpp``): the global costmap's layers on a grid;
+- :class:`EigenSqrt` (``eigen_sqrt.cpp``): this machine's Eigen square root.
 """
 
 from __future__ import annotations
@@ -59,7 +62,7 @@ class _Program:
     def _read(self, n: int) -> bytes:
         data = self.proc.stdout.read(n) if n else b""
         if len(data) != n:
-            raise NavfnInputError(f"{self.folder}: the C++ NavFn stopped answering (exit status "
+            raise NavfnInputError(f"{self.folder}: the C++ {self.program} stopped answering (exit status "
                                   f"{self.proc.poll()}); is the build folder intact?")
         return data
 
