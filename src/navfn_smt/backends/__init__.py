@@ -9,6 +9,8 @@ its arrays (nothing in it changes when it plans again; ``path_cycles`` and ``cyc
 replace NavFn's budgets ``4 * nx`` and ``max(nx * ny / 20, nx + ny)``); ``planner.extract(potential,
 start, goal, path_cycles)`` runs calcPath alone; ``planner.run_batch(cases, astar)``
 plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
+``get_backend(name, variant="fixed")`` gives the same backend with the fix of
+:mod:`navfn_smt.spec.fix` (:class:`FixedMapPlanner`).
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from ..spec.extraction import EXIT_CODES, ExtractionExit, UndefinedBehaviour, ca
 from ..spec.planner import PlanResult, path_cycle_limit, plan
 from ..spec.constants import PRIORITYBUFSIZE
 from ..spec.propagation import check_capacity, cycle_limit
+from ..spec import fix as F
 
 
 class MapPlanner(Protocol):
@@ -59,6 +62,12 @@ class ReferenceMapPlanner:
         return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
                     path_cycles=path_cycles, cycles=cycles)
 
+    def run_fixed(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
+                  cycles: Optional[int] = None) -> PlanResult:
+        """:meth:`run` with the fix (:mod:`navfn_smt.spec.fix`)."""
+        return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
+                    path_cycles=path_cycles, cycles=cycles, variant="fixed")
+
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential: (exit, path; empty unless NEAR_GOAL)."""
         ny, nx = self.costs.shape
@@ -68,19 +77,84 @@ class ReferenceMapPlanner:
 
     def run_batch(self, cases, astar: bool) -> dict:
         """The columns of :func:`.jit.run_cases`, planned one case at a time by the spec."""
-        results = [self.run((sx, sy), (gx, gy), astar, trace=False)
-                   for sx, sy, gx, gy in np.asarray(cases).reshape(-1, 4).tolist()]
-        offsets = np.cumsum([0] + [len(r.path) for r in results])
-        return {
-            "start_reached": np.array([r.start_reached for r in results], np.bool_),
-            "start_potential": np.array([r.start_potential for r in results], np.float32),
-            "cycles": np.array([r.cycles for r in results], np.int64),
-            "updates": np.array([r.updates for r in results], np.int64),
-            "dropped": np.array([r.dropped for r in results], np.int64),
-            "exit": np.array([list(ExtractionExit).index(r.exit) for r in results], np.int64),
-            "path_offsets": offsets.astype(np.int64),
-            "path": np.concatenate([r.path for r in results] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2),
-        }
+        return _columns([self.run((sx, sy), (gx, gy), astar, trace=False)
+                         for sx, sy, gx, gy in np.asarray(cases).reshape(-1, 4).tolist()])
+
+
+def _columns(results: list) -> dict:
+    """Plan results as the columns of :func:`.jit.run_cases`."""
+    offsets = np.cumsum([0] + [len(r.path) for r in results])
+    return {
+        "start_reached": np.array([r.start_reached for r in results], np.bool_),
+        "start_potential": np.array([r.start_potential for r in results], np.float32),
+        "cycles": np.array([r.cycles for r in results], np.int64),
+        "updates": np.array([r.updates for r in results], np.int64),
+        "dropped": np.array([r.dropped for r in results], np.int64),
+        "exit": np.array([list(ExtractionExit).index(r.exit) for r in results], np.int64),
+        "path_offsets": offsets.astype(np.int64),
+        "path": np.concatenate([r.path for r in results] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2),
+    }
+
+
+def _row(cols: dict, i: int) -> tuple:
+    """Row ``i`` of the columns: its scalar fields and its path."""
+    a, b = cols["path_offsets"][i], cols["path_offsets"][i + 1]
+    return tuple(cols[k][i] for k in _SCALARS) + (cols["path"][a:b],)
+
+
+_SCALARS = ("start_reached", "start_potential", "cycles", "updates", "dropped", "exit")
+
+
+class FixedMapPlanner:
+    """A backend's planner with the fix of :mod:`navfn_smt.spec.fix`: the backend plans as
+    NavFn does, and where it returns no path the reference spec plans the case again with the
+    fix.  The fix never changes a path the original returns, so this is the fixed planner, and
+    the fix is stated once (in the spec, with the kernels)."""
+
+    def __init__(self, inner: MapPlanner):
+        self.inner = inner
+        self.costs = inner.costs
+        self.capacity = inner.capacity
+
+    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
+            cycles: Optional[int] = None) -> PlanResult:
+        """The original's run where it returns a path; from a reached start without one, the
+        same run with the descent's path; from an unreached start, the fixed run again."""
+        res = self.inner.run(start, goal, astar, trace, path_cycles, cycles)
+        res.extra = {**res.extra, "fix": []}
+        if len(res.path):
+            return res
+        if F.reached(res.start_potential):  # propagation was done: only the descent can act
+            return F.with_descent(res, start, goal)
+        return self.inner.run_fixed(start, goal, astar, trace, path_cycles, cycles)
+
+    def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
+        """calcPath and, where it returns no path, the fix's descent (``calcPathDescent``)."""
+        exit_, path = self.inner.extract(potential, start, goal, path_cycles)
+        if exit_ is ExtractionExit.NEAR_GOAL:
+            return exit_, path
+        ny, nx = self.costs.shape
+        ext = F.descend([float(v) for v in np.asarray(potential, np.float32).ravel()], nx, ny,
+                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])))
+        return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
+
+    def run_batch(self, cases, astar: bool) -> dict:
+        """The backend's columns, the cases it plans no path for planned again with the fix."""
+        cases = np.asarray(cases).reshape(-1, 4)
+        cols = self.inner.run_batch(cases, astar)
+        failed = np.flatnonzero(cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL))
+        if not len(failed):
+            return cols
+        rows = [_row(cols, i) for i in range(len(cases))]
+        for i in failed.tolist():
+            sx, sy, gx, gy = cases[i].tolist()
+            r = self.run((sx, sy), (gx, gy), astar, trace=False)
+            rows[i] = (r.start_reached, r.start_potential, r.cycles, r.updates, r.dropped,
+                       EXIT_CODES.index(r.exit), r.path)
+        out = {k: np.array([row[j] for row in rows], cols[k].dtype) for j, k in enumerate(_SCALARS)}
+        out["path_offsets"] = np.cumsum([0] + [len(row[-1]) for row in rows]).astype(np.int64)
+        out["path"] = np.concatenate([row[-1] for row in rows] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2)
+        return out
 
 
 class ReferenceBackend:
@@ -104,7 +178,7 @@ class JitMapPlanner:
         self.path_cycles = path_cycle_limit(self.nx)
 
     def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
-            cycles: Optional[int] = None) -> PlanResult:
+            cycles: Optional[int] = None, fixed: bool = False) -> PlanResult:
         from . import jit as J
 
         check_inputs(self.costs, start, goal)
@@ -112,7 +186,10 @@ class JitMapPlanner:
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
         n = self.path_cycles if path_cycles is None else int(path_cycles)
-        reached, code, npath = p.run(start, goal, astar, self.cycles if cycles is None else int(cycles), n, trace)
+        limit = self.cycles if cycles is None else int(cycles)
+        if fixed:
+            F.check_cycles(limit)
+        reached, code, npath = p.run(start, goal, astar, limit, n, trace, fixed)
         if code == J.EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         pot = p.pot.reshape(self.ny, self.nx).copy()
@@ -128,6 +205,14 @@ class JitMapPlanner:
             dropped=int(p.counters[J.DROPPED]),
             exit=exit_,
         )
+
+    def run_fixed(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
+                  cycles: Optional[int] = None) -> PlanResult:
+        """:meth:`run` with the fix: the compiled :func:`.jit.propagate_on`, calcPath, and where
+        that returns no path the spec's descent (:func:`navfn_smt.spec.fix.descend`)."""
+        res = self.run(start, goal, astar, trace, path_cycles, cycles, fixed=True)
+        res.extra = {"fix": ["propagation"] if self.work.calls else []}
+        return res if len(res.path) else F.with_descent(res, start, goal)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential, compiled."""
@@ -166,8 +251,21 @@ _BACKENDS: dict[str, type] = {b.name: b for b in (JitBackend, ReferenceBackend)}
 BACKENDS = tuple(_BACKENDS)
 
 
-def get_backend(name: str) -> Backend:
+class _Fixed:
+    """A backend whose planners carry the fix (:class:`FixedMapPlanner`)."""
+
+    def __init__(self, inner: Backend):
+        self.inner = inner
+        self.name = inner.name
+
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> FixedMapPlanner:
+        return FixedMapPlanner(self.inner.prepare(costs, capacity))
+
+
+def get_backend(name: str, variant: str = F.DEFAULT_VARIANT) -> Backend:
+    """The backend ``name``; with ``variant="fixed"`` its planners carry the fix."""
     try:
-        return _BACKENDS[name]()
+        backend = _BACKENDS[name]()
     except KeyError:
         raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})") from None
+    return _Fixed(backend) if F.check_variant(variant) == "fixed" else backend

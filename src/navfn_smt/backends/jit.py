@@ -235,6 +235,30 @@ def propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fi
 
 
 @jit
+def propagate_on(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters,
+                 memo):
+    """The fix's ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), compiled: :func:`propagate`,
+    then ``propNavFn*(cycles)`` again (A*: ``curT += dist`` at its entry, a cycle count from 0)
+    while the start is unreached and a buffer holds cells.  Returns what the last call returns
+    and the calls the fix added; ``tests/test_fix.py`` holds it equal to the spec."""
+    done = propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace,
+                     counters, memo)
+    high = ND.f32const(POT_HIGH)
+    start_cell = sy * nx + sx
+    no_watch = pb[0, :0]
+    calls = 0
+    while ND.ge(pot[start_cell], high) and (fill[role[CUR]] > 0 or fill[role[NXT]] > 0):
+        if astar:
+            curt[0] = ND.add(K.astar_heuristic(ND, gx - sx, gy - sy), curt[0])
+        counters[CYCLE] = 0
+        run_cycles(costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace,
+                   counters, memo, no_watch, no_watch)
+        done = ND.lt(pot[start_cell], high) if astar else counters[CYCLE] < cycles
+        calls += 1
+    return done, calls
+
+
+@jit
 def calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, touched):
     """calcPath(nmax); ``path`` is (nmax + 1, 2) float32.  Returns (exit code, npath, ntouched).
 
@@ -341,17 +365,27 @@ class JitPlanner:
         self.memo = np.full(memo, np.nan, np.float32)
         self.path = np.empty((path_cycle_limit(self.nx) + 1, 2), np.float32)
 
-    def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True):
+    def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True,
+            fixed: bool = False):
         """Plan one case; with ``record_trace`` False no trace is kept (memory stays linear
-        in the map size: the trace grows with the number of updates)."""
+        in the map size: the trace grows with the number of updates).  ``fixed``: propagate
+        as the fix does (:func:`propagate_on`); ``self.calls`` is then the calls it added."""
         sx, sy = start
         gx, gy = goal
+        self.calls = 0
         while True:
-            reached = propagate(
-                self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
-                self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
-                self.trace if record_trace else self.no_trace, self.counters, self.memo,
-            )
+            if fixed:
+                reached, self.calls = propagate_on(
+                    self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
+                    self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
+                    self.trace if record_trace else self.no_trace, self.counters, self.memo,
+                )
+            else:
+                    reached = propagate(
+                    self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
+                    self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
+                    self.trace if record_trace else self.no_trace, self.counters, self.memo,
+                )
             if not record_trace or self.counters[TRACE_LEN] <= self.trace.shape[0]:
                 break
             self.trace = np.empty(int(self.counters[TRACE_LEN]) * 2, np.int32)

@@ -25,6 +25,7 @@ from ..spec.costs import add_border
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
 from ..spec.planner import path_cycle_limit
 from ..spec.propagation import cycle_limit, propagate, setup
+from ..spec import fix as F
 
 _HIGH = np.float32(POT_HIGH)
 
@@ -53,20 +54,28 @@ class Run:
         return self.potential[self.start[1], self.start[0]]
 
 
-def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = None) -> Run:
+def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = None,
+        variant: str = F.DEFAULT_VARIANT) -> Run:
     """Plan like :func:`navfn_smt.spec.planner.plan`, also noting every cell ever queued.
 
-    ``capacity`` bounds each priority buffer (PRIORITYBUFSIZE, as in C++, when None)."""
+    ``capacity`` bounds each priority buffer (PRIORITYBUFSIZE, as in C++, when None);
+    ``variant="fixed"`` plans with the fix (:mod:`navfn_smt.spec.fix`)."""
+    fixed = F.check_variant(variant) == "fixed"
     arr = add_border(np.asarray(costs, dtype=np.uint8))
     ny, nx = arr.shape
     start, goal = (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1]))
     st = setup(arr.ravel().tolist(), nx, ny, goal, capacity)
     queued = set(st.cur)
     hook = lambda cycle, cells: queued.update(cells)  # noqa: E731
-    reached = propagate(st, start, goal, astar, cycle_limit(nx, ny), trace_hook=hook, record_trace=False)
+    if fixed:
+        reached, _ = F.propagate_on(st, start, goal, astar, cycle_limit(nx, ny), trace_hook=hook, record_trace=False)
+    else:
+        reached = propagate(st, start, goal, astar, cycle_limit(nx, ny), trace_hook=hook, record_trace=False)
     queued.update(st.cur, st.nxt, st.over)
     try:
         ext = calc_path(st.potential, nx, ny, start, goal, path_cycle_limit(nx))
+        if fixed and ext.exit is not ExtractionExit.NEAR_GOAL:
+            ext = F.descend(st.potential, nx, ny, start, goal)
         path, exit_ = np.array(ext.path, np.float32).reshape(-1, 2), ext.exit.value
     except UndefinedBehaviour:
         path, exit_ = np.zeros((0, 2), np.float32), "undefined"

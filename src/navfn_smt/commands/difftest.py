@@ -19,6 +19,11 @@ def cmd_difftest(args) -> int:
         return _level(args)
     if args.unbounded and not args.oracle:
         raise NavfnInputError("--unbounded compares with the C++ built with unbounded buffers: give --oracle DIR")
+    if args.variant == "fixed" and not args.oracle:
+        raise NavfnInputError("--variant fixed compares with the C++ built with the fix's patch: give --oracle DIR "
+                              "(the golden files are the original's)")
+    if args.variant == "fixed" and args.unbounded:
+        raise NavfnInputError("--variant fixed and --unbounded exclude each other (no C++ build has both)")
     suite, modes = suite_or_example(args.suite), modes_of(args.mode)
     eng = engine(args.jobs, args.scheduler)
     if args.oracle:
@@ -44,11 +49,13 @@ def _live(args, suite, modes) -> int:
     from ..report.tables import progress_bar
 
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
-    with Oracle(args.oracle, variant="unbounded" if args.unbounded else "traced") as oracle:
-        label = f"difftest {suite} ({args.backend} against the C++ of {oracle.build['distribution']})"
+    program = "unbounded" if args.unbounded else "fixed" if args.variant == "fixed" else "traced"
+    with Oracle(args.oracle, variant=program) as oracle:
+        label = (f"difftest {suite} ({args.backend}, {args.variant}, against the C++ of "
+                 f"{oracle.build['distribution']})")
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_live(suite, modes, args.backend, oracle, progress=lambda o: advance(o.cases),
-                               unbounded=args.unbounded).as_dict()
+                               unbounded=args.unbounded, variant=args.variant).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
@@ -123,6 +130,7 @@ def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
     from ..maps.suite import MODE_CHOICES
+    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
     from ..engine import add_arguments as add_engine_arguments
 
     dt = sub.add_parser("difftest", help="compare every case of a suite with its golden files")
@@ -133,6 +141,8 @@ def register(sub) -> None:
                     "build), run live on every case, instead of the golden files")
     dt.add_argument("--unbounded", action="store_true", help="with --oracle: the C++ and the spec both with "
                     "priority buffers that never drop a push")
+    dt.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT,
+                    help=VARIANT_HELP + "; fixed needs --oracle (the C++ with the fix's patch)")
     dt.add_argument("--level", choices=("navfn", "plugin", "costmap"), default="navfn",
                     help="navfn: NavFn on a suite (default); plugin: Nav2's createPlan on generated costmaps, poses "
                     "and parameters (or --map); costmap: the static and inflation layers on generated grids and "

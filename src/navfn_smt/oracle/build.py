@@ -22,6 +22,10 @@ names, the programs compiled side by side:
 - ``costmap-layers``: the global costmap's sources and its static and inflation layers
   (:data:`LAYER_SOURCES`, those the version has) with ``layers_driver.cpp``, ``ros_stubs/``,
   ``-fopenmp`` and Eigen 3 where the version's inflation layer needs it;
+- ``navfn-fixed`` and ``navfn-plugin-fixed``: the traced NavFn and the plugin with the fix of
+  ``docs/fix.md``: copies of ``navfn.cpp`` and ``navfn.hpp`` in the build folder, patched by
+  ``patch -p1`` with the distribution's ``patches/navfn-fix/<distribution>.patch``; the NavFn
+  driver then calls the patched ``calcNavFnAstar`` / ``calcNavFnDijkstra``;
 - ``eigen-sqrt``: where the version's inflation layer uses Eigen, Eigen's square root built with
   the layers' flags (``eigen_sqrt.cpp``), to tell which one this machine takes.
 
@@ -52,7 +56,11 @@ ANCHOR = "// reset pending flags on current priority buffer"  # once in each pro
 ANCHORS_EXPECTED = 2
 HOOK = "NAVFN_SMT_CYCLE(curP, curPe);"
 FLAGS = ("-std=c++17", "-O2")
-PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers", "eigen-sqrt")
+PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers", "eigen-sqrt",
+            "navfn-fixed", "navfn-plugin-fixed")
+FIXED_PROGRAMS = ("navfn-fixed", "navfn-plugin-fixed")  # left out, and named, without a patch for the version
+PATCHES = HERE.parent / "patches" / "navfn-fix"  # the fix, one patch per distribution
+NAVFN_FILES = ("nav2_navfn_planner/src/navfn.cpp", "nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp")
 EIGEN_PROGRAMS = ("costmap-layers", "eigen-sqrt")  # left out, and named, when Eigen is missing
 EIGEN_DIRS = ("/usr/include/eigen3", "/usr/local/include/eigen3")
 LAYER_SOURCES = ("src/costmap_2d.cpp", "src/layer.cpp", "src/layered_costmap.cpp", "src/costmap_layer.cpp",
@@ -132,6 +140,26 @@ def traced_copy(navfn_cpp: Path, out: Path) -> Path:
     return out
 
 
+def fix_patch(src: Path) -> Path:
+    """The fix's patch for the version of ``src`` (``patches/navfn-fix/<distribution>.patch``)."""
+    return PATCHES / f"{distribution(src)}.patch"
+
+
+def patched_copy(src: Path, root: Path) -> Path:
+    """Copies of ``navfn.cpp`` and ``navfn.hpp`` under ``root`` with the fix applied by
+    ``patch -p1`` (no fuzz); a clear error when the patch does not apply."""
+    for rel in NAVFN_FILES:
+        (root / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(src / rel, root / rel)
+    patch = fix_patch(src)
+    r = subprocess.run(["patch", "-p1", "-F0", "--no-backup-if-mismatch", "-d", str(root), "-i", str(patch)],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        first = (r.stdout + r.stderr).strip().splitlines()[-1:] or ["no output"]
+        raise NavfnInputError(f"{patch.name} does not apply to {src}: {first[0]}")
+    return root
+
+
 def compiler() -> str:
     """The C++ compiler: ``$CXX``, else g++ (a clear error when there is none)."""
     cxx = os.environ.get("CXX") or "g++"
@@ -179,6 +207,17 @@ def _jobs(src: Path, tmp: Path) -> dict:
     costmap = src / "nav2_costmap_2d"
     layers = [HERE / "layers_driver.cpp", *[costmap / f for f in LAYER_SOURCES if (costmap / f).is_file()]]
     plugin_defines = plugin_api(src)
+    fixed = {}
+    if _skipped(src, "navfn-fixed") is None:
+        root = patched_copy(src, tmp / "fixed")
+        fixed_pkg = root / "nav2_navfn_planner"
+        fixed_cpp = traced_copy(fixed_pkg / "src" / "navfn.cpp", tmp / "navfn_fixed_traced.cpp")
+        fixed = {
+            "navfn-fixed": ([driver, fixed_cpp], [HERE / "stubs", fixed_pkg / "include", *includes[1:]],
+                            [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_FIXED"]),
+            "navfn-plugin-fixed": ([plugin[0], plugin[1], fixed_pkg / "src" / "navfn.cpp", *plugin[3:]],
+                                   [plugin_includes[0], fixed_pkg / "include", *plugin_includes[1:]], plugin_defines),
+        }
     layer_defines = [d for d in plugin_defines if d == "NAVFN_SMT_NAV2_NODE"] + (
         ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])
     return {
@@ -190,6 +229,7 @@ def _jobs(src: Path, tmp: Path) -> dict:
         "navfn-unbounded": ([driver, traced], [tmp / "unbounded", *includes],
                             [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_UNBOUNDED"]),
         "navfn-plugin": (plugin, plugin_includes, plugin_defines),
+        **fixed,
     }
 
 
@@ -223,7 +263,14 @@ def _used(src: Path, jobs: dict) -> list[Path]:
 
 def _skipped(src: Path, name: str) -> Optional[str]:
     """Why ``name`` is left out of this build (None: it is built): the Eigen programs without
-    Eigen, or ``eigen-sqrt`` for a version whose inflation layer does not use it."""
+    Eigen, ``eigen-sqrt`` for a version whose inflation layer does not use it, the fixed
+    programs for a version without a patch or without the ``patch`` program."""
+    if name in FIXED_PROGRAMS:
+        if not fix_patch(src).is_file():
+            return f"no patch of the fix for {distribution(src)} (patches/navfn-fix/ has {', '.join(sorted(p.stem for p in PATCHES.glob('*.patch')))})"
+        if shutil.which("patch") is None:
+            return "the fix is applied with the patch program, which is not installed"
+        return None
     if name not in EIGEN_PROGRAMS:
         return None
     if not uses_eigen(src):
@@ -262,6 +309,8 @@ def build(nav2_src, out, programs=PROGRAMS) -> dict:
             "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src, jobs)},
             "anchor": ANCHOR,
         }
+        if any(p in programs for p in FIXED_PROGRAMS):
+            doc["fix_patch"] = {"file": fix_patch(src).name, "sha256": _sha256(fix_patch(src))}
         (tmp / "build.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
         if out.exists():
             shutil.rmtree(out)

@@ -67,12 +67,13 @@ class _Program:
         return data
 
 
-VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded"}
+VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded", "fixed": "navfn-fixed"}
 
 
 class Oracle(_Program):
     """A running C++ NavFn of an oracle build folder: ``traced`` (with the white-box trace),
-    ``plain`` (as Nav2 compiles it), or ``unbounded`` (traced, buffers that never drop a push)."""
+    ``plain`` (as Nav2 compiles it), ``unbounded`` (traced, buffers that never drop a push) or
+    ``fixed`` (traced, with the fix of ``patches/navfn-fix/``)."""
 
     def __init__(self, folder, traced: bool = True, variant: Optional[str] = None):
         variant = variant or ("traced" if traced else "plain")

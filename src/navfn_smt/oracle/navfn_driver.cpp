@@ -13,7 +13,9 @@
 // The unbounded build (NAVFN_SMT_UNBOUNDED, with a navfn.hpp whose PRIORITYBUFSIZE is
 // navfn_smt_buffer_size) gives each buffer nx * ny cells, so no push is ever dropped.
 // The traced build (NAVFN_SMT_TRACED, its navfn.cpp with the trace hook) reports cycles, updates
-// and the trace; the plain build reports -1 and an empty trace.
+// and the trace; the plain build reports -1 and an empty trace.  The fixed build
+// (NAVFN_SMT_FIXED, a navfn.cpp patched with the fix) calls calcNavFnAstar / calcNavFnDijkstra(atStart = true),
+// which run setupNavFn(true) and the propagation with the fix's loop, before calcPath(4 * nx).
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -85,15 +87,26 @@ int main()
       g_cycles = 0;
       nav->setGoal(goal);
       nav->setStart(start);
+      bool reached;
+#ifdef NAVFN_SMT_FIXED
+      // the fix lives in calcNavFn*: setupNavFn(true), then propagation (priInc stays the
+      // constructor's 2 * COST_NEUTRAL)
+#ifdef NAVFN_SMT_CANCEL_CHECKER
+      auto never = []() {return false;};
+      reached = astar ? nav->calcNavFnAstar(never) : nav->calcNavFnDijkstra(never, true);
+#else
+      reached = astar ? nav->calcNavFnAstar() : nav->calcNavFnDijkstra(true);
+#endif
+#else
       nav->setupNavFn(true);
       nav->priInc = 2 * COST_NEUTRAL;
       const int cycles = std::max(nx * ny / 20, nx + ny);
-      bool reached;
 #ifdef NAVFN_SMT_CANCEL_CHECKER
       auto never = []() {return false;};
       reached = astar ? nav->propNavFnAstar(cycles, never) : nav->propNavFnDijkstra(cycles, never, true);
 #else
       reached = astar ? nav->propNavFnAstar(cycles) : nav->propNavFnDijkstra(cycles, true);
+#endif
 #endif
       const int len = nav->calcPath(4 * nx);
       planning += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

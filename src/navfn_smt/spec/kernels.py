@@ -243,6 +243,22 @@ def lowest_of_eight(D, centre, neighbours):
     return best
 
 
+def lowest_of_four(D, centre, neighbours):
+    """The fix's descent step (``calcPathDescent``): index into ``neighbours`` (up, left,
+    right, down: ``stc - nx, stc - 1, stc + 1, stc + nx``) of the lowest potential strictly
+    below ``centre``, the first on ties; -1 when none is lower.  Float comparisons only::
+
+        next = stc;  if (potarr[m] < potarr[next]) next = m;   // for each m in order
+    """
+    low = centre
+    best = -1
+    for k, p in enumerate(neighbours):
+        better = D.lt(p, low)
+        low = D.ite(better, p, low)
+        best = D.ite(better, k, best)
+    return best
+
+
 def near_goal(D, pot):
     """``potarr[nearest_point] < COST_NEUTRAL`` (float compared with an int)."""
     return D.lt(pot, D.f32const(COST_NEUTRAL))

@@ -18,6 +18,7 @@ from ..inputs import check_inputs
 from .costs import add_border
 from .extraction import ExtractionExit, calc_path
 from .propagation import TraceHook, cycle_limit, propagate, setup
+from . import fix as F
 
 
 def path_cycle_limit(nx: int) -> int:
@@ -65,12 +66,16 @@ def plan(
     path_cycles: Optional[int] = None,
     record_trace: bool = True,
     capacity: Optional[int] = None,
+    variant: str = F.DEFAULT_VARIANT,
 ) -> PlanResult:
     """Plan on NavFn-internal costs (a (height, width) uint8 array) with the reference spec.
 
     ``start`` is NavFn's start (where extraction begins), ``goal`` where propagation begins.
     ``capacity`` bounds each priority buffer (default PRIORITYBUFSIZE, as in C++).
+    ``variant="fixed"`` plans with the fix (:mod:`.fix`); ``extra["fix"]`` then lists the
+    parts that acted (``"propagation"``, ``"descent"``), empty where the original plans.
     """
+    fixed = F.check_variant(variant) == "fixed"
     arr = check_inputs(costs, start, goal)
     ny, nx = arr.shape
     start = (int(start[0]), int(start[1]))
@@ -78,10 +83,20 @@ def plan(
     cost_list = add_border(arr).ravel().tolist()
     st = setup(cost_list, nx, ny, goal, capacity)
     limit = cycle_limit(nx, ny) if cycles is None else cycles
-    reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
-                        record_trace=record_trace)
+    acted = []
+    if fixed:
+        reached, calls = F.propagate_on(st, start, goal, astar, limit, True, trace_hook, record_trace)
+        if calls:
+            acted.append("propagation")
+    else:
+        reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
+                            record_trace=record_trace)
     ext = calc_path(st.potential, nx, ny, start, goal,
                     path_cycle_limit(nx) if path_cycles is None else path_cycles)
+    if fixed and ext.exit is not ExtractionExit.NEAR_GOAL:
+        ext = F.descend(st.potential, nx, ny, start, goal)
+        if ext.exit is ExtractionExit.NEAR_GOAL:
+            acted.append("descent")
     pot = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
     path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
     return PlanResult(
@@ -94,4 +109,5 @@ def plan(
         updates=st.updates,
         dropped=st.dropped,
         exit=ext.exit,
+        extra={"fix": acted} if fixed else {},
     )
