@@ -64,9 +64,10 @@ class ReferenceMapPlanner:
 
     def run_fixed(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
                   cycles: Optional[int] = None) -> PlanResult:
-        """:meth:`run` with the fix (:mod:`navfn_smt.spec.fix`)."""
+        """:meth:`run` with the fix's propagation (:func:`navfn_smt.spec.fix.propagate_on`), without
+        its descent."""
         return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
-                    path_cycles=path_cycles, cycles=cycles, variant="fixed")
+                    path_cycles=path_cycles, cycles=cycles, variant="fixed", descent=False)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential: (exit, path; empty unless NEAR_GOAL)."""
@@ -124,9 +125,9 @@ class FixedMapPlanner:
         res.extra = {**res.extra, "fix": []}
         if len(res.path):
             return res
-        if F.reached(res.start_potential):  # propagation was done: only the descent can act
-            return F.with_descent(res, start, goal)
-        return self.inner.run_fixed(start, goal, astar, trace, path_cycles, cycles)
+        if not F.reached(res.start_potential):  # the fix propagates on
+            res = self.inner.run_fixed(start, goal, astar, trace, path_cycles, cycles)
+        return res if len(res.path) else F.with_descent(res, start, goal)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """calcPath and, where it returns no path, the fix's descent (``calcPathDescent``)."""
@@ -208,11 +209,11 @@ class JitMapPlanner:
 
     def run_fixed(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
                   cycles: Optional[int] = None) -> PlanResult:
-        """:meth:`run` with the fix: the compiled :func:`.jit.propagate_on`, calcPath, and where
-        that returns no path the spec's descent (:func:`navfn_smt.spec.fix.descend`)."""
+        """:meth:`run` with the fix's propagation, compiled (:func:`.jit.propagate_on`), without its
+        descent."""
         res = self.run(start, goal, astar, trace, path_cycles, cycles, fixed=True)
         res.extra = {"fix": ["propagation"] if self.work.calls else []}
-        return res if len(res.path) else F.with_descent(res, start, goal)
+        return res
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential, compiled."""

@@ -15,6 +15,8 @@ def cmd_difftest(args) -> int:
     from ..report.tables import progress_bar
 
     check_files(args.json)
+    if args.variant == "fixed" and args.level == "costmap":
+        raise NavfnInputError("--variant is for NavFn and the planner plugin; the fix does not touch the costmap")
     if args.level != "navfn":
         return _level(args)
     if args.unbounded and not args.oracle:
@@ -113,14 +115,17 @@ def _plugin_level(args) -> int:
     from ..oracle.client import PluginOracle
     from ..report.tables import progress_bar
 
-    with PluginOracle(args.oracle) as oracle:
+    from dataclasses import replace
+
+    with PluginOracle(args.oracle, args.variant) as oracle:
         distro = oracle.build["distribution"]
         if args.map:
             configs = list(map_configs(args.map, args.params, distro, args.configs, args.seed, args.pairs, args.sweep))
         else:
             configs = list(generated_configs(distro, args.configs, args.seed, args.pairs))
+        configs = [replace(c, params=replace(c.params, variant=args.variant)) for c in configs]
         total = sum(len(c.pairs) for c in configs)
-        label = f"difftest --level plugin ({args.backend} model against the C++ plugin of {distro})"
+        label = f"difftest --level plugin ({args.backend} model, {args.variant}, against the C++ plugin of {distro})"
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_plugin_live(configs, oracle, args.backend, progress=advance).as_dict()
     return _level_report(args, summary)

@@ -21,7 +21,7 @@ def _plan_world(args) -> int:
         raise NavfnInputError("--size is for a raw map file, not a map_server map")
     start, goal = check_pose("start", args.start), check_pose("goal", args.goal)
     check_params_file(args.params)
-    overrides = {"use_astar": True if args.astar else False if args.dijkstra else None}
+    overrides = {"use_astar": True if args.astar else False if args.dijkstra else None, "variant": args.variant}
     setup = load_setup(args.map, args.params, args.distro, args.allow_outside, overrides, args.resolution,
                        tuple(args.origin))
     run = create_plan(setup.costmap, start, goal, setup.params, args.backend)
@@ -44,7 +44,7 @@ def cmd_plan(args) -> int:
     mode = "dijkstra" if args.dijkstra else "astar"
     start, goal = cell("start", args.start), cell("goal", args.goal)
     costs = load_costs(args.map, args.size, args.allow_outside, args.distro)
-    res = get_backend(args.backend).prepare(costs).run(start, goal, astar=not args.dijkstra, trace=False)
+    res = get_backend(args.backend, args.variant).prepare(costs).run(start, goal, astar=not args.dijkstra, trace=False)
     report.cell_plan(res, mode, args.backend, start, goal, args.json, costs)
     return 0 if len(res.path) else 1
 
@@ -53,6 +53,7 @@ def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
     from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
+    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
 
     pl = sub.add_parser("plan", help="plan on one map and print the path")
     pl.add_argument("map", help="a suite map directory (test.txt gives the size), a map_server YAML, "
@@ -85,5 +86,6 @@ def register(sub) -> None:
                      "whose Nav2 default is Dijkstra)")
     alg.add_argument("--astar", action="store_true", help="A* propagation (with --world: overrides use_astar)")
     pl.add_argument("--backend", choices=BACKENDS, default="jit", help=BACKEND_HELP)
+    pl.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
     pl.add_argument("--json", action="store_true", help="print a JSON object")
     pl.set_defaults(func=cmd_plan)

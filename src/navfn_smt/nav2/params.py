@@ -35,6 +35,7 @@ class PlannerParams:
     use_final_approach_orientation: bool = False
     plugin: str = "GridBased"  # the plugin's name in planner_server (where the values were read)
     distro: str = "rolling"  # whose navfn_planner.cpp reads them (see nav2.plugin.FLAVOURS)
+    variant: str = "original"  # NavFn as shipped, or "fixed": with the fix (navfn_smt.spec.fix)
 
 
 _TYPES = {"tolerance": float, "use_astar": bool, "allow_unknown": bool, "max_cycles_factor": int,

@@ -403,7 +403,7 @@ def make_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, run: 
         return
     run.target_cell = target
     try:
-        _propagate(run, target, robot, params.use_astar, backend)
+        _propagate(run, target, robot, params.use_astar, backend, params.variant)
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
         return
@@ -533,12 +533,16 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
     try:
         planner = get_backend(backend).prepare(run.costs)
         run.extraction, path = planner.extract(run.potential, cell, run.robot_cell, n)
+        if run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
+            run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
+        if params.variant == "fixed" and run.extraction is not ExtractionExit.NEAR_GOAL:
+            # the patched calcPath: calcPathGradient (above, with its WARN), then calcPathDescent
+            run.extraction, path = get_backend(backend, "fixed").prepare(run.costs).extract(
+                run.potential, cell, run.robot_cell, 0)
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
         return []
     run.path = path
-    if run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
-        run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
     return [Pose(*plugin_map_to_world(cm, px, py)) for px, py in path[::-1].tolist()]
 
 
@@ -567,14 +571,16 @@ def _final_approach_orientation(poses: list, start: Pose) -> list:
 
 
 def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[int, int], astar: bool,
-               backend: str) -> None:
-    """``setStart``/``setGoal`` then ``calcNavFnAstar`` or ``calcNavFnDijkstra(atStart=true)``.
+               backend: str, variant: str = "original") -> None:
+    """``setStart``/``setGoal`` then ``calcNavFnAstar`` or ``calcNavFnDijkstra(atStart=true)``
+    (``variant="fixed"``: as patched, propagating on while the start is unreached).
 
     Cells one past the edge (see :func:`plugin_world_to_map`) reach NavFn unchecked; their index
     ``y * nx + x`` then names cell (0, y + 1), and their coordinates enter the A* heuristic
     and the path's last point: that case runs with the raw coordinates (:func:`_propagate_raw`).
     """
     from ..backends import get_backend
+    from ..spec import fix
     from ..spec.propagation import cycle_limit
 
     ny, nx = run.costs.shape
@@ -582,22 +588,34 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
     on_map = all(0 <= c[0] < nx and 0 <= c[1] < ny for c in (navfn_start, navfn_goal))
     if on_map:
         # calcNavFn* only propagate; calcPath comes later, from the chosen pose's cell
-        r = get_backend(backend).prepare(run.costs).run(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
+        planner = get_backend(backend).prepare(run.costs)
+        r = planner.run(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
+        if variant == "fixed" and not fix.reached(r.start_potential):
+            r = planner.run_fixed(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
         run.potential, run.reached, run.cycles, run.dropped = r.potential, r.start_reached, r.cycles, r.dropped
         return
     for what, c in (("start", navfn_start), ("goal", navfn_goal)):
         if c[1] * nx + c[0] >= nx * ny:
             raise UndefinedBehaviour(f"NavFn's {what} cell {c} indexes {c[1] * nx + c[0]}, past the end of potarr "
                                      f"({nx * ny} cells)")
-    _propagate_raw(run, navfn_start, navfn_goal, astar, backend)
+    _propagate_raw(run, navfn_start, navfn_goal, astar, backend, variant)
 
 
-def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend: str = "jit") -> None:
+def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend: str = "jit",
+                   variant: str = "original") -> None:
     """Propagation with a cell one past the edge, its coordinates as they are: on the reference
-    spec, or compiled (the JIT's loop, without its heuristic memo, which assumes cells on the map)."""
+    spec, or compiled (the JIT's loop, without its heuristic memo, which assumes cells on the map);
+    the fixed variant on the spec."""
+    from ..spec import fix
     from ..spec.propagation import propagate, setup
 
     ny, nx = run.costs.shape
+    if variant == "fixed":
+        st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal)
+        run.reached, _ = fix.propagate_on(st, navfn_start, navfn_goal, astar, run.cycle_limit, record_trace=False)
+        run.potential = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
+        run.cycles, run.dropped = st.cycles, st.dropped
+        return
     if backend == "jit":
         from ..backends import jit as J
 

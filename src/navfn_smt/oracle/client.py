@@ -118,13 +118,14 @@ class PluginAnswer:
 
 
 class PluginOracle(_Program):
-    """A running C++ planner plugin (``navfn-plugin``): ``createPlan`` on a costmap, as Nav2's
-    planner server calls it, many pose pairs per configured plugin."""
+    """A running C++ planner plugin (``navfn-plugin``, or with ``variant="fixed"``
+    ``navfn-plugin-fixed``): ``createPlan`` on a costmap, as Nav2's planner server calls it,
+    many pose pairs per configured plugin."""
 
-    program = "navfn-plugin"
     END = struct.pack("<3i", 0, 0, 0)
 
-    def __init__(self, folder):
+    def __init__(self, folder, variant: str = "original"):
+        self.program = "navfn-plugin-fixed" if variant == "fixed" else "navfn-plugin"
         self.planning_seconds = 0.0
         super().__init__(folder)
 

@@ -86,6 +86,7 @@ def cell_plan_doc(res, mode: str, backend: str, start, goal) -> dict:
         "dropped_pushes": int(res.dropped),
         "exit": res.exit.value if res.exit else None,
         "path": _points(res.path),
+        **({"fix": res.extra["fix"]} if "fix" in res.extra else {}),
     }
 
 
@@ -102,6 +103,9 @@ def cell_plan(res, mode: str, backend: str, start, goal, as_json: bool, costs=No
     print(f"mode {mode}, start {start}, goal {goal}")
     print(f"start reached: {res.start_reached}; start potential: {float(res.start_potential):.9g}; "
           f"cycles: {res.cycles}; updates: {res.updates}; dropped pushes: {res.dropped}")
+    if "fix" in res.extra:
+        print("fixed planner: " + (f"the fix acted ({', '.join(res.extra['fix'])})" if res.extra["fix"]
+                                   else "the original's plan (the fix did not act)"))
     print_path(_points(res.path), "points", res)
     for line in why or ():
         print(f"  why: {line}")

@@ -67,13 +67,15 @@ def plan(
     record_trace: bool = True,
     capacity: Optional[int] = None,
     variant: str = F.DEFAULT_VARIANT,
+    descent: bool = True,
 ) -> PlanResult:
     """Plan on NavFn-internal costs (a (height, width) uint8 array) with the reference spec.
 
     ``start`` is NavFn's start (where extraction begins), ``goal`` where propagation begins.
     ``capacity`` bounds each priority buffer (default PRIORITYBUFSIZE, as in C++).
     ``variant="fixed"`` plans with the fix (:mod:`.fix`); ``extra["fix"]`` then lists the
-    parts that acted (``"propagation"``, ``"descent"``), empty where the original plans.
+    parts that acted (``"propagation"``, ``"descent"``), empty where the original plans;
+    ``descent=False`` leaves the descent out (the fixed propagation and calcPath only).
     """
     fixed = F.check_variant(variant) == "fixed"
     arr = check_inputs(costs, start, goal)
@@ -93,7 +95,7 @@ def plan(
                             record_trace=record_trace)
     ext = calc_path(st.potential, nx, ny, start, goal,
                     path_cycle_limit(nx) if path_cycles is None else path_cycles)
-    if fixed and ext.exit is not ExtractionExit.NEAR_GOAL:
+    if fixed and descent and ext.exit is not ExtractionExit.NEAR_GOAL:
         ext = F.descend(st.potential, nx, ny, start, goal)
         if ext.exit is ExtractionExit.NEAR_GOAL:
             acted.append("descent")
