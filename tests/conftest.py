@@ -58,6 +58,19 @@ def nav2_src() -> Path:
     return NAV2_SRC
 
 
+DISTROS = ("humble", "jazzy", "kilted", "rolling")
+
+
+@pytest.fixture(scope="session")
+def builds(nav2_src, tmp_path_factory) -> dict:
+    """Every program of the oracle built from each distribution's sources: ``{distro: (build.json,
+    folder)}``, once per test session (test_oracle.py and test_fix.py share it)."""
+    from navfn_smt.oracle.build import build
+
+    root = tmp_path_factory.mktemp("oracle")
+    return {d: (build(nav2_src / d, root / d), root / d) for d in DISTROS}
+
+
 @pytest.fixture
 def shared_suite_large() -> Path:
     if not (SUITE_LARGE / "README.md").exists():

@@ -20,12 +20,6 @@ EXAMPLE = Path(__file__).resolve().parent.parent / "src" / "navfn_smt" / "exampl
 DISTROS = ("humble", "jazzy", "kilted", "rolling")
 
 
-@pytest.fixture(scope="session")
-def builds(nav2_src, tmp_path_factory) -> dict:
-    root = tmp_path_factory.mktemp("oracle")
-    return {d: (build(nav2_src / d, root / d), root / d) for d in DISTROS}
-
-
 @pytest.mark.parametrize("distro", DISTROS)
 def test_every_distribution_builds_and_says_which_it_is(builds, nav2_src, distro):
     doc, folder = builds[distro]

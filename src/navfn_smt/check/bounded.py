@@ -36,8 +36,8 @@ from ..spec.planner import path_cycle_limit
 from . import properties as P
 from . import exhaustive
 from .concolic import ConcolicDomain, V, concrete, term
-from ..spec.extraction import exit_code
-from .encoding import _interior, extract, propagate
+from ..spec.extraction import EXIT_UNDEFINED, exit_code
+from .encoding import _interior, descend, extract, propagate
 
 NEAR_GOAL = exit_code(P.ExtractionExit.NEAR_GOAL)
 CHECKABLE = tuple(P.PROPERTIES)
@@ -201,20 +201,24 @@ class CaseResult:
     unknown_flips: list = field(default_factory=list)
 
 
-def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable):
+def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, variant: str = "original"):
     S = make_domain()
     D = ConcolicDomain(S)
     inner = _interior(case.nx, case.ny)
     costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}
-    sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar)
+    fixed = variant == "fixed"
+    sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar, fixed)
     ex = extract(D, sp.potential, case.nx, case.ny, case.start, case.goal, path_cycle_limit(case.nx))
+    if fixed and concrete(ex.exit) != NEAR_GOAL and concrete(ex.exit) != EXIT_UNDEFINED:
+        ex = descend(D, sp.potential, case.nx, case.ny, case.start, case.goal)
     return D, costs, sp, ex
 
 
 def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
             solve=solve_bitwuzla, initial: Optional[dict] = None,
-            exhaustive_limit: int = EXHAUSTIVE_LIMIT) -> CaseResult:
-    """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each."""
+            exhaustive_limit: int = EXHAUSTIVE_LIMIT, variant: str = "original") -> CaseResult:
+    """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each
+    (``variant="fixed"``: of the planner with the fix)."""
     t0 = time.perf_counter()
     inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
     results = {n: PropertyResult(n) for n in names}
@@ -222,7 +226,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
     todo = [(initial or {k: lo for k in inner}, 0)]
     while todo:
         conc, bound = todo.pop()
-        D, costs, sp, ex = _symbolic_run(case, conc, lo, hi, make_domain)
+        D, costs, sp, ex = _symbolic_run(case, conc, lo, hi, make_domain, variant)
         out.paths += 1
         variables = {k: costs[k].term for k in inner}
         ranges = {k: (lo, hi) for k in inner}

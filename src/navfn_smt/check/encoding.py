@@ -72,9 +72,15 @@ def _choose(D, c, a: Buffer, b: Buffer) -> Buffer:
     return Buffer([D.ite(c, x, y) for x, y in zip(a.slots, b.slots)], D.ite(c, a.fill, b.fill))
 
 
-def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> SymbolicPropagation:
+FIXED_CALLS = 1000  # the fixed variant's encoding refuses a run that calls propNavFn* more often
+
+
+def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed: bool = False) -> SymbolicPropagation:
     """Propagation on an ``nx`` x ``ny`` map; ``costs[k]`` is interior cell k's cost as a domain
-    byte (``D.cost(...)``) or an int.  Border cells are COST_OBS."""
+    byte (``D.cost(...)``) or an int.  Border cells are COST_OBS.  ``fixed``: the fix's
+    ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), which calls ``propNavFn*`` again
+    while the start is unreached and a buffer holds cells: only in a domain that follows one
+    control path (the concolic domain), which decides each further call."""
     inner = _interior(nx, ny)
     n_slots = len(inner)
     empty = Buffer([0] * n_slots, 0)
@@ -105,7 +111,24 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool) -> Sym
     running = True
     trace = []
     buffers = [cur]
-    for _ in range(cycle_limit(nx, ny)):
+    limit, calls, in_call = cycle_limit(nx, ny), 0, 0
+    while True:
+        if in_call == limit:  # propNavFn* returns; the fix calls it again while it must
+            if not fixed:
+                break
+            again = _fix(D, D.and_(D.not_(D.lt(pot[start_cell], high)),
+                                   D.not_(D.and_(D.eq(cur.fill, 0), D.eq(nxt.fill, 0)))))
+            if again is False:
+                break
+            if again is not True:
+                raise ValueError("the fixed variant is encoded only in a domain that follows one control path")
+            calls += 1
+            if calls > FIXED_CALLS:
+                raise ValueError(f"the fixed variant called propNavFn* more than {FIXED_CALLS} times")
+            if astar:  # curT += dist at the entry of propNavFnAstar
+                cur_t = D.add(heuristic(goal[0] - start[0], goal[1] - start[1]), cur_t)
+            running, in_call = True, 0
+        in_call += 1
         running = D.and_(running, D.not_(D.and_(D.eq(cur.fill, 0), D.eq(nxt.fill, 0))))
         cycles = D.ite(running, D.add_int(cycles, 1), cycles)
         trace.append((running, cur.fill, list(cur.slots)))
@@ -276,3 +299,41 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
         dy = D.ite(keep, dy, D.ite(fallback, zero, ndy))
     code = D.ite(D.eq(code, RUNNING), exit_code(ExtractionExit.EXHAUSTED), code)
     return SymbolicExtraction(code, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
+
+
+def descend(D, pot: list, nx: int, ny: int, start, goal) -> SymbolicExtraction:
+    """The fix's ``calcPathDescent`` on potentials ``pot`` (terms), as
+    :func:`navfn_smt.spec.fix.descend`: only in a domain that follows one control path (each
+    step's choice, the kernel ``lowest_of_four``, is decided, so the cell stays a plain int)."""
+    ns = nx * ny
+    zero = D.f32const(0.0)
+    stc, goal_cell = start[1] * nx + start[0], goal[1] * nx + goal[0]
+    points: list = []
+
+    def end(e: ExtractionExit) -> SymbolicExtraction:
+        return SymbolicExtraction(exit_code(e), points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
+
+    if _decided(D, K.unreached(D, pot[stc])):
+        return end(ExtractionExit.HIGH_POTENTIAL)
+    while stc != goal_cell:
+        if len(points) >= ns - 1:
+            return end(ExtractionExit.EXHAUSTED)
+        if stc < nx or stc >= ns - nx:
+            return SymbolicExtraction(EXIT_UNDEFINED, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
+        px, py = K.path_point(D, stc, nx, zero, zero)
+        points.append((px, py, True))
+        ring = (stc - nx, stc - 1, stc + 1, stc + nx)
+        best = K.lowest_of_four(D, pot[stc], [pot[m] for m in ring])
+        k = best if isinstance(best, int) else next((j for j in (-1, 0, 1, 2) if _decided(D, D.eq(best, j))), 3)
+        if k < 0:
+            return end(ExtractionExit.ZERO_GRADIENT)
+        stc = ring[k]
+    return end(ExtractionExit.NEAR_GOAL)
+
+
+def _decided(D, c) -> bool:
+    """A condition as the plain bool of this control path (recorded as a branch when open)."""
+    c = _fix(D, c)
+    if not isinstance(c, bool):
+        raise ValueError("the fix's descent is encoded only in a domain that follows one control path")
+    return c

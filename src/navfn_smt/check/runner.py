@@ -28,6 +28,12 @@ INDUCTION = {
     "queues-obstacle-free": ("ObstacleFreeQueue", "PendingMatchesBuffers"),
     "no-path-before-start-potential": ("NoPathWithoutFinitePotential",),
 }
+# ... and with the fix (variant "fixed"): complete and start-reached become inductive too
+INDUCTION_FIXED = {
+    **INDUCTION,
+    "complete": ("DescentPath",),
+    "start-reached": ("ConnectedStartReached",),
+}
 PARALLEL_FROM = 200  # --jobs auto: local workers from this many cases of a size on
 BATCH = 4  # cases per task: a case of a small size takes milliseconds, a task's round trip about as much
 
@@ -74,21 +80,22 @@ def _domain(semantics: str):
 
 def _explore_job(args):
     """The exploration of each case of a batch (a task: run by a worker, or in this process)."""
-    batch, names, lo, hi, semantics, timeout, limit = args
-    return [explore(case, names, lo, hi, _domain(semantics), timeout=timeout, exhaustive_limit=limit)
-            for case in batch]
+    batch, names, lo, hi, semantics, timeout, limit, variant = args
+    return [explore(case, names, lo, hi, _domain(semantics), timeout=timeout, exhaustive_limit=limit,
+                    variant=variant) for case in batch]
 
 
-def replay(case: Case, costs: dict, name: str):
+def replay(case: Case, costs: dict, name: str, variant: str = "original"):
     """The counterexample map run by the reference spec; the judge's reason, or None if it holds."""
     arr = case.costs_array(costs)
-    r = P.run(arr, case.start, case.goal, case.astar)
+    r = P.run(arr, case.start, case.goal, case.astar, variant=variant)
     return arr, r, P.judge(name, r)
 
 
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
                    timeout: float = 60.0, jobs=1, start=None, goal=None, ends: str = "any",
-                   exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None) -> dict:
+                   exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None,
+                   variant: str = "original") -> dict:
     """Every case of the size; returns ``{property: SizeResult}``, the same wherever the cases
     run.  ``jobs``: an :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number
     of cases), or a number of local workers."""
@@ -106,9 +113,9 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     out = {n: SizeResult((nx, ny), n, "proved", cases=len(todo)) for n in names}
     t0 = time.perf_counter()
     eng = as_engine(jobs)
-    work = [(tuple(todo[k:k + BATCH]), tuple(names), lo, hi, semantics, timeout, exhaustive_limit)
+    work = [(tuple(todo[k:k + BATCH]), tuple(names), lo, hi, semantics, timeout, exhaustive_limit, variant)
             for k in range(0, len(todo), BATCH)]
-    _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), out, len(todo), progress)
+    _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), out, len(todo), progress, variant)
     for r in out.values():
         r.seconds = time.perf_counter() - t0
         if r.counterexample is None and r.cases_unknown:
@@ -116,7 +123,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     return out
 
 
-def _collect(batches, out: dict, total: int, progress) -> None:
+def _collect(batches, out: dict, total: int, progress, variant: str = "original") -> None:
     """Fold ``(index, [case result, ...])`` batches, arriving in any order, into ``out`` in
     index order: counts, unknown cases and the counterexample (that of the first case refuting
     a property) are those of a run in order.  ``progress`` hears of every case as it arrives."""
@@ -131,10 +138,10 @@ def _collect(batches, out: dict, total: int, progress) -> None:
 
     for _, results in in_order(batches, arrived):
         for cr in results:
-            _fold(cr, out)
+            _fold(cr, out, variant)
 
 
-def _fold(cr, out: dict) -> None:
+def _fold(cr, out: dict, variant: str = "original") -> None:
     """One case's results added to ``out`` (the counterexample replayed on the spec first)."""
     case = cr.case
     for name, pr in cr.results.items():
@@ -148,7 +155,7 @@ def _fold(cr, out: dict) -> None:
             r.cases_unknown += 1
             r.unknown_cases.append(_case_json(case) | {"reason": pr.reason})
         elif pr.status == "refuted" and r.counterexample is None:
-            arr, run, why = replay(case, pr.counterexample, name)
+            arr, run, why = replay(case, pr.counterexample, name, variant)
             if why is None:  # the spec does not confirm it: the encoding is wrong, never report it
                 raise RuntimeError(f"{name}: the solver's counterexample {_case_json(case)} costs "
                                    f"{pr.counterexample} does not replay on the spec")
@@ -175,7 +182,7 @@ def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> l
 def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: float, jobs, start, goal,
                 ends: str, exhaustive_limit: int, budget: float = 0.0, smallest_only: bool = False,
                 progress_of: Callable[[str], Optional[Callable]] = lambda size: None,
-                t0: Optional[float] = None) -> tuple[list, list]:
+                t0: Optional[float] = None, variant: str = "original") -> tuple[list, list]:
     """:func:`check_one_size` for each of ``sizes`` in turn until ``budget`` seconds (0: no
     budget) have passed since ``t0``; the results in size order and the sizes not reached.
     With ``smallest_only`` a property refuted at one size is not checked at larger ones (its
@@ -190,7 +197,7 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
         if not open_names:
             break
         got = check_one_size(open_names, nx, ny, modes, lo, hi, semantics, timeout, jobs, start, goal, ends,
-                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"))
+                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), variant=variant)
         for n in list(open_names):
             results.append(got[n])
             if got[n].status == "refuted" and smallest_only:
@@ -215,23 +222,29 @@ def smallest_counterexample(results, name: str) -> Optional[dict]:
     return next((r.counterexample for r in results if r.property == name and r.counterexample), None)
 
 
-def induction_status(name: str, verdict_of) -> str:
+def inductive(variant: str = "original") -> dict:
+    """The properties proved for every map size, and the predicates that carry them."""
+    return INDUCTION_FIXED if variant == "fixed" else INDUCTION
+
+
+def induction_status(name: str, verdict_of, variant: str = "original") -> str:
     """The every-size status of an inductive property: the worst fp32 status of the predicates
     that carry it (:func:`~navfn_smt.smt.chains.derive`, from ``verdict_of``), the one status
     ``check``, ``prove`` and the invariants page give those predicates."""
     from ..proofs import PREDICATES
     from ..smt.chains import STATUS_RANK, derive
 
-    statuses = [derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in INDUCTION[name]]
+    carriers = inductive(variant)[name]
+    statuses = [derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers]
     return max(statuses, key=STATUS_RANK.index) if statuses else "open"
 
 
-def induction(name: str, timeout: float = 30.0) -> Optional[dict]:
+def induction(name: str, timeout: float = 30.0, variant: str = "original") -> Optional[dict]:
     """The every-size proof of an inductive property: its predicates' obligations checked in
     fp32 and judged against what is known (:mod:`~navfn_smt.smt.knowledge`); the status is
     derived from their standings, so a solver slower today than when the proof was found
     leaves it as known, and only a decision against what is known changes it."""
-    if name not in INDUCTION:
+    if name not in inductive(variant):
         return None
     from ..proofs import PREDICATES
     from ..smt.chains import outcome_verdicts, split_link
@@ -240,14 +253,14 @@ def induction(name: str, timeout: float = 30.0) -> Optional[dict]:
     from ..smt.runner import default_proof_files, solve_query
     from ..smt.split import known_of_files
 
-    preds = [p for p in PREDICATES if p.name in INDUCTION[name]]
+    preds = [p for p in PREDICATES if p.name in inductive(variant)[name]]
     wanted = [split_link(x)[1] for p in preds for x in (*p.base, *p.lemmas)]
     files = default_proof_files()
     obligations = {o.name: o for o in load_obligations(files)}
     known = known_of_files(files, list(obligations.values()), PREDICATES)
     runs = [check(obligations[w], "fp32", timeout, solve_query(("z3",)), known=known[(w, "fp32")]) for w in wanted]
     return {"predicates": [p.name for p in preds],
-            "status": induction_status(name, outcome_verdicts(runs, known)),
+            "status": induction_status(name, outcome_verdicts(runs, known), variant),
             "obligations": {o.name: o.standing for o in runs},
             "this_run": {o.name: o.status for o in runs},
             "contradicted": [o.name for o in runs if o.fails],

@@ -35,7 +35,8 @@ def cmd_check(args) -> int:
     try:
         results, skipped = CR.check_sizes(names, sizes, modes, lo, hi, args.semantics, args.timeout, eng, args.start,
                                           args.goal, args.ends, args.exhaustive, args.budget,
-                                          smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0)
+                                          smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0,
+                                          variant=args.variant)
     finally:
         report.stop_progress()
     report.table(results)
@@ -50,17 +51,20 @@ def cmd_check(args) -> int:
                 saved[r.property] = str(save_counterexample(
                     args.out, np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]),
                     cx["mode"] == "astar", r.property, {"reason": cx["reason"], "exit": cx["exit"]},
-                    extra={"found_by": "check", "size_proved_below": CR.proved_sizes(results, r.property)}))
-    induction = {n: CR.induction(n) for n in names if n in CR.INDUCTION}
+                    extra={"found_by": "check", "size_proved_below": CR.proved_sizes(results, r.property),
+                           "variant": args.variant}))
+    induction = {n: CR.induction(n, variant=args.variant) for n in names if n in CR.inductive(args.variant)}
     if args.json:
         report.write_json(args.json, {
             "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": args.semantics,
+            "variant": args.variant,
             "ends": args.ends,
             "results": [report.row(r) for r in results], "sizes_not_reached": skipped,
             "largest_size_proved": {n: CR.largest_proved(results, n) for n in names},
             "smallest_counterexample": {n: CR.smallest_counterexample(results, n) for n in names},
             "every_size_by_induction": induction,
-            "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names if n in CR.NOT_INDUCTIVE},
+            "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names
+                              if n in CR.NOT_INDUCTIVE and n not in CR.inductive(args.variant)},
             "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})
     for n, ind in induction.items():
         print(f"{n}: every map size by induction: {ind['status']} ("
@@ -82,6 +86,7 @@ def register(sub) -> None:
     from ..check.bounded import CHECKABLE as CHECK_PROPERTIES
     from ..maps.suite import MODE_CHOICES
     from ..engine import add_arguments as add_engine_arguments
+    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
 
     ck = sub.add_parser("check", help="prove or refute a whole-planner property on every map of a size "
                         "(bounded: symbolic costs, enumerated layouts, start and goal)")
@@ -94,6 +99,7 @@ def register(sub) -> None:
                      help="every size up to W x H, smallest interior first, until --budget runs out; "
                      "a refuted property stops at its smallest counterexample")
     ck.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
+    ck.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
     ck.add_argument("--costs", default="50..253", metavar="LO..HI",
                     help="range of every passable cell's cost (50..253: what setCostmap produces; 0..253 for "
                     "NavFn's raw API); lethal cells are enumerated")

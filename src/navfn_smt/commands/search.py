@@ -20,6 +20,8 @@ def cmd_search(args) -> int:
     eng = engine(args.jobs, args.scheduler)
     check_files(args.json)
     if args.summary:
+        if args.variant != "original":
+            raise NavfnInputError("--summary counts on NavFn as shipped: no --variant")
         if args.kind:
             raise NavfnInputError("give either a KIND or --summary SUITE, not both")
         from ..search.summary import summarize
@@ -38,7 +40,7 @@ def cmd_search(args) -> int:
     if args.out:
         check_writable_dir(args.out)
     findings, tried = run_search(args.kind, args.mode, args.size, args.max_size, args.timeout, args.seed,
-                                 costs_range, progress=report.progress_line, eng=eng)
+                                 costs_range, progress=report.progress_line, eng=eng, variant=args.variant)
     rows = [report.finding_row(f, s) for f, s in zip(findings, save_findings(findings, args.out))]
     report.table(args.kind, rows, modes_of(args.mode))
     if args.json:
@@ -52,6 +54,7 @@ def register(sub) -> None:
     from ..maps.suite import MODE_CHOICES
     from ..engine import add_arguments as add_engine_arguments
     from ..search.kinds import SEARCH_KINDS
+    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
 
     se = sub.add_parser("search", help="hunt counterexamples (random maps, hill climbing, shrinking; replayed "
                         "on the spec), or count each kind on a suite with --summary")
@@ -64,6 +67,7 @@ def register(sub) -> None:
                     help="grow the size from 3x3 to W x H (smallest interior first); report the first size "
                     "with a counterexample")
     se.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
+    se.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
     se.add_argument("--timeout", type=float, default=60.0, metavar="S", help="seconds for the whole search, split between modes")
     se.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (same seed and budget: same hunt)")
     se.add_argument("--costs", metavar="LO..HI", help="passable costs of the maps (default 50..253, what "

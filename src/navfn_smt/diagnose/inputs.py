@@ -20,11 +20,12 @@ from ..nav2.setup import Setup, check_params_file, load_setup
 
 
 def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
-                resolution=None, origin=(0.0, 0.0)) -> Setup:
+                resolution=None, origin=(0.0, 0.0), variant: str = "original") -> Setup:
     """Map (or costmap file) + optional params file -> the costmap and the plugin's parameters
-    (:func:`load_setup`)."""
+    (:func:`load_setup`), for NavFn as shipped or with the fix (``variant``)."""
     check_params_file(params_file)
-    return load_setup(map_yaml, params_file, distro, allow_outside, resolution=resolution, origin=origin)
+    return load_setup(map_yaml, params_file, distro, allow_outside, {"variant": variant}, resolution=resolution,
+                      origin=origin)
 
 
 def parse_goals(path) -> list[Pose]:

@@ -58,6 +58,8 @@ def save_findings(findings, out_dir) -> list[Optional[str]]:
             continue
         extra = {k: field_of(f, k) for k in ("seconds", "evaluations", "plans", "seed")}
         extra["found_size"] = list(field_of(f, "found_size") or [])
+        if field_of(f, "variant", "original") != "original":
+            extra["variant"] = field_of(f, "variant")
         d = save_counterexample(out_dir, costs, field_of(f, "start"), field_of(f, "goal"),
                                 field_of(f, "mode") == "astar", field_of(f, "kind"), field_of(f, "detail", {}),
                                 extra=extra)
@@ -179,7 +181,7 @@ def replay(directory) -> dict:
     doc = read_counterexample(directory)
     smap = load_map(directory)
     sx, sy, gx, gy = (int(v) for v in smap.cases[0])
-    r = P.run(smap.costs, (sx, sy), (gx, gy), doc["mode"] == "astar")
+    r = P.run(smap.costs, (sx, sy), (gx, gy), doc["mode"] == "astar", variant=doc.get("variant", "original"))
     return {
         "kind": doc["kind"],
         "golden": {b: golden_differences(directory, b) for b in ("reference", "jit")},

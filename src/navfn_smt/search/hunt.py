@@ -50,6 +50,7 @@ class Finding:
     found_size: tuple[int, int]  # the map size the hunt found it on (before shrinking)
     seed: int
     history: list = field(default_factory=list)  # (seconds, score) at every improvement
+    variant: str = "original"  # the planner hunted: NavFn as shipped, or with the fix
 
     @property
     def size(self) -> tuple[int, int]:
@@ -94,8 +95,9 @@ def _with_border(interior: np.ndarray) -> np.ndarray:
 class _Climber:
     """Scores candidate maps of one size for one kind and mode."""
 
-    def __init__(self, kind: str, astar: bool, size, costs_range, rng: np.random.Generator):
-        self.kind, self.astar = KINDS[kind], astar
+    def __init__(self, kind: str, astar: bool, size, costs_range, rng: np.random.Generator,
+                 variant: str = "original"):
+        self.kind, self.astar, self.variant = KINDS[kind], astar, variant
         self.w, self.h = size
         self.lo, self.hi = costs_range
         self.rng = rng
@@ -145,7 +147,7 @@ class _Climber:
 
     def score(self, costs: np.ndarray) -> tuple[float, int, Batch]:
         """The best screen score over the candidate's cases, and which case has it."""
-        b = plan_batch(costs, self.cases(), self.astar)
+        b = plan_batch(costs, self.cases(), self.astar, variant=self.variant)
         s = self.kind.screen(b)
         self.evaluations += 1
         self.plans += len(b.cases)
@@ -153,9 +155,9 @@ class _Climber:
         return (float(s[i]) if len(s) else 0.0), i, b
 
 
-def screen_one(kind: str, costs: np.ndarray, start, goal, astar: bool) -> float:
+def screen_one(kind: str, costs: np.ndarray, start, goal, astar: bool, variant: str = "original") -> float:
     """The kind's screen score of one case (planned by the JIT)."""
-    b = plan_batch(costs, [(start[0], start[1], goal[0], goal[1])], astar)
+    b = plan_batch(costs, [(start[0], start[1], goal[0], goal[1])], astar, variant=variant)
     return float(KINDS[kind].screen(b)[0])
 
 
@@ -177,12 +179,12 @@ def _drop(costs, start, goal, axis: int, k: int, shift_start: int, shift_goal: i
 
 
 def shrink(kind: str, costs: np.ndarray, start, goal, astar: bool, keep_size: bool,
-           costs_range=DEFAULT_COSTS, deadline: Optional[float] = None):
+           costs_range=DEFAULT_COSTS, deadline: Optional[float] = None, variant: str = "original"):
     """The smallest, simplest map that still shows ``kind`` (by the screen): rows and columns
     dropped (unless ``keep_size``), then obstacles removed and costs lowered toward the
     cheapest.  ``cost`` keeps its gap at least as large as it was."""
     lo = costs_range[0]
-    need = screen_one(kind, costs, start, goal, astar)
+    need = screen_one(kind, costs, start, goal, astar, variant)
     if need <= 0:
         return costs, tuple(start), tuple(goal)
     if not KINDS[kind].maximise:
@@ -192,7 +194,7 @@ def shrink(kind: str, costs: np.ndarray, start, goal, astar: bool, keep_size: bo
         h, w = c.shape
         if not (1 <= s[0] < w - 1 and 1 <= s[1] < h - 1 and 1 <= g[0] < w - 1 and 1 <= g[1] < h - 1) or s == g:
             return False
-        return screen_one(kind, c, s, g, astar) >= need
+        return screen_one(kind, c, s, g, astar, variant) >= need
 
     def late() -> bool:
         return deadline is not None and time.perf_counter() > deadline
@@ -238,8 +240,9 @@ Progress = Callable[[str], None]
 
 def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=DEFAULT_COSTS,
          progress: Optional[Progress] = None, shrink_result: bool = True,
-         max_evaluations: Optional[int] = None) -> Optional[Finding]:
-    """Hunt ``kind`` on maps of ``size`` (W, H, lethal border included) in ``mode``.
+         max_evaluations: Optional[int] = None, variant: str = "original") -> Optional[Finding]:
+    """Hunt ``kind`` on maps of ``size`` (W, H, lethal border included) in ``mode`` (of the
+    planner ``variant``: ``fixed`` hunts the planner with the fix).
 
     Returns the best counterexample found, shrunk and confirmed on the spec, or ``None``."""
     if kind not in KINDS:
@@ -249,7 +252,7 @@ def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=
     astar = mode == "astar"
     spec = KINDS[kind]
     rng = np.random.default_rng([seed, zlib.crc32(kind.encode()), int(astar), w, h])
-    cl = _Climber(kind, astar, (w, h), costs_range, rng)
+    cl = _Climber(kind, astar, (w, h), costs_range, rng, variant)
     t0 = time.perf_counter()
     deadline = t0 + timeout
     say = progress or (lambda line: None)
@@ -295,13 +298,14 @@ def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=
     sc, costs, start, goal, t, ev, pl = best
     if shrink_result:
         costs, start, goal = shrink(kind, costs, start, goal, astar, keep_size=spec.maximise,
-                                    costs_range=costs_range, deadline=time.perf_counter() + max(5.0, timeout / 4))
-    r = P.run(costs, start, goal, astar)
+                                    costs_range=costs_range, deadline=time.perf_counter() + max(5.0, timeout / 4),
+                                    variant=variant)
+    r = P.run(costs, start, goal, astar, variant=variant)
     detail = spec.judge(r)
     if detail is None:
         say(f"[{tag}] the reference spec does not confirm the candidate; nothing reported")
         return None
-    return Finding(kind, mode, costs, start, goal, detail, sc, t, ev, pl, (w, h), seed, history)
+    return Finding(kind, mode, costs, start, goal, detail, sc, t, ev, pl, (w, h), seed, history, variant)
 
 
 def sizes_upto(max_size) -> list[tuple[int, int]]:
@@ -313,7 +317,7 @@ def sizes_upto(max_size) -> list[tuple[int, int]]:
 
 
 def hunt_growing(kind: str, mode: str, max_size, timeout: float, seed: int = 0, costs_range=DEFAULT_COSTS,
-                 progress: Optional[Progress] = None) -> tuple[Optional[Finding], list[dict]]:
+                 progress: Optional[Progress] = None, variant: str = "original") -> tuple[Optional[Finding], list[dict]]:
     """Hunt on growing sizes (smallest interior first) up to ``max_size``; the first size with a
     counterexample ends it.  Returns the finding and what each size tried."""
     check_size(*max_size, what="--max-size")
@@ -326,13 +330,14 @@ def hunt_growing(kind: str, mode: str, max_size, timeout: float, seed: int = 0, 
             break
         share = left / (len(sizes) - n)
         ts = time.perf_counter()
-        f = hunt(kind, mode, sz, share, seed, costs_range, progress, shrink_result=False)
+        f = hunt(kind, mode, sz, share, seed, costs_range, progress, shrink_result=False, variant=variant)
         tried.append({"size": list(sz), "seconds": round(time.perf_counter() - ts, 3), "found": f is not None})
         if f is not None:
             if KINDS[kind].maximise:
                 return f, tried
-            c, s, g = shrink(kind, f.costs, f.start, f.goal, f.astar, keep_size=True, costs_range=costs_range)
-            r = P.run(c, s, g, f.astar)
+            c, s, g = shrink(kind, f.costs, f.start, f.goal, f.astar, keep_size=True, costs_range=costs_range,
+                             variant=variant)
+            r = P.run(c, s, g, f.astar, variant=variant)
             d = KINDS[kind].judge(r)
             if d is not None:
                 f.costs, f.start, f.goal, f.detail = c, s, g, d

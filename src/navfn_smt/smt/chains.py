@@ -222,6 +222,7 @@ def outcome_verdicts(outcomes, known: dict) -> Callable[[str, str], Optional[Ver
         o = by_key.get((name, semantics))
         if o is None:
             return otherwise(name, semantics)
-        return Verdict(o.standing, _bound_text(o.standing, o.bound))
+        k = known.get((name, semantics))  # a run without the bound search keeps the cached bound
+        return Verdict(o.standing, _bound_text(o.standing, o.bound or (k.bound if k is not None else None)))
 
     return verdict_of

@@ -30,6 +30,7 @@ from .numeric import CONCRETE as D
 from .propagation import PropagationState, TraceHook, propagate
 
 VARIANTS = ("original", "fixed")
+POT_BOUND = 2.0**30  # the potential bound the guarantees need: Progress's float32 link is proved below it
 DEFAULT_VARIANT = "original"
 VARIANT_HELP = ("original: NavFn as Nav2 ships it; fixed: with the fix of docs/fix.md (propagate on past the "
                 "cycle limit, descend the potential where calcPath fails); default: original")
