@@ -96,6 +96,44 @@ def bench_oracle(suite: Path, oracle, mode: str) -> list[dict]:
     return rows
 
 
+def bench_fix(suite: Path, folder, mode: str, repeat: int = 3) -> list[dict]:
+    """The fix's cost where it does not act: the cases of ``suite`` the original plans, timed on
+    the C++ of the build ``folder`` as shipped and as patched (``navfn-traced``, ``navfn-fixed``:
+    the same trace hook in both) and on the JIT without and with the fix, each ``repeat`` times
+    in alternation; the best time of each is kept."""
+    from .oracle.client import Oracle
+
+    maps = [load_map(d, suite) for d in discover(suite)]
+    rows = []
+    with Oracle(folder, variant="traced") as original, Oracle(folder, variant="fixed") as fixed:
+        for md in modes_of(mode):
+            astar = md == "astar"
+            work = []
+            for m in maps:
+                plans = get_backend("jit").prepare(m.costs).run_batch(m.cases, astar)["exit"] == 0
+                work.append((m, m.cases[plans]))
+            jit = {v: [get_backend("jit", v).prepare(m.costs) for m, _ in work] for v in ("original", "fixed")}
+            for v in jit:
+                jit[v][0].run_batch(work[0][1][:1], astar)  # compile or load the cache before timing
+            best = {k: float("inf") for k in ("cpp_original", "cpp_fixed", "jit_original", "jit_fixed")}
+            for _ in range(repeat):
+                t = dict.fromkeys(best, 0.0)
+                for i, (m, cases) in enumerate(work):
+                    for key, oracle in (("cpp_original", original), ("cpp_fixed", fixed)):
+                        oracle.plan(m.costs, cases, astar)
+                        t[key] += oracle.planning_seconds
+                    for v in ("original", "fixed"):
+                        t0 = time.perf_counter()
+                        jit[v][i].run_batch(cases, astar)
+                        t[f"jit_{v}"] += time.perf_counter() - t0
+                best = {k: min(best[k], t[k]) for k in best}
+            n = sum(len(c) for _, c in work)
+            rows.append({"mode": md, "cases_the_original_plans": n, **{k: round(v, 4) for k, v in best.items()},
+                         "cpp_fixed_over_original": round(best["cpp_fixed"] / best["cpp_original"], 3),
+                         "jit_fixed_over_original": round(best["jit_fixed"] / best["jit_original"], 3)})
+    return rows
+
+
 def check_sizes(sizes, repeat: int) -> None:
     """Reject benchmark sizes below 12 cells a side and fewer than one plan per map."""
     for n in sizes:

@@ -39,6 +39,16 @@ def cmd_bench(args) -> int:
         return 0
     suite = suite_or_example(args.suite)
     check_files(args.json)
+    if args.variant == "fixed":
+        if not args.oracle:
+            raise NavfnInputError("bench --variant fixed times the C++ as shipped and as patched: give --oracle DIR")
+        from ..bench import bench_fix
+
+        rows = bench_fix(suite, args.oracle, args.mode, args.repeat)
+        report.fix_table(suite, rows)
+        if args.json:
+            report.write_suite_json(args.json, suite, rows)
+        return 0
     if args.oracle:
         from ..bench import bench_oracle
         from ..oracle.client import Oracle
@@ -60,6 +70,7 @@ def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
     from ..maps.suite import MODE_CHOICES
+    from ..spec.fix import DEFAULT_VARIANT, VARIANTS
 
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
@@ -70,6 +81,9 @@ def register(sub) -> None:
     be.add_argument("--repeat", type=int, default=3, metavar="K", help="plans per map and mode with --size (best is kept)")
     be.add_argument("--oracle", metavar="DIR", help="time the C++ NavFn built in DIR (navfn-smt oracle build) and "
                     "the JIT on the suite in the same run, and print their ratio")
+    be.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT,
+                    help="fixed: with --oracle, time the cases the original plans on the C++ as shipped and as "
+                    "patched with the fix, and on the JIT without and with it (--repeat times, best kept)")
     be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
     be.add_argument("--sweep", nargs="?", type=int, const=400, metavar="N",
                     help="instead, time the whole-map sweep (every free cell a goal of one robot pose) on a "

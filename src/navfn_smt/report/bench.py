@@ -75,6 +75,19 @@ def oracle_table(suite, distribution: str, rows: list[dict]) -> None:
                 "jit_over_cpp": lambda v: f"{v:.2f}x"})
 
 
+def fix_table(suite, rows: list[dict]) -> None:
+    """Print what the fix costs where it does not act: the C++ and the JIT, as shipped and fixed."""
+    ratio = lambda v: f"{v:.3f}x"  # noqa: E731
+    _table(f"bench: the fix where the original plans (C++ as shipped and patched, JIT without and with it), {suite}",
+           rows, ["mode", "cases_the_original_plans", "cpp_original", "cpp_fixed", "cpp_fixed_over_original",
+                  "jit_original", "jit_fixed", "jit_fixed_over_original"],
+           headers={"cases_the_original_plans": "cases", "cpp_original": "C++", "cpp_fixed": "C++ fixed",
+                    "cpp_fixed_over_original": "fixed / original", "jit_original": "jit", "jit_fixed": "jit fixed",
+                    "jit_fixed_over_original": "fixed / original"},
+           fmt={"cpp_original": duration, "cpp_fixed": duration, "jit_original": duration, "jit_fixed": duration,
+                "cpp_fixed_over_original": ratio, "jit_fixed_over_original": ratio})
+
+
 def write_suite_json(path, suite, rows: list[dict]) -> None:
     """Write a suite benchmark as one JSON document."""
     atomic_write_text(path, json.dumps({"suite": str(suite), "results": rows}, indent=1))
