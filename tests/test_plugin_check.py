@@ -74,3 +74,14 @@ def test_the_command_reports_and_exits_1_on_a_failure(tmp_path, capsys):
     assert main(["plugin-check", "--values", "0,300"]) == 2
     assert "costmap values 0..255" in capsys.readouterr().err
     assert main(["plugin-check", "--max-size", "6", "6"]) == 2
+
+
+def test_sampled_costmaps_are_drawn_from_the_values_and_reproducible():
+    from navfn_smt.nav2.properties import sampled_layouts
+
+    a = sampled_layouts(6, 5, (0, 100, 254), 20, seed=3)
+    b = sampled_layouts(6, 5, (0, 100, 254), 20, seed=3)
+    assert [m.tobytes() for m in a] == [m.tobytes() for m in b] and len(a) == 20
+    assert set(np.unique(np.concatenate([m[1:-1, 1:-1].ravel() for m in a]))) == {0, 100, 254}
+    assert all(m[0].sum() == m[-1].sum() == m[:, 0].sum() == m[:, -1].sum() == 0 for m in a)
+    assert main(["plugin-check", "--max-size", "6", "6", "--sample", "-1"]) == 2

@@ -28,9 +28,13 @@ def cmd_plugin_check(args) -> int:
     check_files(args.json)
     names = tuple(PLUGIN_PROPERTIES) if args.property == "all" else (args.property,)
     w, h = args.max_size
-    if w < 3 or h < 3 or (w - 2) * (h - 2) > 9:
+    if args.sample < 0:
+        raise NavfnInputError(f"--sample {args.sample}: a number of costmaps per size (0: every layout)")
+    limit = 64 if args.sample else 9
+    if w < 3 or h < 3 or (w - 2) * (h - 2) > limit:
         raise NavfnInputError(f"--max-size {w} {h}: at least 3x3 (the frame is NavFn's lethal border) and at most "
-                              f"9 interior cells (every layout, every robot and goal cell are enumerated)")
+                              f"{limit} interior cells (every robot and goal cell are enumerated"
+                              + (")" if args.sample else "; every layout too, unless --sample)"))
     values = _values(args.values)
     variants = ("original", "fixed") if args.variant == "both" else (args.variant,)
     sizes = [s for s in sizes_up_to(w, h) if (s[0] - 2) * (s[1] - 2) >= 2]
@@ -40,11 +44,14 @@ def cmd_plugin_check(args) -> int:
         if not args.quiet and (done == total or done % 64 == 0):
             print(f"plugin-check {size}: {done}/{total} costmaps, {time.perf_counter() - t0:.0f} s", file=sys.stderr)
 
+    if args.sample:
+        sizes = [tuple(args.max_size)]
     counts = check_plugin(names, sizes, values, variants, tuple(args.tolerance), args.distro, args.backend,
-                          progress)
+                          progress, args.sample, args.seed)
     seconds = round(time.perf_counter() - t0, 1)
-    report.table(f"plugin-check: every costmap up to {w}x{h}, values {','.join(map(str, values))} ({seconds} s)",
-                 counts)
+    what = (f"{args.sample} random {w}x{h} costmaps (seed {args.seed})" if args.sample
+            else f"every costmap up to {w}x{h}")
+    report.table(f"plugin-check: {what}, values {','.join(map(str, values))} ({seconds} s)", counts)
     if args.json:
         report.write_json(args.json, {
             "command": "plugin-check", "arguments": vars_of(args), "sizes": [list(s) for s in sizes],
@@ -68,6 +75,10 @@ def register(sub) -> None:
     pc.add_argument("--values", default="0,254", metavar="V,V,...",
                     help="the costmap values of the interior cells (default: 0,254, free and lethal; 253 is "
                     "inscribed, 255 unknown)")
+    pc.add_argument("--sample", type=int, default=0, metavar="N",
+                    help="instead of every layout, N random costmaps of --max-size exactly, each interior cell drawn "
+                    "from --values (at most 64 interior cells; default: 0, every layout)")
+    pc.add_argument("--seed", type=int, default=0, help="the seed of --sample")
     pc.add_argument("--variant", choices=("original", "fixed", "both"), default="both",
                     help="the plugin as shipped, with the fix of docs/fix.md, or both (default)")
     pc.add_argument("--tolerance", nargs="+", type=float, default=(0.0, 1.0), metavar="M",

@@ -143,19 +143,33 @@ class PropertyCount:
     first: Optional[dict] = None
 
 
+def sampled_layouts(w: int, h: int, values, count: int, seed: int) -> list[np.ndarray]:
+    """``count`` costmaps of ``w`` x ``h`` cells, each interior cell drawn uniformly from ``values``
+    (``numpy.random.default_rng([seed, w, h])``), the frame free."""
+    rng = np.random.default_rng([seed, w, h])
+    out = []
+    for _ in range(count):
+        c = np.zeros((h, w), np.uint8)
+        c[1:h - 1, 1:w - 1] = rng.choice(np.asarray(values, np.uint8), (h - 2, w - 2))
+        out.append(c)
+    return out
+
+
 def check_plugin(names, sizes, values, variants, tolerances, distro: str = "rolling", backend: str = "jit",
-                 progress: Optional[Callable[[str, int, int], None]] = None) -> list[PropertyCount]:
-    """Every costmap of :func:`layouts` for each size of ``sizes`` (smallest first), every robot
-    and goal at distinct interior cell centres, both modes, each tolerance, each variant: each
-    property judged on the plugin model's run.  The first failure of a property is the one of
-    the smallest size, then the first layout in lexicographic order."""
+                 progress: Optional[Callable[[str, int, int], None]] = None, sample: int = 0,
+                 seed: int = 0) -> list[PropertyCount]:
+    """Every costmap of :func:`layouts` for each size of ``sizes`` (smallest first), or ``sample``
+    random ones (:func:`sampled_layouts`), every robot and goal at distinct interior cell
+    centres, both modes, each tolerance, each variant: each property judged on the plugin
+    model's run.  The first failure of a property is the one of the smallest size, then the
+    first layout in lexicographic (or drawing) order."""
     from dataclasses import replace
 
     from .plugin import create_plan
 
     counts = {(n, v): PropertyCount(n, v) for n in names for v in variants}
     for w, h in sizes:
-        maps = layouts(w, h, values)
+        maps = sampled_layouts(w, h, values, sample, seed) if sample else layouts(w, h, values)
         for i, costs in enumerate(maps):
             cm = Costmap(costs, 0.0, 0.0, 1.0)
             cells = [(x, y) for y in range(1, h - 1) for x in range(1, w - 1)]
