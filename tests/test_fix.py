@@ -270,3 +270,19 @@ def test_the_patched_plugin_equals_the_fixed_model(builds):
         with PluginOracle(folder, "fixed") as oracle:
             s = run_plugin_live(configs, oracle, "jit").as_dict()
         assert s["failed"] == 0 and s["passed"] > 500, (distro, s)
+
+
+def test_sources_that_already_carry_the_fix_build_without_the_fixed_programs(nav2_src, tmp_path):
+    """A navigation2 checkout with the patch applied: its NavFn is the fixed one; the build leaves
+    the fixed programs out, naming why, instead of patching twice."""
+    import shutil
+
+    from navfn_smt.oracle.build import build
+
+    src = tmp_path / "src"
+    for pkg in ("nav2_navfn_planner", "nav2_core", "nav2_costmap_2d"):
+        shutil.copytree(nav2_src / "rolling" / pkg, src / pkg)
+    subprocess.run(["patch", "-p1", "-i", str(PATCHES / "rolling.patch")], cwd=src, check=True, capture_output=True)
+    doc = build(src, tmp_path / "out", programs=("navfn-plain", "navfn-fixed"))
+    assert doc["programs"] == ["navfn-plain"]
+    assert "does not apply" in doc["skipped"]["navfn-fixed"] and "already applied" in doc["skipped"]["navfn-fixed"]

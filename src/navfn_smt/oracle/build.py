@@ -145,6 +145,13 @@ def fix_patch(src: Path) -> Path:
     return PATCHES / f"{distribution(src)}.patch"
 
 
+def _patch_applies(src: Path) -> bool:
+    """Whether the fix's patch applies to the sources as they are (``patch --dry-run``, no fuzz)."""
+    r = subprocess.run(["patch", "-p1", "-F0", "--dry-run", "-d", str(src), "-i", str(fix_patch(src))],
+                       capture_output=True, text=True)
+    return r.returncode == 0
+
+
 def patched_copy(src: Path, root: Path) -> Path:
     """Copies of ``navfn.cpp`` and ``navfn.hpp`` under ``root`` with the fix applied by
     ``patch -p1`` (no fuzz); a clear error when the patch does not apply."""
@@ -270,6 +277,9 @@ def _skipped(src: Path, name: str) -> Optional[str]:
             return f"no patch of the fix for {distribution(src)} (patches/navfn-fix/ has {', '.join(sorted(p.stem for p in PATCHES.glob('*.patch')))})"
         if shutil.which("patch") is None:
             return "the fix is applied with the patch program, which is not installed"
+        if not _patch_applies(src):
+            return (f"{fix_patch(src).name} does not apply to these sources without fuzz (already applied, or the "
+                    f"sources changed)")
         return None
     if name not in EIGEN_PROGRAMS:
         return None

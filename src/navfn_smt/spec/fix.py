@@ -22,6 +22,8 @@ from __future__ import annotations
 
 from typing import Optional
 
+import numpy as np
+
 from ..errors import NavfnInputError
 from . import kernels as K
 from .extraction import Extraction, ExtractionExit, UndefinedBehaviour
@@ -106,8 +108,6 @@ def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
 def with_descent(res, start, goal):
     """A plan result without a path, given the descent's path where it finds one (``res.extra
     ["fix"]`` then names it); the potential and every other field stay."""
-    import numpy as np
-
     ny, nx = res.potential.shape
     ext = descend([float(v) for v in res.potential.ravel()], nx, ny, (int(start[0]), int(start[1])),
                   (int(goal[0]), int(goal[1])))
