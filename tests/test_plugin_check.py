@@ -13,7 +13,7 @@ from navfn_smt.cli import main
 from navfn_smt.diagnose.inputs import load_inputs
 from navfn_smt.nav2.params import PlannerParams
 from navfn_smt.nav2.plugin import Costmap, Pose, create_plan
-from navfn_smt.nav2.properties import PLUGIN_PROPERTIES, centre, check_plugin, layouts
+from navfn_smt.check.plugin import PLUGIN_PROPERTIES, centre, check_plugin, layouts
 
 LNP = Path(__file__).parent / "data" / "diagnose" / "legal_no_plan"
 
@@ -77,7 +77,7 @@ def test_the_command_reports_and_exits_1_on_a_failure(tmp_path, capsys):
 
 
 def test_sampled_costmaps_are_drawn_from_the_values_and_reproducible():
-    from navfn_smt.nav2.properties import sampled_layouts
+    from navfn_smt.check.plugin import sampled_layouts
 
     a = sampled_layouts(6, 5, (0, 100, 254), 20, seed=3)
     b = sampled_layouts(6, 5, (0, 100, 254), 20, seed=3)

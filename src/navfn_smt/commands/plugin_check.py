@@ -22,7 +22,7 @@ def cmd_plugin_check(args) -> int:
     import time
 
     from ..check.runner import sizes_up_to
-    from ..nav2.properties import PLUGIN_PROPERTIES, check_plugin
+    from ..check.plugin import PLUGIN_PROPERTIES, check_plugin
     from ..report import plugin_check as report
 
     check_files(args.json)
@@ -64,7 +64,7 @@ def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
     from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
-    from ..nav2.properties import PLUGIN_PROPERTIES
+    from ..check.plugin import PLUGIN_PROPERTIES
 
     pc = sub.add_parser("plugin-check", help="judge what a Nav2 user relies on of the planner plugin (a plan when "
                         "the goal is reachable, poses in passable cells, the ends) on every small costmap")

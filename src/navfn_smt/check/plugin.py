@@ -28,8 +28,8 @@ import numpy as np
 
 from ..maps.regions import reaches, regions
 from ..spec.costs import add_border
-from .params import PlannerParams
-from .plugin import (Costmap, Pose, PluginRun, costmap_world_to_map, plugin_world_to_map, rounded_cells,
+from ..nav2.params import PlannerParams
+from ..nav2.plugin import (Costmap, Pose, PluginRun, costmap_world_to_map, plugin_world_to_map, rounded_cells,
                      tolerance_steps)
 
 INSCRIBED = 253
@@ -165,7 +165,7 @@ def check_plugin(names, sizes, values, variants, tolerances, distro: str = "roll
     first layout in lexicographic (or drawing) order."""
     from dataclasses import replace
 
-    from .plugin import create_plan
+    from ..nav2.plugin import create_plan
 
     counts = {(n, v): PropertyCount(n, v) for n in names for v in variants}
     for w, h in sizes:
