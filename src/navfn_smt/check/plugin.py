@@ -99,6 +99,46 @@ def ends_at_robot_and_goal(cm, start, goal, params, run: PluginRun) -> Optional[
     return None
 
 
+# plugin-complete with the fix holds for every costmap size by induction: the plugin's NavFn run
+# is NavFn's on the costs setCostmap makes (COST_NEUTRAL..COST_OBS-1 for passable cells: the
+# range the predicates assume), from the robot's cell to each candidate cell
+FIXED_PLUGIN_INDUCTION = {
+    "plugin-complete": {
+        "predicates": ("ConnectedStartReached", "DescentPath"),
+        "trusted": (
+            "the plugin propagates from the robot's cell (NavfnPlanner::worldToMap, frame cells included: "
+            "initCost ignores the cell's cost) with the fixed calcNavFn*, so a candidate cell joined to it by "
+            "passable cells gets a finite potential (ConnectedStartReached, when no push is dropped)",
+            "the goal is used when its potential is finite, else the tolerance search takes a candidate with a "
+            "finite potential when there is one (makePlan's loop, `potential < POT_HIGH`)",
+            "getPlanFromPotential runs the fixed calcPath from that point's cell, which returns a path from a "
+            "finite potential (DescentPath); a path of at least one point gives poses",
+            "passable cells' NavFn costs are setCostmap's COST_NEUTRAL..COST_OBS-1 (the predicates' cost range)",
+        ),
+    },
+}
+
+
+def induction_known(name: str) -> Optional[dict]:
+    """The every-size status of a property of the fixed plugin, from what is known of its
+    predicates (no solver runs: the declared verdicts, splits and bound cache), with the steps
+    it trusts; None for a property no induction carries."""
+    if name not in FIXED_PLUGIN_INDUCTION:
+        return None
+    from ..proofs import PREDICATES
+    from ..smt.chains import STATUS_RANK, declared_verdicts, derive
+    from ..smt.obligation import load_obligations
+    from ..smt.runner import default_proof_files
+    from ..smt.split import load_splits
+
+    files = default_proof_files()
+    verdict_of = declared_verdicts(load_obligations(files), load_splits(files), PREDICATES)
+    carriers = FIXED_PLUGIN_INDUCTION[name]["predicates"]
+    statuses = {p.name: derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers}
+    return {"status": max(statuses.values(), key=STATUS_RANK.index), "predicates": statuses,
+            "trusted": list(FIXED_PLUGIN_INDUCTION[name]["trusted"])}
+
+
 PLUGIN_PROPERTIES = {p.name: p for p in (
     PluginProperty("plugin-complete", "a plan is returned whenever the goal, or a point the tolerance search "
                    "admits, is reachable from the robot through cells NavFn treats as passable",

@@ -22,7 +22,7 @@ def cmd_plugin_check(args) -> int:
     import time
 
     from ..check.runner import sizes_up_to
-    from ..check.plugin import PLUGIN_PROPERTIES, check_plugin
+    from ..check.plugin import PLUGIN_PROPERTIES, check_plugin, induction_known
     from ..report import plugin_check as report
 
     check_files(args.json)
@@ -52,11 +52,16 @@ def cmd_plugin_check(args) -> int:
     what = (f"{args.sample} random {w}x{h} costmaps (seed {args.seed})" if args.sample
             else f"every costmap up to {w}x{h}")
     report.table(f"plugin-check: {what}, values {','.join(map(str, values))} ({seconds} s)", counts)
+    induction = {n: ind for n in names if "fixed" in variants and (ind := induction_known(n))}
+    for n, ind in induction.items():
+        print(f"{n} (fixed): every costmap size by induction: {ind['status']} ("
+              + ", ".join(f"{p} {st}" for p, st in ind["predicates"].items()) + ")")
     if args.json:
         report.write_json(args.json, {
             "command": "plugin-check", "arguments": vars_of(args), "sizes": [list(s) for s in sizes],
             "values": list(values), "statements": {n: PLUGIN_PROPERTIES[n].statement for n in names},
-            "results": [c.__dict__ for c in counts], "seconds": seconds})
+            "results": [c.__dict__ for c in counts], "every_size_by_induction_fixed": induction,
+            "seconds": seconds})
     return 0 if all(c.failed == 0 for c in counts) else 1
 
 
