@@ -24,6 +24,7 @@ EXPECTED = {
     "ValidPath": ("refuted", "open"),
     "DescentPath": ("proved", "bounded"),  # the fix: Progress's float32 bound 2**30 carries over
     "ConnectedStartReached": ("proved", "proved"),
+    "ReachedWithinComponent": ("proved", "proved"),
 }
 
 

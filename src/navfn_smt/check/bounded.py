@@ -31,7 +31,8 @@ import numpy as np
 import z3
 
 from ..smt import smtlib, solvers
-from ..spec.constants import COST_OBS, POT_HIGH
+from ..maps.regions import reaches_all, regions
+from ..spec.constants import COST_NEUTRAL, COST_OBS, POT_HIGH
 from ..spec.planner import path_cycle_limit
 from . import properties as P
 from . import exhaustive
@@ -80,6 +81,63 @@ def cases(nx: int, ny: int, modes, start=None, goal=None, ends: str = "any"):
                     if ends == "passable" and {s[1] * nx + s[0], g[1] * nx + g[0]} & lethal:
                         continue
                     yield Case(nx, ny, lethal, tuple(s), tuple(g), astar)
+
+
+# ---------------------------------------------------------------------------------------
+# Reductions (ReachedWithinComponent): what lies outside the goal's component never matters
+# ---------------------------------------------------------------------------------------
+def component(nx: int, ny: int, lethal: frozenset, goal) -> frozenset:
+    """The goal's component: the cells the wave from the goal can ever reach
+    (:func:`~navfn_smt.maps.regions.reaches`): the goal, and the passable cells 4-connected to a
+    passable neighbour of it.  No other cell is ever pushed, updated or reached, and no other
+    cost is read but as the guard of a push that fails (a passable cell next to the component
+    would be in it)."""
+    arr = np.full((ny, nx), COST_OBS, np.uint8)
+    inner = _interior(nx, ny)
+    for k in inner:
+        if k not in lethal:
+            arr.flat[k] = COST_NEUTRAL
+    ok = reaches_all(regions(arr), [(k % nx, k // nx, goal[0], goal[1]) for k in inner])
+    return frozenset(k for k, o in zip(inner, ok) if o)
+
+
+def representative(case: Case, comp: Optional[frozenset] = None) -> Case:
+    """The case with every interior cell outside the goal's component made lethal: by
+    ReachedWithinComponent it runs exactly as ``case`` does, for a start in the component."""
+    nx, ny = case.nx, case.ny
+    comp = component(nx, ny, case.lethal, case.goal) if comp is None else comp
+    return Case(nx, ny, frozenset(k for k in _interior(nx, ny) if k not in comp or k in case.lethal),
+                case.start, case.goal, case.astar)
+
+
+@dataclass
+class Reduced:
+    """The enumerated cases of a size, reduced: the representatives to explore, with the number
+    of enumerated cases each stands for (in order of first appearance), and the number of cases
+    whose start lies outside the goal's component (never reached: decided without exploring)."""
+
+    total: int
+    representatives: dict  # Case -> enumerated cases it stands for
+    outside: int
+
+
+def reduce_cases(todo) -> Reduced:
+    """:class:`Reduced` of the enumerated cases ``todo`` (see :func:`representative`)."""
+    comps: dict = {}
+    reps: dict = {}
+    outside = total = 0
+    for case in todo:
+        total += 1
+        key = (case.nx, case.ny, case.lethal, case.goal)
+        if key not in comps:
+            comps[key] = component(*key)
+        comp = comps[key]
+        if case.start[1] * case.nx + case.start[0] not in comp:
+            outside += 1
+            continue
+        rep = representative(case, comp)
+        reps[rep] = reps.get(rep, 0) + 1
+    return Reduced(total, reps, outside)
 
 
 # ---------------------------------------------------------------------------------------
@@ -146,23 +204,77 @@ def solve_bitwuzla(assertions: list, variables: dict, timeout: float):
     return "unknown", "; ".join(reasons)
 
 
+def relevant(conditions: list, variables: dict, ranges: dict, lo: int, hi: int, assumptions: list):
+    """The query's box cut down to the costs ``conditions`` mention: ``(box assertions,
+    variables, ranges)``.  A cost no condition mentions only has to lie in ``lo..hi``, which it
+    can on its own, so leaving it out changes no verdict (its model value is ``lo``), and the
+    exhaustive evaluator counts only the points of the costs that matter."""
+    from ..smt.codec import free_constants
+
+    used = set(free_constants(conditions + list(assumptions))) if conditions or assumptions else set()
+    keep = {k: v for k, v in variables.items() if str(v) in used}
+    return ([z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in keep.values()] + list(assumptions), keep,
+            {k: ranges[k] for k in keep})
+
+
+QUICK = 5.0  # seconds the incremental solver gets per flip before the flip is asked on its own
+
+
+class PathSolver:
+    """The flips of one control path in one bitwuzla instance: the box and every branch of the
+    path condition are parsed (and bit-blasted) once, each branch ``j`` named by a Boolean
+    ``a_j == branch_j``; flip ``j`` is the check under the assumptions ``a_0 .. a_{j-1}, not a_j``
+    (the same query :func:`solve_bitwuzla` asks from scratch, ``box & pc[:j] & not pc[j]``)."""
+
+    def __init__(self, box: list, pc: list, variables: dict, timeout: float):
+        import bitwuzla as bw
+
+        self.bw, self.variables = bw, variables
+        names = [z3.Bool(f"navfn_smt!flip{j}") for j in range(len(pc))]
+        q = smtlib.prepare(box + [n == b for n, b in zip(names, pc)])
+        opts = bw.Options()
+        opts.set(bw.Option.PRODUCE_MODELS, True)
+        opts.set(bw.Option.TIME_LIMIT_PER, max(1, int(min(timeout, QUICK) * 1000)))
+        self.tm = bw.TermManager()
+        parser = bw.Parser(self.tm, opts)
+        parser.parse(q.smt2, True, False)
+        self.solver = parser.bitwuzla()
+        funs = {solvers._strip_bars(f.symbol() or ""): f for f in parser.get_declared_funs()}
+        self.flags = [funs[str(n)] for n in names]
+        self.costs = {k: funs.get(str(v)) for k, v in variables.items()}
+
+    def flip(self, j: int):
+        """``("sat", {cell: cost})``, ``("unsat", None)`` or ``("unknown", reason)``."""
+        bw = self.bw
+        r = self.solver.check_sat(*self.flags[:j], self.tm.mk_term(bw.Kind.NOT, [self.flags[j]]))
+        if r == bw.Result.SAT:
+            return "sat", {k: int(self.solver.get_value(f).value(2), 2) for k, f in self.costs.items()
+                           if f is not None}
+        if r == bw.Result.UNSAT:
+            return "unsat", None
+        return "unknown", f"bitwuzla (incremental): no answer within {QUICK:g} s"
+
+
 EXHAUSTIVE_LIMIT = 10_000_000  # points of a box worth evaluating one by one (numpy: about a minute)
 
 
 def solve_split(assertions: list, variables: dict, timeout: float, solve, ranges: dict, depth: int = 2,
                 limit: int = EXHAUSTIVE_LIMIT):
-    """``solve``, and when it does not decide: a box of at most ``EXHAUSTIVE_LIMIT`` points is
-    decided by evaluating the query at every point (:mod:`.exhaustive`); a larger one is cut in
-    four along its widest cost range, each part solved the same way (``depth`` levels).  Every part unsat: unsat; a
-    part sat: its model; otherwise unknown.  The parts cover the box, so this is sound."""
-    status, model = solve(assertions, variables, timeout)
-    if status != "unknown":
-        return status, model
-    if exhaustive.points(ranges, variables, assertions) <= limit:
+    """A box of at most ``limit`` points is decided by evaluating the query at every point
+    (:mod:`.exhaustive`, exact); a larger one by ``solve``, and when that does not decide, cut in
+    four along its widest cost range, each part solved the same way (``depth`` levels).  Every
+    part unsat: unsat; a part sat: its model; otherwise unknown.  The parts cover the box, so this
+    is sound."""
+    status, model = "unknown", "not asked"
+    small = exhaustive.points(ranges, variables, assertions) <= limit
+    if small:  # exact, and at most a few seconds: before the solvers' long time limits
         try:
             return exhaustive.solve(assertions, variables, ranges)
         except exhaustive.Unsupported as e:
-            model = f"{model}; exhaustive: {e}"
+            model = f"exhaustive: {e}"
+    status, model = solve(assertions, variables, timeout)
+    if status != "unknown":
+        return status, model
     if depth == 0:
         return status, model
     k = max(ranges, key=lambda c: (ranges[c][1] - ranges[c][0], c))
@@ -199,6 +311,13 @@ class CaseResult:
     decided_by_intervals: int = 0
     seconds: float = 0.0
     unknown_flips: list = field(default_factory=list)
+    log: list = field(default_factory=list)  # per control path: [seed costs, bound, property marks, flip marks]
+
+
+# the marks of a certificate (:mod:`.certificate`): how each property was judged on a path,
+# and how each flip was answered
+HELD_ON_BOX, HELD_BY_QUERY, REFUTED, UNKNOWN = "i", "q", "r", "?"
+UNSAT, SAT = "u", "s"
 
 
 def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, variant: str = "original"):
@@ -214,11 +333,24 @@ def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callabl
     return D, costs, sp, ex
 
 
+def _ask(conditions: list, variables: dict, ranges: dict, lo: int, hi: int, D, timeout: float, solve,
+         limit: int):
+    """:func:`solve_split` on the box of the costs the conditions mention (:func:`relevant`);
+    a model gives every other cost ``lo``."""
+    box, keep, rng = relevant(conditions, variables, ranges, lo, hi, D.assumptions)
+    status, model = solve_split(box + conditions, keep, timeout, solve, rng, limit=limit)
+    if status == "sat":
+        model = {k: model.get(k, lo) for k in variables}
+    return status, model
+
+
 def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
             solve=solve_bitwuzla, initial: Optional[dict] = None,
-            exhaustive_limit: int = EXHAUSTIVE_LIMIT, variant: str = "original") -> CaseResult:
+            exhaustive_limit: int = EXHAUSTIVE_LIMIT, variant: str = "original",
+            incremental: bool = True) -> CaseResult:
     """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each
-    (``variant="fixed"``: of the planner with the fix)."""
+    (``variant="fixed"``: of the planner with the fix).  ``incremental``: a path's flips are
+    asked of one solver instance (:class:`PathSolver`), what it leaves undecided of ``solve``."""
     t0 = time.perf_counter()
     inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
     results = {n: PropertyResult(n) for n in names}
@@ -232,30 +364,42 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
         ranges = {k: (lo, hi) for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches
+        marks, flips = "", ""
         for n in names:
             r = results[n]
             if r.status == "refuted":
+                marks += REFUTED
                 continue
             p = property_value(n, D, case, costs, sp, ex)
             if not concrete(p):
                 r.status, r.counterexample = "refuted", dict(conc)
+                marks += REFUTED
                 continue
             if D.truth(p) is True:
                 out.decided_by_intervals += 1
+                marks += HELD_ON_BOX
                 continue
             r.queries += 1
-            status, model = solve_split(box + pc + [z3.Not(term(D, p))], variables, timeout, solve, ranges,
-                                        limit=exhaustive_limit)
+            status, model = _ask(pc + [z3.Not(term(D, p))], variables, ranges, lo, hi, D, timeout, solve,
+                                 exhaustive_limit)
+            marks += {"sat": REFUTED, "unsat": HELD_BY_QUERY}.get(status, UNKNOWN)
             if status == "sat":
                 r.status, r.counterexample = "refuted", model
             elif status != "unsat" and r.status == "holds":
                 r.status, r.reason = "unknown", f"solver: {model}"
+        out.log.append([[conc[k] for k in inner], bound, marks, flips])
         if all(r.status == "refuted" for r in results.values()):
             break  # nothing left to prove in this case
+        inc = PathSolver(box, pc, variables, timeout) if incremental and len(pc) > bound else None
         for j in range(bound, len(pc)):
             out.flip_queries += 1
-            status, model = solve_split(box + pc[:j] + [z3.Not(pc[j])], variables, timeout, solve, ranges,
-                                        limit=exhaustive_limit)
+            status, model = inc.flip(j) if inc else ("unknown", "")
+            if status == "sat":
+                model = {k: model.get(k, lo) for k in inner}
+            elif status == "unknown":
+                status, model = _ask(pc[:j] + [z3.Not(pc[j])], variables, ranges, lo, hi, D, timeout, solve,
+                                     exhaustive_limit)
+            flips += {"sat": SAT, "unsat": UNSAT}.get(status, UNKNOWN)
             if status == "sat":
                 todo.append((model, j + 1))
             elif status != "unsat":
@@ -263,5 +407,6 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
                 for r in results.values():
                     if r.status == "holds":
                         r.status, r.reason = "unknown", f"a branch the solver did not decide ({model})"
+        out.log[-1][3] = flips
     out.seconds = time.perf_counter() - t0
     return out

@@ -21,7 +21,7 @@ from typing import Callable, Optional
 from ..engine import Engine, as_engine, in_order, stream
 from ..errors import NavfnInputError
 from . import properties as P
-from .bounded import CHECKABLE, Case, cases, explore
+from .bounded import CHECKABLE, Case, cases, explore, reduce_cases
 
 # Properties that hold by induction over the run, and the predicate whose obligations carry it.
 INDUCTION = {
@@ -51,6 +51,8 @@ class SizeResult:
     property: str
     status: str  # proved | refuted | unknown
     cases: int = 0
+    representatives: int = 0  # cases explored (one per layout of the goal's component, start, goal, mode)
+    outside: int = 0  # cases whose start lies outside the goal's component: decided without exploring
     cases_holding: int = 0
     cases_unknown: int = 0
     paths: int = 0
@@ -95,10 +97,14 @@ def replay(case: Case, costs: dict, name: str, variant: str = "original"):
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
                    timeout: float = 60.0, jobs=1, start=None, goal=None, ends: str = "any",
                    exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None,
-                   variant: str = "original") -> dict:
+                   variant: str = "original", reduce: bool = True, certificate: Optional[list] = None) -> dict:
     """Every case of the size; returns ``{property: SizeResult}``, the same wherever the cases
     run.  ``jobs``: an :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number
-    of cases), or a number of local workers."""
+    of cases), or a number of local workers.  ``reduce``: explore one representative per layout
+    of the goal's component and decide starts outside it without exploring
+    (:func:`~.bounded.reduce_cases`, by ReachedWithinComponent); off, every case is explored.
+    ``certificate``: a list that gets ``[case key, weight, path log]`` of every explored case,
+    in order (:mod:`.certificate`)."""
     check_size(nx, ny)
     _domain(semantics)
     if not (timeout > 0 and math.isfinite(timeout)):
@@ -109,13 +115,17 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         if cell is not None and not (1 <= cell[0] <= nx - 2 and 1 <= cell[1] <= ny - 2):
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
                                   f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
-    todo = list(cases(nx, ny, modes, start, goal, ends))
-    out = {n: SizeResult((nx, ny), n, "proved", cases=len(todo)) for n in names}
+    red = reduce_cases(cases(nx, ny, modes, start, goal, ends)) if reduce else _unreduced(
+        cases(nx, ny, modes, start, goal, ends))
+    todo = list(red.representatives)
+    out = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
+                         cases_holding=red.outside) for n in names}
     t0 = time.perf_counter()
     eng = as_engine(jobs)
     work = [(tuple(todo[k:k + BATCH]), tuple(names), lo, hi, semantics, timeout, exhaustive_limit, variant)
             for k in range(0, len(todo), BATCH)]
-    _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), out, len(todo), progress, variant)
+    _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), out, len(todo), progress, variant,
+             red.representatives, certificate)
     for r in out.values():
         r.seconds = time.perf_counter() - t0
         if r.counterexample is None and r.cases_unknown:
@@ -123,10 +133,22 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     return out
 
 
-def _collect(batches, out: dict, total: int, progress, variant: str = "original") -> None:
+def _unreduced(todo):
+    """Every enumerated case explored on its own (``reduce=False``: the reductions off)."""
+    from .bounded import Reduced
+
+    reps = {}
+    for case in todo:
+        reps[case] = reps.get(case, 0) + 1
+    return Reduced(sum(reps.values()), reps, 0)
+
+
+def _collect(batches, out: dict, total: int, progress, variant: str = "original", weight=None,
+             certificate: Optional[list] = None) -> None:
     """Fold ``(index, [case result, ...])`` batches, arriving in any order, into ``out`` in
     index order: counts, unknown cases and the counterexample (that of the first case refuting
-    a property) are those of a run in order.  ``progress`` hears of every case as it arrives."""
+    a property) are those of a run in order.  ``progress`` hears of every case as it arrives.
+    ``weight[case]``: how many enumerated cases the explored case stands for."""
     done = 0
 
     def arrived(_, results) -> None:
@@ -138,11 +160,17 @@ def _collect(batches, out: dict, total: int, progress, variant: str = "original"
 
     for _, results in in_order(batches, arrived):
         for cr in results:
-            _fold(cr, out, variant)
+            w = 1 if weight is None else weight[cr.case]
+            _fold(cr, out, variant, w)
+            if certificate is not None:
+                from .certificate import case_key
+
+                certificate.append([case_key(cr.case), w, cr.log])
 
 
-def _fold(cr, out: dict, variant: str = "original") -> None:
-    """One case's results added to ``out`` (the counterexample replayed on the spec first)."""
+def _fold(cr, out: dict, variant: str = "original", weight: int = 1) -> None:
+    """One explored case's results added to ``out``, counting the ``weight`` enumerated cases it
+    stands for (the counterexample replayed on the spec first)."""
     case = cr.case
     for name, pr in cr.results.items():
         r = out[name]
@@ -150,9 +178,9 @@ def _fold(cr, out: dict, variant: str = "original") -> None:
         r.queries += pr.queries + cr.flip_queries
         r.decided_by_intervals += cr.decided_by_intervals
         if pr.status == "holds":
-            r.cases_holding += 1
+            r.cases_holding += weight
         elif pr.status == "unknown":
-            r.cases_unknown += 1
+            r.cases_unknown += weight
             r.unknown_cases.append(_case_json(case) | {"reason": pr.reason})
         elif pr.status == "refuted" and r.counterexample is None:
             arr, run, why = replay(case, pr.counterexample, name, variant)
@@ -182,11 +210,15 @@ def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> l
 def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: float, jobs, start, goal,
                 ends: str, exhaustive_limit: int, budget: float = 0.0, smallest_only: bool = False,
                 progress_of: Callable[[str], Optional[Callable]] = lambda size: None,
-                t0: Optional[float] = None, variant: str = "original") -> tuple[list, list]:
+                t0: Optional[float] = None, variant: str = "original",
+                certify: Optional[Callable] = None) -> tuple[list, list]:
     """:func:`check_one_size` for each of ``sizes`` in turn until ``budget`` seconds (0: no
     budget) have passed since ``t0``; the results in size order and the sizes not reached.
     With ``smallest_only`` a property refuted at one size is not checked at larger ones (its
-    smallest counterexample is found).  ``progress_of("WxH")`` gives each size's progress."""
+    smallest counterexample is found).  ``progress_of("WxH")`` gives each size's progress.
+    ``certify(nx, ny, {property: SizeResult}, entries)`` hears of each size where some property
+    was proved and none left unknown, with its certificate's entries (:mod:`.certificate`; a
+    refuted property's verdict rests on its counterexample, replayed on the spec)."""
     t0 = time.perf_counter() if t0 is None else t0
     results, skipped = [], []
     open_names = list(names)
@@ -196,8 +228,13 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
             continue
         if not open_names:
             break
+        entries = [] if certify else None
         got = check_one_size(open_names, nx, ny, modes, lo, hi, semantics, timeout, jobs, start, goal, ends,
-                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), variant=variant)
+                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), variant=variant,
+                             certificate=entries)
+        if certify and all(r.status in ("proved", "refuted") for r in got.values()) and any(
+                r.status == "proved" for r in got.values()):
+            certify(nx, ny, got, entries)
         for n in list(open_names):
             results.append(got[n])
             if got[n].status == "refuted" and smallest_only:

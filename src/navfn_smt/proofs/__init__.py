@@ -196,7 +196,26 @@ ConnectedStartReached = Predicate(
           "every potential below 2**30: a run-time condition, as for DescentPath"),
 )
 
+ReachedWithinComponent = Predicate(
+    "ReachedWithinComponent",
+    statement="Only the goal's component (the goal and the passable cells 4-connected to a passable neighbour of "
+              "it) is ever pushed, updated or reached: a start outside it keeps POT_HIGH, and a cost outside it "
+              "is read only by a push guard that fails whatever the cell is.",
+    applies="propagation, for every map size; the bounded checks (navfn-smt check) decide a start outside the "
+            "component without exploring, and explore one layout of those that differ only outside it",
+    lemmas=("update_beside_no_reached_cell_stays_unreached", "PositionSafe.update_keeps_obstacles_unreached",
+            "ObstacleFreeQueue.push_admits_only_passable_cells_on_the_map"),
+    trusted=("base case: after initCost the goal is the only reached cell, and the buffers hold its passable "
+             "4-neighbours only",
+             "a cell is pushed only as a 4-neighbour of the goal (initCost) or of a cell whose update changed it, "
+             "and is updated only after being pushed",
+             "calcPath and the fix's descent read potentials and gradients, never costs, and a cell outside the "
+             "component has POT_HIGH in every layout",
+             "tests/test_check_reductions.py runs every layout of the small sizes concretely: a layout and its "
+             "representative give the same potentials, exit and path"),
+)
+
 # in the order the invariants page lists them: propagation, then path extraction, then the fix
 PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
               NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, DescentPath,
-              ConnectedStartReached)
+              ConnectedStartReached, ReachedWithinComponent)

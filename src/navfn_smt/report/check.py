@@ -56,7 +56,12 @@ def row(r) -> dict:
         "property": r.property, "size": list(r.size), "status": r.status,
         "interior_cells": (r.size[0] - 2) * (r.size[1] - 2),
         "enumerated": {"cases": r.cases, "what": "every layout of lethal interior cells x every start x every goal "
-                                                  "x each mode"},
+                                                  "x each mode",
+                       "explored": r.representatives, "start_outside_component": r.outside,
+                       "reduction": "ReachedWithinComponent: a start outside the goal's component is never reached "
+                                    "(decided without exploring); layouts that differ only outside the component run "
+                                    "alike (one explored, every cell outside it lethal)"
+                                    if r.representatives < r.cases else "none"},
         "solved": {"control_paths": r.paths, "solver_queries": r.queries,
                    "decided_by_intervals": r.decided_by_intervals},
         "cases_holding": r.cases_holding, "cases_unknown": r.cases_unknown,
@@ -67,12 +72,12 @@ def row(r) -> dict:
 
 def table(results: list) -> None:
     t = Table(title="check: whole-planner properties over every map of a size")
-    for col in ("property", "size", "status", "cases", "paths", "queries", "time", "counterexample"):
+    for col in ("property", "size", "status", "cases", "explored", "paths", "queries", "time", "counterexample"):
         t.add_column(col)
     for r in results:
         cx = r.counterexample
         what = (f"{cx['mode']} start {tuple(cx['start'])} goal {tuple(cx['goal'])}: {cx['reason']}" if cx else "")
-        t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", r.status, str(r.cases), str(r.paths), str(r.queries),
+        t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", r.status, str(r.cases), str(r.representatives), str(r.paths), str(r.queries),
                   f"{r.seconds:.1f} s", what)
     _console.print(t)
 

@@ -1,0 +1,94 @@
+"""The bounded checks held against concrete runs: every map of a size over a reduced cost set.
+
+A ``proved`` that a concrete map refutes is the worst bug a verifier can have.  This sweep
+plans every map of a size whose passable interior cells take costs from a small set
+(:data:`COSTS`, lethal added), every start and goal, each mode, with the compiled spec, and
+judges the properties on each case the way :mod:`.properties` does.  It shares nothing with
+the symbolic side but the spec: not the reductions, not the encoding, not the solvers.  A
+size the check proved must show no failure here (``benchmarks/check_soundness.py`` and
+``tests/test_check_reductions.py`` hold the committed reports to it).
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..spec.constants import COST_OBS, POT_HIGH
+from ..spec.extraction import ExtractionExit, exit_code
+
+COSTS = (50, 51, 100, 200, 253)  # the reduced set: the ends of 50..253, a neighbour of the low end, two between
+SWEPT = ("complete", "start-reached", "no-path-before-start-potential")
+_NEAR_GOAL = exit_code(ExtractionExit.NEAR_GOAL)
+
+
+@dataclass
+class Sweep:
+    """What the sweep of one size found: cases run, failures per property, the first failure of each."""
+
+    size: tuple
+    costs: tuple
+    variant: str
+    maps: int = 0
+    cases: int = 0
+    failures: dict = field(default_factory=lambda: {n: 0 for n in SWEPT})
+    first: dict = field(default_factory=dict)
+
+
+def failing(name: str, finite: np.ndarray, returned: np.ndarray, connected: np.ndarray) -> np.ndarray:
+    """Per case, whether ``name`` fails (the judges of :mod:`.properties`, vectorised)."""
+    if name == "complete":
+        return finite & ~returned
+    if name == "start-reached":
+        return connected & ~finite
+    if name == "no-path-before-start-potential":
+        return returned & ~finite
+    raise ValueError(f"the sweep does not judge {name!r}")
+
+
+def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), variant: str = "original",
+          progress=None) -> Sweep:
+    """Every map of ``nx`` x ``ny`` whose interior cells take a cost of ``costs`` or COST_OBS,
+    every interior start and goal, each mode (``True``: A*)."""
+    from ..backends.jit import JitPlanner, run_cases
+    from ..maps.regions import reaches_all, regions
+    from ..spec.costs import add_border
+    from ..spec.planner import path_cycle_limit
+    from ..spec.propagation import cycle_limit
+
+    if variant != "original":
+        from ..backends import get_backend
+
+        planner = get_backend("jit", variant)
+    inner = [(x, y) for y in range(1, ny - 1) for x in range(1, nx - 1)]
+    pairs = np.array([(sx, sy, gx, gy) for sx, sy in inner for gx, gy in inner], np.int64)
+    out = Sweep((nx, ny), tuple(costs), variant)
+    values = tuple(costs) + (COST_OBS,)
+    high = np.float32(POT_HIGH)
+    for k, combo in enumerate(itertools.product(values, repeat=len(inner))):
+        arr = np.full((ny, nx), COST_OBS, np.uint8)
+        for (x, y), c in zip(inner, combo):
+            arr[y, x] = c
+        out.maps += 1
+        connected = reaches_all(regions(arr), pairs)
+        for astar in modes:
+            if variant == "original":
+                got = run_cases(JitPlanner(add_border(arr)), pairs, astar, cycle_limit(nx, ny), path_cycle_limit(nx))
+            else:
+                got = planner.prepare(arr).run_batch(pairs, astar)
+            finite = got["start_potential"] < high
+            returned = got["exit"] == _NEAR_GOAL
+            bad = {n: failing(n, finite, returned, connected) for n in SWEPT}
+            out.cases += len(pairs)
+            for n, f in bad.items():
+                if f.any():
+                    out.failures[n] += int(f.sum())
+                    if n not in out.first:
+                        i = int(np.argmax(f))
+                        out.first[n] = {"costs": arr.tolist(), "start": pairs[i, :2].tolist(),
+                                        "goal": pairs[i, 2:].tolist(), "mode": "astar" if astar else "dijkstra"}
+        if progress and k % 1000 == 0:
+            progress(out)
+    return out

@@ -1,0 +1,105 @@
+"""The reductions of the bounded checks, and the checks themselves, held against concrete runs.
+
+* ReachedWithinComponent's use in ``check`` (:func:`navfn_smt.check.bounded.reduce_cases`):
+  a layout and its representative (every cell outside the goal's component lethal) plan
+  alike, potentials and path bit for bit, and a start outside the component is never
+  reached and gets no path; each on every layout of the small sizes, both modes, both
+  variants.
+* The committed reports of ``check`` (docs/reports/check-*.json): every size proved there
+  shows no failure in the concrete sweep over the reduced cost set
+  (:mod:`navfn_smt.check.soundness`).
+"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from navfn_smt.check import properties as P
+from navfn_smt.check.bounded import Case, cases, component, reduce_cases, representative
+from navfn_smt.check.soundness import COSTS, failing, sweep
+from navfn_smt.spec.constants import POT_HIGH
+from navfn_smt.spec.extraction import ExtractionExit, exit_code
+
+REPORTS = Path(__file__).resolve().parents[1] / "docs" / "reports"
+COUNTEREXAMPLES = Path(__file__).resolve().parent / "data" / "counterexamples"
+
+
+def _costs(case: Case, rng) -> dict:
+    return {k: int(rng.integers(50, 254)) for k in range(case.nx * case.ny)}
+
+
+def _same_run(a: P.Run, b: P.Run) -> bool:
+    return (a.potential.tobytes() == b.potential.tobytes() and a.exit == b.exit
+            and a.path.tobytes() == b.path.tobytes())
+
+
+@pytest.mark.parametrize("variant", ["original", "fixed"])
+@pytest.mark.parametrize("size", [(3, 6), (6, 3), (4, 4), (4, 5)])
+def test_a_layout_plans_as_its_representative_does(size, variant):
+    rng = np.random.default_rng(sum(size))
+    red = reduce_cases(cases(*size, (True, False)))
+    seen = outside = 0
+    for case in cases(*size, (True, False)):
+        if size == (4, 5) and rng.random() > 0.1:
+            continue  # a tenth of the larger size's 4,608 cases
+        costs = _costs(case, rng)
+        run = P.run(case.costs_array(costs), case.start, case.goal, case.astar, variant=variant)
+        comp = component(case.nx, case.ny, case.lethal, case.goal)
+        if case.start[1] * case.nx + case.start[0] not in comp:
+            outside += 1
+            assert run.start_potential >= np.float32(POT_HIGH) and len(run.path) == 0, case
+            continue
+        rep = representative(case, comp)
+        assert rep in red.representatives
+        assert _same_run(run, P.run(rep.costs_array(costs), rep.start, rep.goal, rep.astar, variant=variant)), case
+        seen += 1
+    assert seen and outside
+
+
+def test_the_reduction_counts_every_case_once():
+    red = reduce_cases(cases(3, 7, (True, False)))
+    assert red.total == 2 * 2**5 * 25
+    assert sum(red.representatives.values()) + red.outside == red.total
+    assert len(red.representatives) < red.total // 3
+
+
+def test_a_smaller_component_would_be_caught():
+    """The comparison above fails for a reduction that drops a cell of the component."""
+    case = Case(3, 6, frozenset(), (1, 1), (1, 4), False)
+    costs = {k: 100 for k in range(18)}
+    wrong = Case(3, 6, frozenset({1 * 3 + 1 + 3}), case.start, case.goal, False)  # (1, 2) made lethal
+    a = P.run(case.costs_array(costs), case.start, case.goal, False)
+    b = P.run(wrong.costs_array(costs), wrong.start, wrong.goal, False)
+    assert not _same_run(a, b)
+
+
+def test_the_sweep_judges_a_known_incomplete_map():
+    from navfn_smt.maps.suite import load_map
+    from navfn_smt.search.kinds import plan_batch
+
+    smap = load_map(COUNTEREXAMPLES / "incomplete-astar-5x5")
+    b = plan_batch(smap.costs, smap.cases[:1], True)
+    finite = b.out["start_potential"] < np.float32(POT_HIGH)
+    returned = b.out["exit"] == exit_code(ExtractionExit.NEAR_GOAL)
+    assert failing("complete", finite, returned, b.connected()).all()
+    assert not failing("start-reached", finite, returned, b.connected()).any()
+
+
+def _proved_sizes():
+    out = []
+    for f in sorted(REPORTS.glob("check-*.json")):
+        doc = json.loads(f.read_text())
+        for r in doc["results"]:
+            if r["status"] == "proved" and r["property"] in ("complete", "start-reached"):
+                out.append((tuple(r["size"]), r["property"], doc.get("variant", "original")))
+    return sorted(set(out))
+
+
+@pytest.mark.parametrize("size,name,variant", [s for s in _proved_sizes() if (s[0][0] - 2) * (s[0][1] - 2) <= 5])
+def test_a_proved_size_shows_no_failure_in_the_concrete_sweep(size, name, variant):
+    got = sweep(*size, variant=variant)
+    assert got.cases == 6 ** ((size[0] - 2) * (size[1] - 2)) * 2 * ((size[0] - 2) * (size[1] - 2)) ** 2
+    assert got.failures[name] == 0, got.first.get(name)
+    assert got.costs == COSTS
