@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..errors import NavfnInputError
 from ..fileio import check_writable_dir
 from .common import MODE_HELP, check_files, check_positive, vars_of
 
@@ -15,7 +16,14 @@ def cmd_check(args) -> int:
     from ..report import check as report
     from ..maps.suite import modes_of
 
-    names = CR.CHECKABLE if args.property == "all" else (args.property,)
+    if args.replay:
+        return _replay(args)
+    if not args.property:
+        raise NavfnInputError("check: name a PROPERTY (or all), or give --replay CERT")
+    unknown = [p for p in args.property if p not in (*CR.CHECKABLE, "all")]
+    if unknown:
+        raise NavfnInputError(f"check: unknown property {unknown[0]!r} (choose from {', '.join(CR.CHECKABLE)}, all)")
+    names = CR.CHECKABLE if "all" in args.property else tuple(dict.fromkeys(args.property))
     from ..search.hunt import parse_costs
 
     lo, hi = parse_costs(args.costs)
@@ -26,6 +34,10 @@ def cmd_check(args) -> int:
     check_files(args.json)
     if args.out:
         check_writable_dir(args.out)
+    if args.certificates:
+        check_writable_dir(args.certificates)
+    if args.certificates and (args.start or args.goal):
+        raise NavfnInputError("--certificates: a certificate covers every start and goal of a size (no --start/--goal)")
     modes = [m == "astar" for m in modes_of(args.mode)]
     if args.max_size:
         sizes = CR.sizes_up_to(*args.max_size)
@@ -36,7 +48,7 @@ def cmd_check(args) -> int:
         results, skipped = CR.check_sizes(names, sizes, modes, lo, hi, args.semantics, args.timeout, eng, args.start,
                                           args.goal, args.ends, args.exhaustive, args.budget,
                                           smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0,
-                                          variant=args.variant)
+                                          variant=args.variant, certify=_certify(args, lo, hi, modes))
     finally:
         report.stop_progress()
     report.table(results)
@@ -81,6 +93,56 @@ def cmd_check(args) -> int:
     return 0 if all(r.status == "proved" for r in results) else 1
 
 
+def _certify(args, lo: int, hi: int, modes):
+    """The callback that writes a proved size's certificate under ``--certificates DIR``."""
+    if not args.certificates:
+        return None
+    from pathlib import Path
+
+    from ..check import certificate
+
+    def write(nx: int, ny: int, got: dict, entries: list) -> None:
+        path = Path(args.certificates) / f"check-{nx}x{ny}.cert.json.gz"
+        r = next(iter(got.values()))
+        certificate.write(path, {
+            "size": [nx, ny], "properties": list(got), "costs": [lo, hi], "modes": ["astar" if m else "dijkstra"
+                                                                                   for m in modes],
+            "variant": args.variant, "ends": args.ends, "total": r.cases, "outside": r.outside,
+            "verdicts": {n: g.status for n, g in got.items()}}, entries)
+        print(f"{nx}x{ny}: certificate written to {path}")
+
+    return write
+
+
+def _replay(args) -> int:
+    """``check --replay CERT``: exit 0 only when the certificate re-checks."""
+    import time
+
+    from ..check import certificate
+    from ..engine import engine
+    from ..report import check as report
+
+    t0 = time.perf_counter()
+    try:
+        got = certificate.replay(args.replay, engine(args.jobs, args.scheduler), args.timeout,
+                                 progress=report.progress(f"replay {args.replay}"))
+    finally:
+        report.stop_progress()
+    got["seconds"] = round(time.perf_counter() - t0, 1)
+    if args.json:
+        report.write_json(args.json, {"command": "check --replay", "certificate": args.replay, **got})
+    size = "x".join(map(str, got.get("size", [])))
+    if got["status"] == "replayed":
+        print(f"{args.replay}: replayed: {', '.join(f'{n} {v}' for n, v in got['verdicts'].items())} on every "
+              f"{size} map ({got['cases']} cases explored, {got['paths']} control paths re-checked, "
+              f"{got['seconds']} s)")
+        return 0
+    for p in got["problems"][:20]:
+        print(f"problem: {p}")
+    print(f"{args.replay}: refused ({len(got['problems'])} problems)")
+    return 1
+
+
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..check.bounded import CHECKABLE as CHECK_PROPERTIES
@@ -90,8 +152,9 @@ def register(sub) -> None:
 
     ck = sub.add_parser("check", help="prove or refute a whole-planner property on every map of a size "
                         "(bounded: symbolic costs, enumerated layouts, start and goal)")
-    ck.add_argument("property", choices=(*CHECK_PROPERTIES, "all"), metavar="PROPERTY",
-                    help=f"one of {', '.join(CHECK_PROPERTIES)}, or all")
+    ck.add_argument("property", nargs="*", metavar="PROPERTY",
+                    help=f"one or more of {', '.join(CHECK_PROPERTIES)}, or all (each case is explored once for "
+                    "all the properties named)")
     csz = ck.add_mutually_exclusive_group()
     csz.add_argument("--size", nargs=2, type=int, metavar=("W", "H"),
                      help="map size, lethal border included (default: 4 4)")
@@ -122,4 +185,8 @@ def register(sub) -> None:
     ck.add_argument("--out", metavar="DIR", help="save each property's smallest counterexample under DIR as a "
                     "suite map directory with goldens and picture (default: nothing written)")
     ck.add_argument("--json", metavar="FILE", help="write the verdicts, what was enumerated and solved, as JSON")
+    ck.add_argument("--certificates", metavar="DIR", help="write a certificate of each size whose properties are all "
+                    "proved to DIR/check-WxH.cert.json.gz: every case, control path and query, with the code's hash")
+    ck.add_argument("--replay", metavar="CERT", help="re-check a certificate without searching: every unsat asked "
+                    "again, every sat flip witnessed; refused when the kernels or the encoding changed")
     ck.set_defaults(func=cmd_check)
