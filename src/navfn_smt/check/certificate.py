@@ -10,7 +10,8 @@ the costs it was found with (its *seed*), the first branch it was free to flip (
 :func:`replay` re-checks it: the enumeration and the reduction are redone and must give the
 same cases; each path is re-run from its seed and must have as many branches as recorded;
 every unsat (a flip, or a property's query) is asked again of a fresh solver and must be
-unsat again; every sat flip must be witnessed by the seed of a recorded path, evaluated on
+unsat again (a path's unsats asked as one query, their disjunction, which is unsat exactly
+when each of them is; each on its own only when it is not); every sat flip must be witnessed by the seed of a recorded path, evaluated on
 the flip's query (no solver).  Nothing is searched for: a certificate whose path tree does
 not close is refused.  A changed hash refuses the certificate before any of this.
 """
@@ -101,29 +102,37 @@ def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: floa
         pc = D.branches
         if flips and bound + len(flips) != len(pc):
             return [f"{case_key(case)}: a path from {seed} has {len(pc)} branches, the certificate {bound + len(flips)}"]
+        unsat = {}  # what the certificate says is unsat on this path: name -> conditions
         for n, m in zip(names, marks):
             p = B.property_value(n, D, case, costs, sp, ex)
             if m == B.HELD_ON_BOX and D.truth(p) is not True:
                 problems.append(f"{case_key(case)}: {n} not decided on the box from {seed}")
             elif m == B.HELD_BY_QUERY:
-                st, _ = B.solve_bitwuzla(box + pc + [z3.Not(B.term(D, p))], variables, timeout)
-                if st != "unsat":
-                    problems.append(f"{case_key(case)}: {n}'s query from {seed} is {st}, recorded unsat")
-        inc = B.PathSolver(box, pc, variables, timeout) if B.UNSAT in flips else None
+                unsat[f"{n}'s query"] = pc + [z3.Not(B.term(D, p))]
         for j, m in enumerate(flips, start=bound):
             if m == B.UNSAT:
-                st, _ = inc.flip(j)
-                if st == "unknown":
-                    st, _ = B.solve_bitwuzla(box + pc[:j] + [z3.Not(pc[j])], variables, timeout)
-                if st != "unsat":
-                    problems.append(f"{case_key(case)}: flip {j} of the path from {seed} is {st}, recorded unsat")
+                unsat[f"flip {j}"] = pc[:j] + [z3.Not(pc[j])]
             elif m == B.SAT:
                 flip = box + pc[:j] + [z3.Not(pc[j])]
                 if not any(_holds_at(flip, variables, s) for s in seeds.get(j + 1, [])):
                     problems.append(f"{case_key(case)}: flip {j} of the path from {seed} has no recorded witness")
             else:
                 problems.append(f"{case_key(case)}: flip {j} of the path from {seed} was left undecided")
+        problems += [f"{case_key(case)}: {what} of the path from {seed} is {st}, recorded unsat"
+                     for what, st in _all_unsat(box, unsat, variables, timeout)]
     return problems
+
+
+def _all_unsat(box: list, unsat: dict, variables: dict, timeout: float) -> list:
+    """The ``(what, status)`` of the queries ``box & conditions`` not unsat.  First one query,
+    their disjunction (unsat exactly when each is); only when it is not, each on its own."""
+    if not unsat:
+        return []
+    either = z3.Or([z3.And(c) for c in unsat.values()])
+    if B.solve_bitwuzla(box + [either], variables, timeout)[0] == "unsat":
+        return []
+    got = [(what, B.solve_bitwuzla(box + c, variables, timeout)[0]) for what, c in unsat.items()]
+    return [(what, st) for what, st in got if st != "unsat"]
 
 
 def _replay_job(args):
