@@ -301,7 +301,8 @@ def _size(s) -> str:
 
 def _check_command(doc: dict) -> str:
     a = doc.get("arguments") or {}
-    parts = ["navfn-smt check", str(a.get("property", "?"))]
+    prop = a.get("property", "?")
+    parts = ["navfn-smt check", " ".join(prop) if isinstance(prop, list) else str(prop)]
     if a.get("max_size"):
         parts.append("--max-size " + " ".join(map(str, a["max_size"])))
     elif a.get("size"):
@@ -310,6 +311,25 @@ def _check_command(doc: dict) -> str:
         if a.get(opt) is not None:
             parts.append(f"--{opt} {a[opt]}")
     return " ".join(parts)
+
+
+OPEN_UP_TO = 8  # the page names the sizes up to this many interior cells that no report decides
+
+
+def _open_sizes(by_size: dict) -> list:
+    """The sizes of at most :data:`OPEN_UP_TO` interior cells, below the smallest refuted one,
+    that no report decides (proved or refuted)."""
+    decided = {s for s, (r, _) in by_size.items() if r["status"] in ("proved", "refuted")}
+    refuted = [(s[0] - 2) * (s[1] - 2) for s, (r, _) in by_size.items() if r["status"] == "refuted"]
+    most = min([OPEN_UP_TO] + [c - 1 for c in refuted])
+    sizes = [(w, h) for w in range(3, most + 3) for h in range(3, most + 3) if (w - 2) * (h - 2) <= most]
+    return [s for s in _sorted_sizes(dict.fromkeys(sizes)) if s not in decided]
+
+
+def _certificate(certs: Optional[Path], s) -> str:
+    """The size's committed certificate, as a link from docs/, or a dash."""
+    name = f"check-{s[0]}x{s[1]}.cert.json.gz"
+    return f"[{name}](reports/certificates/{name})" if certs is not None and (certs / name).is_file() else "-"
 
 
 def _merge_checks(checks: list) -> tuple[dict, dict, dict]:
@@ -425,14 +445,21 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
         if not by_size:
             out += ["*Bounded sizes:* not run (no report).", ""]
             continue
-        out += ["| size | interior cells | verdict | cases | control paths | solver queries | time (the size, every property) | report |",
-                "|---|---|---|---|---|---|---|---|"]
+        certs = images.parent / "reports" / "certificates" if images is not None else None
+        out += ["| size | interior cells | verdict | cases | explored | control paths | solver queries | time (the size, every property) | report | certificate |",
+                "|---|---|---|---|---|---|---|---|---|---|"]
         for s in _sorted_sizes(by_size):
             r, label = by_size[s]
             out.append(f"| {_size(s)} | {r.get('interior_cells', (s[0] - 2) * (s[1] - 2))} | {r['status']} | "
-                       f"{r['enumerated'].get('cases', '?')} | {r['solved'].get('control_paths', '?')} | "
-                       f"{r['solved'].get('solver_queries', '?')} | {_fmt_seconds(r['seconds'])} | {label} |")
+                       f"{r['enumerated'].get('cases', '?')} | {r['enumerated'].get('explored', '-')} | "
+                       f"{r['solved'].get('control_paths', '?')} | "
+                       f"{r['solved'].get('solver_queries', '?')} | {_fmt_seconds(r['seconds'])} | {label} | "
+                       f"{_certificate(certs, s) if r['status'] == 'proved' else '-'} |")
         out.append("")
+        still = [] if ind and ind.get("status") == "proved" else _open_sizes(by_size)
+        if still:
+            out += [f"*Open sizes* (at most {OPEN_UP_TO} interior cells, below any counterexample, no report "
+                    "decides them): " + ", ".join(_size(s) for s in still) + ".", ""]
         out += [f"*Status:* fp32 **{check_status(n, by_size, induction)}**.", ""]
         refuted = [s for s in _sorted_sizes(by_size) if by_size[s][0]["status"] == "refuted"]
         if refuted:
