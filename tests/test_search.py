@@ -11,7 +11,7 @@ from navfn_smt.cli import main
 from navfn_smt.errors import NavfnInputError
 from navfn_smt.search import kinds as KD
 from navfn_smt.search.counterexamples import judge_kind, read_counterexample, replay, save_counterexample
-from navfn_smt.search.hunt import hunt, hunt_growing, parse_costs, shrink
+from navfn_smt.search.hunt import hunt, hunt_smallest, parse_costs, shrink
 from navfn_smt.spec.constants import COST_OBS
 
 
@@ -103,10 +103,11 @@ def test_shrink_drops_what_is_not_needed():
     assert (c2 == c).all() and (s, g) == ((1, 1), (4, 4))
 
 
-def test_growing_sizes_stop_at_the_first_size_found():
-    f, tried = hunt_growing("turn", "dijkstra", (6, 6), timeout=20, seed=0)
-    assert f is not None and tried[-1]["found"] and not any(t["found"] for t in tried[:-1])
-    assert tuple(tried[-1]["size"]) == f.found_size
+def test_smallest_hunt_reports_the_smallest_size_found():
+    f, tried = hunt_smallest("turn", "dijkstra", (6, 6), timeout=20, seed=0, max_evaluations=4000)
+    assert f is not None and f.interior <= min(t["interior"] for t in tried if t["found"])
+    assert tuple(f.found_size) in {tuple(t["size"]) for t in tried if t["found"]}
+    assert tried[0]["size"] == [6, 6]  # the largest interior first
 
 
 def test_save_and_replay(tmp_path):

@@ -43,6 +43,7 @@ def cmd_search(args) -> int:
                                  costs_range, progress=report.progress_line, eng=eng, variant=args.variant)
     rows = [report.finding_row(f, s) for f, s in zip(findings, save_findings(findings, args.out))]
     report.table(args.kind, rows, modes_of(args.mode))
+    report.sizes_table(args.kind, tried)
     if args.json:
         report.write_json(args.json, args.kind, vars_of(args), rows, tried)
     report.saved_note(args.out, rows)
@@ -62,10 +63,12 @@ def register(sub) -> None:
                     help=f"what to hunt: {', '.join(SEARCH_KINDS)}")
     sz = se.add_mutually_exclusive_group()
     sz.add_argument("--size", nargs=2, type=int, metavar=("W", "H"),
-                    help="map size, lethal border included (default: 5 7 for cost, else hunt on 8 8 and shrink)")
+                    help="map size, lethal border included (default: 5 7 for cost, --max-size 9 9 for "
+                    "unreached, else hunt on 8 8 and shrink)")
     sz.add_argument("--max-size", nargs=2, type=int, metavar=("W", "H"),
-                    help="grow the size from 3x3 to W x H (smallest interior first); report the first size "
-                    "with a counterexample")
+                    help="hunt the smallest map up to W x H: one climb per size, largest interior first, "
+                    "resumed in rounds of doubling budgets, sizes not below the smallest counterexample "
+                    "dropped (cost: every size alike, the largest gap reported, the best gap per size listed)")
     se.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
     se.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
     se.add_argument("--timeout", type=float, default=60.0, metavar="S", help="seconds for the whole search, split between modes")

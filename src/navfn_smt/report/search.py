@@ -19,8 +19,6 @@ def progress_line(line: str) -> None:
     print(line, file=sys.stderr, flush=True)
 
 
-
-
 def finding_row(f, saved: Optional[str] = None) -> dict:
     """One finding as a JSON row (works for the overflow search's finding-like results too)."""
     costs = field_of(f, "costs")
@@ -57,6 +55,27 @@ def table(kind: str, rows: list[dict], modes) -> None:
     missing = [m for m in modes if m not in {r["mode"] for r in rows}]
     for m in missing:
         console.print(f"{m}: no counterexample found within the budget")
+
+
+def sizes_table(kind: str, tried: list) -> None:
+    """Per mode, the sizes a ``--max-size`` hunt tried: each size with a counterexample (its
+    best score: for ``cost`` the best gap of that size), then a count of the others."""
+    if not tried:
+        return
+    t = Table(title=f"search {kind}: sizes hunted")
+    for c in ("mode", "size", "interior", "maps", "seconds", "best"):
+        t.add_column(c)
+    quiet = {}
+    for m in tried:
+        for r in m["sizes"]:
+            if r["found"]:
+                t.add_row(m["mode"], "x".join(map(str, r["size"])), str(r["interior"]), str(r["evaluations"]),
+                          f"{r['seconds']:.2f}", f"{r['best']:g}")
+            else:
+                quiet[m["mode"]] = quiet.get(m["mode"], 0) + 1
+    console.print(t)
+    for mode, n in quiet.items():
+        console.print(f"{mode}: {n} more size(s) hunted without a counterexample (--json lists every size)")
 
 
 def write_json(path, kind: str, args: dict, rows: list[dict], tried: list) -> None:

@@ -2,13 +2,20 @@
 
 Every candidate map is planned for all (or a seeded sample of) start/goal pairs of its
 interior cells by the JIT in one ``run_batch`` call and scored by the kind's screen
-(:mod:`.kinds`).  The climb keeps a mutated map when its best score is not worse (drifting
-on plateaus), and restarts from a fresh random map when it has not improved for a while.
-A kind that is not maximised stops at its first candidate; ``cost`` climbs until the time
-is up.  The best candidate is then shrunk (rows and columns dropped, start and goal moved
-with them, obstacles removed, costs lowered toward the cheapest) while the screen still
-shows it (``cost``: while the gap does not fall), and finally replayed on the reference
-spec, whose judge gives what is reported.  Nothing the spec does not confirm is reported.
+(:mod:`.kinds`); a kind with a *guide* (``unreached``) is also given a graded score of the
+whole map, which the climb follows while the screen is still 0.  The climb keeps a mutated
+map when its score is not worse (drifting on plateaus), and restarts when it has not
+improved for a while: from a fresh random map, or (``cost``) every other time from a kick
+of the best map so far.  A kind that is not maximised stops at its first candidate; ``cost``
+climbs until the budget is spent.  The best candidate is then shrunk (rows and columns
+dropped, start and goal moved with them, obstacles removed, costs lowered toward the
+cheapest) while the screen still shows it (``cost``: while the gap does not fall), and
+finally replayed on the reference spec, whose judge gives what is reported.  Nothing the
+spec does not confirm is reported.
+
+:func:`hunt_smallest` looks for the smallest map up to a maximum size: one climb per size,
+resumed in rounds of doubling evaluation budgets, largest interior first, and every size at
+least as large as the smallest counterexample so far dropped.
 
 Seeded: for a given seed and number of evaluations the hunt is deterministic; the time
 budget only decides where it stops.
@@ -16,6 +23,7 @@ budget only decides where it stops.
 
 from __future__ import annotations
 
+import sys
 import time
 import zlib
 from dataclasses import dataclass, field
@@ -31,6 +39,12 @@ from .kinds import KINDS, Batch, plan_batch
 DEFAULT_COSTS = (COST_NEUTRAL, COST_OBS - 1)  # what setCostmap produces for passable cells
 MAX_CASES = 256  # start/goal pairs planned per candidate map (all of them when fewer)
 HEARTBEAT = 5.0  # seconds between progress lines when nothing improves
+PATIENCE = 400  # evaluations without improvement before a climb restarts
+MAXIMISE_PATIENCE = 1500  # the same for a maximised kind: its climbs go deeper
+EXTREMES = 0.5  # a maximised kind's restarts: extra share of maps of the cheapest and dearest costs only
+FINE = 0.3  # a maximised kind's mutations: share of single small nudges (Climber.nudge)
+KICK = (2, 6)  # a restart from the best map mutates it this many times (at least, at most)
+FIRST_ROUND = 250  # evaluations per size in the first round of hunt_smallest (doubling per round)
 
 
 @dataclass
@@ -108,9 +122,13 @@ class _Climber:
         self.plans = 0
 
     def random_map(self) -> np.ndarray:
+        """A random interior: uniform costs, or (a third of the maps, and for a maximised kind
+        another EXTREMES of them) only the cheapest and dearest cost, with some lethal cells."""
         iw, ih = self.w - 2, self.h - 2
         inner = self.rng.integers(self.lo, self.hi + 1, (ih, iw))
         style = self.rng.integers(3)
+        if self.kind.maximise and self.rng.random() < EXTREMES:
+            style = 1
         if style == 1:  # mostly the extremes
             inner = np.where(self.rng.random((ih, iw)) < 0.5, self.lo, self.hi)
         lethal = self.rng.random((ih, iw)) < self.rng.choice((0.0, 0.1, 0.2, 0.3))
@@ -118,8 +136,13 @@ class _Climber:
         return _with_border(inner.astype(np.uint8))
 
     def mutate(self, costs: np.ndarray) -> np.ndarray:
+        """A mutant of ``costs`` (a copy): a few cells set to random costs or the extremes,
+        obstacles toggled, costs nudged, cells swapped; for a maximised kind, a share FINE of
+        the mutants is a single small nudge (:meth:`nudge`)."""
         c = costs.copy()
         rng = self.rng
+        if self.kind.maximise and rng.random() < FINE:
+            return self.nudge(c)
         for _ in range(int(rng.geometric(0.5)) + int(rng.random() < 0.3)):
             x, y = int(rng.integers(1, self.w - 1)), int(rng.integers(1, self.h - 1))
             op = rng.random()
@@ -140,19 +163,125 @@ class _Climber:
             c[y, x] = v
         return c
 
+    def nudge(self, c: np.ndarray) -> np.ndarray:
+        """One passable cell's cost moved by 1 to 3 (within the cost range): a maximised kind's
+        best maps sit where tiny changes of the float arithmetic decide (cost: how long the
+        path hovers around a corner of the goal before calcPath's float32 points repeat)."""
+        rng = self.rng
+        free = np.argwhere(c[1:-1, 1:-1] < COST_OBS)
+        if not len(free):
+            return c
+        y, x = free[int(rng.integers(len(free)))] + 1
+        c[y, x] = int(np.clip(int(c[y, x]) + int(rng.choice((-3, -2, -1, 1, 2, 3))), self.lo, self.hi))
+        return c
+
     def cases(self) -> np.ndarray:
         if len(self.pairs) <= MAX_CASES:
             return self.pairs
         return self.pairs[self.rng.choice(len(self.pairs), MAX_CASES, replace=False)]
 
-    def score(self, costs: np.ndarray) -> tuple[float, int, Batch]:
-        """The best screen score over the candidate's cases, and which case has it."""
+    def score(self, costs: np.ndarray) -> tuple[float, int, Batch, float]:
+        """The best screen score over the candidate's cases, which case has it, the batch, and
+        the kind's guide of the map (0 without a guide)."""
         b = plan_batch(costs, self.cases(), self.astar, variant=self.variant)
         s = self.kind.screen(b)
         self.evaluations += 1
         self.plans += len(b.cases)
         i = int(np.argmax(s)) if len(s) else 0
-        return (float(s[i]) if len(s) else 0.0), i, b
+        sc = float(s[i]) if len(s) else 0.0
+        guide = self.kind.guide(b) if self.kind.guide is not None else 0.0
+        return sc, i, b, guide
+
+
+Progress = Callable[[str], None]
+
+
+def _quiet(line: str) -> None:
+    """A progress callback that says nothing."""
+
+
+class _Climb:
+    """The climb on one size, resumable: :meth:`advance` evaluates maps until a total number of
+    evaluations, the deadline or (a kind that is not maximised) its first candidate."""
+
+    def __init__(self, kind: str, mode: str, size, costs_range, seed: int, variant: str, t0: float):
+        w, h = size
+        astar = mode == "astar"
+        rng = np.random.default_rng([seed, zlib.crc32(kind.encode()), int(astar), w, h])
+        self.spec = KINDS[kind]
+        self.cl = _Climber(kind, astar, (w, h), costs_range, rng, variant)
+        self.size, self.t0 = (w, h), t0
+        self.tag = f"search {kind} {mode} {w}x{h}"
+        self.patience = MAXIMISE_PATIENCE if self.spec.maximise else PATIENCE
+        self.cur, self.cur_v, self.stale = None, (0.0, 0.0), 0
+        self.kicks = 0  # restarts so far (cost: every other one starts from the best map)
+        self.best = None  # (score, costs, start, goal, seconds, evaluations, plans)
+        self.history: list = []  # (seconds, score) at every improvement
+        self.closest = 0.0  # the highest guide seen
+        self.seconds = 0.0  # time spent in this climb
+
+    @property
+    def evaluations(self) -> int:
+        return self.cl.evaluations
+
+    @property
+    def done(self) -> bool:
+        """A kind that is not maximised is done at its first candidate."""
+        return self.best is not None and not self.spec.maximise and self.best[0] >= self.spec.target
+
+    def restart_map(self) -> np.ndarray:
+        """A fresh random map; for a maximised kind every other restart kicks the best map
+        instead (a few mutations of it), to climb again from near the best basin found."""
+        self.kicks += 1
+        if self.spec.maximise and self.best is not None and self.kicks % 2 == 0:
+            c = self.best[1]
+            for _ in range(int(self.cl.rng.integers(KICK[0], KICK[1] + 1))):
+                c = self.cl.mutate(c)
+            return c
+        return self.cl.random_map()
+
+    def step(self) -> bool:
+        """Evaluate one map: a restart map first and after ``patience`` evaluations without
+        improvement, else a mutant of the current map, kept when (screen, guide) is not worse.
+        True when it raised the best screen score."""
+        fresh = self.cur is None or self.stale > self.patience
+        cand = self.restart_map() if fresh else self.cl.mutate(self.cur)
+        sc, i, b, guide = self.cl.score(cand)
+        v = (sc, guide)
+        if fresh:
+            self.stale = 0
+        if fresh or v >= self.cur_v:
+            if not fresh and v > self.cur_v:
+                self.stale = 0
+            self.cur, self.cur_v = cand, v
+        self.stale += 1
+        self.closest = max(self.closest, float(guide))
+        if sc > 0 and (self.best is None or sc > self.best[0]):
+            t = time.perf_counter() - self.t0
+            sx, sy, gx, gy = (int(n) for n in b.cases[i])
+            self.best = (sc, cand, (sx, sy), (gx, gy), t, self.evaluations, self.cl.plans)
+            self.history.append((round(t, 3), sc))
+            return True
+        return False
+
+    def advance(self, until: int, deadline: float, say: Progress) -> None:
+        """Evaluate maps until ``until`` evaluations in all, the deadline, or :attr:`done`;
+        a progress line at every improvement and a heartbeat every HEARTBEAT seconds."""
+        began = last = time.perf_counter()
+        while self.evaluations < until and not self.done:
+            now = time.perf_counter()
+            if now > deadline:
+                break
+            if self.step():
+                say(f"[{self.tag}] {now - self.t0:6.1f}s {self.evaluations} maps {self.cl.plans} plans: "
+                    f"score {self.best[0]:g}")
+                last = time.perf_counter()
+            elif now - last > HEARTBEAT:
+                guide = f" (guide {self.closest:.3f})" if self.spec.guide is not None and self.best is None else ""
+                say(f"[{self.tag}] {now - self.t0:6.1f}s {self.evaluations} maps {self.cl.plans} plans: "
+                    f"best {self.best[0] if self.best else 0:g}{guide}")
+                last = now
+        self.seconds += time.perf_counter() - began
 
 
 def screen_one(kind: str, costs: np.ndarray, start, goal, astar: bool, variant: str = "original") -> float:
@@ -235,7 +364,29 @@ def shrink(kind: str, costs: np.ndarray, start, goal, astar: bool, keep_size: bo
     return c, s, g
 
 
-Progress = Callable[[str], None]
+def _check_kind(kind: str) -> None:
+    if kind not in KINDS:
+        raise NavfnInputError(f"unknown search kind {kind!r} (choose from {', '.join(KINDS)})")
+
+
+def _confirm(climb: _Climb, kind: str, mode: str, seed: int, costs_range, shrink_result: bool, keep_size: bool,
+             shrink_seconds: float, variant: str, say: Progress) -> Optional[Finding]:
+    """The climb's best candidate, shrunk (``shrink_result``) and replayed on the reference spec:
+    a :class:`Finding` when the kind's judge confirms it, else None."""
+    if climb.best is None:
+        return None
+    sc, costs, start, goal, t, ev, pl = climb.best
+    astar = mode == "astar"
+    if shrink_result:
+        costs, start, goal = shrink(kind, costs, start, goal, astar, keep_size=keep_size, costs_range=costs_range,
+                                    deadline=time.perf_counter() + shrink_seconds, variant=variant)
+    r = P.run(costs, start, goal, astar, variant=variant)
+    detail = KINDS[kind].judge(r)
+    if detail is None:
+        say(f"[{climb.tag}] the reference spec does not confirm the candidate; nothing reported")
+        return None
+    return Finding(kind, mode, costs, start, goal, detail, sc, t, ev, pl, climb.size, seed, list(climb.history),
+                   variant)
 
 
 def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=DEFAULT_COSTS,
@@ -245,101 +396,95 @@ def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=
     planner ``variant``: ``fixed`` hunts the planner with the fix).
 
     Returns the best counterexample found, shrunk and confirmed on the spec, or ``None``."""
-    if kind not in KINDS:
-        raise NavfnInputError(f"unknown search kind {kind!r} (choose from {', '.join(KINDS)})")
+    _check_kind(kind)
     w, h = size
     check_size(w, h)
-    astar = mode == "astar"
-    spec = KINDS[kind]
-    rng = np.random.default_rng([seed, zlib.crc32(kind.encode()), int(astar), w, h])
-    cl = _Climber(kind, astar, (w, h), costs_range, rng, variant)
     t0 = time.perf_counter()
-    deadline = t0 + timeout
-    say = progress or (lambda line: None)
-    tag = f"search {kind} {mode} {w}x{h}"
-    best = None  # (score, costs, start, goal, seconds, evaluations, plans)
-    history: list = []
-    last_say = t0
-    patience = 400
-    cur, (cur_s, _, _) = None, (0.0, 0, None)
-    stale = 0
-    while True:
-        now = time.perf_counter()
-        if now > deadline or (max_evaluations is not None and cl.evaluations >= max_evaluations):
-            break
-        if cur is None or stale > patience:
-            cand = cl.random_map()
-            stale = 0
-            fresh = True
-        else:
-            cand = cl.mutate(cur)
-            fresh = False
-        sc, i, b = cl.score(cand)
-        if fresh or sc >= cur_s:
-            if not fresh and sc > cur_s:
-                stale = 0
-            cur, cur_s = cand, sc
-        stale += 1
-        if sc > 0 and (best is None or sc > best[0]):
-            t = time.perf_counter() - t0
-            case = b.cases[i]
-            best = (sc, cand, (int(case[0]), int(case[1])), (int(case[2]), int(case[3])), t, cl.evaluations, cl.plans)
-            history.append((round(t, 3), sc))
-            say(f"[{tag}] {t:6.1f}s {cl.evaluations} maps {cl.plans} plans: score {sc:g}")
-            last_say = time.perf_counter()
-            if not spec.maximise and sc >= spec.target:
-                break
-        elif time.perf_counter() - last_say > HEARTBEAT:
-            say(f"[{tag}] {time.perf_counter() - t0:6.1f}s {cl.evaluations} maps {cl.plans} plans: "
-                f"best {best[0] if best else 0:g}")
-            last_say = time.perf_counter()
-    if best is None:
-        return None
-    sc, costs, start, goal, t, ev, pl = best
-    if shrink_result:
-        costs, start, goal = shrink(kind, costs, start, goal, astar, keep_size=spec.maximise,
-                                    costs_range=costs_range, deadline=time.perf_counter() + max(5.0, timeout / 4),
-                                    variant=variant)
-    r = P.run(costs, start, goal, astar, variant=variant)
-    detail = spec.judge(r)
-    if detail is None:
-        say(f"[{tag}] the reference spec does not confirm the candidate; nothing reported")
-        return None
-    return Finding(kind, mode, costs, start, goal, detail, sc, t, ev, pl, (w, h), seed, history, variant)
+    climb = _Climb(kind, mode, (w, h), costs_range, seed, variant, t0)
+    say = progress or _quiet
+    climb.advance(sys.maxsize if max_evaluations is None else max_evaluations, t0 + timeout, say)
+    return _confirm(climb, kind, mode, seed, costs_range, shrink_result, KINDS[kind].maximise,
+                    max(5.0, timeout / 4), variant, say)
+
+
+def interior(size) -> int:
+    """Interior cells of a size (W, H) with its lethal border."""
+    return max(size[0] - 2, 0) * max(size[1] - 2, 0)
 
 
 def sizes_upto(max_size) -> list[tuple[int, int]]:
     """Every size up to ``max_size`` with at least two interior cells (a start and a goal),
     smallest interior first (then width, height)."""
     mw, mh = max_size
-    out = [(w, h) for w in range(3, mw + 1) for h in range(3, mh + 1) if (w - 2) * (h - 2) >= 2]
-    return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), s[0], s[1]))
+    out = [(w, h) for w in range(3, mw + 1) for h in range(3, mh + 1) if interior((w, h)) >= 2]
+    return sorted(out, key=lambda s: (interior(s), s[0], s[1]))
 
 
-def hunt_growing(kind: str, mode: str, max_size, timeout: float, seed: int = 0, costs_range=DEFAULT_COSTS,
-                 progress: Optional[Progress] = None, variant: str = "original") -> tuple[Optional[Finding], list[dict]]:
-    """Hunt on growing sizes (smallest interior first) up to ``max_size``; the first size with a
-    counterexample ends it.  Returns the finding and what each size tried."""
+def _share(size, live: list, maximise: bool) -> float:
+    """A size's share of a round's budget: 1 for a maximised kind (every size hunted alike);
+    else its interior over the largest live interior, squared: smaller maps, less likely to
+    hold the kind, get less, so that the rounds reach the sizes just below the smallest
+    counterexample sooner.  (Weighting by the climbs' guides was tried and starved the sizes
+    that hold counterexamples in favour of near misses that never become one.)"""
+    if maximise:
+        return 1.0
+    return (interior(size) / max(interior(s) for s in live)) ** 2
+
+
+def hunt_smallest(kind: str, mode: str, max_size, timeout: float, seed: int = 0, costs_range=DEFAULT_COSTS,
+                  progress: Optional[Progress] = None, variant: str = "original",
+                  max_evaluations: Optional[int] = None) -> tuple[Optional[Finding], list[dict]]:
+    """The smallest counterexample on sizes up to ``max_size`` (a maximised kind: the largest
+    score over those sizes), and what each size tried.
+
+    One climb per size, resumed in rounds: in round ``r`` every live size, largest interior
+    first, climbs until it has evaluated ``FIRST_ROUND * 2**r`` maps times its
+    :func:`_share`.  A counterexample is shrunk and confirmed on the spec at once; every size
+    whose interior is not smaller is then dropped.  The hunt ends when no size is left, the
+    time is up or ``max_evaluations`` maps were evaluated in all.  Budgets are counted in
+    evaluations, so a seed and ``max_evaluations`` give the same hunt on any machine."""
+    _check_kind(kind)
     check_size(*max_size, what="--max-size")
-    sizes = sizes_upto(max_size)
+    spec = KINDS[kind]
+    say = progress or _quiet
     t0 = time.perf_counter()
-    tried = []
-    for n, sz in enumerate(sizes):
-        left = timeout - (time.perf_counter() - t0)
-        if left <= 0:
+    deadline = t0 + timeout
+    total = sys.maxsize if max_evaluations is None else max_evaluations
+    climbs: dict = {}
+    best: Optional[Finding] = None
+    budget = FIRST_ROUND
+    order = sorted(sizes_upto(max_size), key=lambda s: (-interior(s), s[0], s[1]))
+
+    def live() -> list:
+        return [s for s in order if spec.maximise or best is None or interior(s) < best.interior]
+
+    def spent() -> int:
+        return sum(c.evaluations for c in climbs.values())
+
+    while live() and time.perf_counter() < deadline and spent() < total:
+        before = spent()
+        for sz in live():
+            if sz not in live() or time.perf_counter() > deadline or spent() >= total:
+                continue
+            c = climbs.get(sz) or climbs.setdefault(sz, _Climb(kind, mode, sz, costs_range, seed, variant, t0))
+            if c.done:
+                continue
+            until = max(1, int(budget * _share(sz, live(), spec.maximise)))
+            c.advance(min(until, c.evaluations + total - spent()), deadline, say)
+            if c.done:
+                f = _confirm(c, kind, mode, seed, costs_range, True, False, 5.0, variant, say)
+                if f is not None and (best is None or f.interior < best.interior):
+                    best = f
+        if spent() == before:  # every live size is done (its candidate not confirmed)
             break
-        share = left / (len(sizes) - n)
-        ts = time.perf_counter()
-        f = hunt(kind, mode, sz, share, seed, costs_range, progress, shrink_result=False, variant=variant)
-        tried.append({"size": list(sz), "seconds": round(time.perf_counter() - ts, 3), "found": f is not None})
-        if f is not None:
-            if KINDS[kind].maximise:
-                return f, tried
-            c, s, g = shrink(kind, f.costs, f.start, f.goal, f.astar, keep_size=True, costs_range=costs_range,
-                             variant=variant)
-            r = P.run(c, s, g, f.astar, variant=variant)
-            d = KINDS[kind].judge(r)
-            if d is not None:
-                f.costs, f.start, f.goal, f.detail = c, s, g, d
-            return f, tried
-    return None, tried
+        budget *= 2
+    if spec.maximise:
+        top = max((c for c in climbs.values() if c.best is not None), key=lambda c: c.best[0], default=None)
+        if top is not None:
+            best = _confirm(top, kind, mode, seed, costs_range, True, True, max(5.0, timeout / 4), variant, say)
+    tried = [{"size": list(sz), "interior": interior(sz), "evaluations": c.evaluations,
+              "seconds": round(c.seconds, 3), "found": c.best is not None,
+              "best": c.best[0] if c.best is not None else None,
+              **({"guide": round(float(c.closest), 4)} if spec.guide is not None else {})}
+             for sz, c in climbs.items()]
+    return best, tried

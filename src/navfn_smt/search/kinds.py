@@ -22,12 +22,16 @@ from typing import Callable, Optional
 import numpy as np
 
 from ..check import properties as P
+from ..errors import NavfnInputError
+from ..inputs import check_inputs
 from ..maps.regions import reaches_all, regions
 from ..spec import extraction as _extraction
 from ..spec import kernels as _kernels
 from ..spec.constants import INT_MAX, INT_MIN, POT_HIGH
+from ..spec.costs import add_border
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour, exit_code
 from ..spec.planner import path_cycle_limit
+from ..spec.propagation import cycle_limit
 from . import fast
 
 _HIGH = np.float32(POT_HIGH)
@@ -71,8 +75,25 @@ def plan_batch(costs: np.ndarray, cases, astar: bool, backend: str = "jit", vari
     from ..backends import get_backend
 
     cases = np.asarray(cases, np.int64).reshape(-1, 4)
-    out = get_backend(backend, variant).prepare(costs).run_batch(cases, astar)
+    if backend == "jit" and variant == "original":
+        out = jit_batch(costs, cases, astar)
+    else:
+        out = get_backend(backend, variant).prepare(costs).run_batch(cases, astar)
     return Batch(np.asarray(costs, np.uint8), cases, astar, out)
+
+
+def jit_batch(costs: np.ndarray, cases: np.ndarray, astar: bool) -> dict:
+    """The JIT backend's ``run_batch`` (the same compiled ``run_cases`` with NavFn's budgets),
+    with the cases checked in one vectorised test instead of one Python call per case: the
+    hunt plans hundreds of cases a map, and the per-case check took half of its time."""
+    from ..backends.jit import JitPlanner, run_cases
+
+    arr = check_inputs(costs, (0, 0), (0, 0))
+    ny, nx = arr.shape
+    xs, ys = cases[:, 0::2], cases[:, 1::2]
+    if not ((xs >= 0) & (xs < nx) & (ys >= 0) & (ys < ny)).all():
+        raise NavfnInputError(f"a start or goal is off the {nx}x{ny} map")
+    return run_cases(JitPlanner(add_border(arr)), cases, astar, cycle_limit(nx, ny), path_cycle_limit(nx))
 
 
 # ---------------------------------------------------------------------------------------
@@ -222,6 +243,26 @@ def _screen_unreached(b: Batch) -> np.ndarray:
     return (~b.finite() & b.connected()).astype(np.float64)
 
 
+def _guide_unreached(b: Batch) -> float:
+    """How close the map comes to an unreached start: among the connected cases whose start
+    was reached, the most cycles propagation needed to reach it, plus the fraction of cases
+    that needed that many (a tie-break below one cycle), over the cycle limit; about 1 when a
+    start is reached only in the last cycle.
+
+    The screen alone is 0 on every map until the first counterexample, which leaves the climb
+    nothing to follow; a start reached only in the last cycles is one delay away from staying
+    unreached (the delays come from cells waiting in the overflow buffer, and from cells whose
+    pending flag blocks a cheaper push, so that the wave passes a corridor twice)."""
+    cycles = np.where(b.connected() & b.finite(), b.out["cycles"], 0)
+    if not len(cycles):
+        return 0.0
+    ny, nx = b.costs.shape
+    limit = cycle_limit(nx, ny)
+    most = int(cycles.max())
+    share = np.count_nonzero(cycles == most) / (len(cycles) + 1)
+    return (most + share) / limit
+
+
 def _screen_turn(b: Batch) -> np.ndarray:
     return fast.turns(b.out["path"], b.out["path_offsets"])[0].astype(np.float64)
 
@@ -247,6 +288,9 @@ class Kind:
     screen: Callable[[Batch], np.ndarray]
     maximise: bool = False  # the hunt keeps improving the score until the time is up
     target: float = 1.0  # without maximise, a screen score at least this ends the hunt
+    # a graded score of a whole map below the target (higher: closer), which the climb follows
+    # while the screen is still 0; None: the screen alone
+    guide: Optional[Callable[[Batch], float]] = None
 
 
 KINDS = {k.name: k for k in (
@@ -260,7 +304,7 @@ KINDS = {k.name: k for k in (
          _judge_incomplete, _screen_incomplete),
     Kind("unreached", "the start is 4-connected to the goal through passable cells (properties.connected) but "
          "its potential is still unreached (1e10) when propagation stops (properties 'start-reached')",
-         _judge_unreached, _screen_unreached),
+         _judge_unreached, _screen_unreached, guide=_guide_unreached),
     Kind("turn", "the returned path turns back by more than 90 degrees: for some point k (1 <= k <= M-2, "
          "goal point included) (p[k]-p[k-1]) . (p[k+1]-p[k]) < 0, in binary64 from the float32 points",
          _judge_turn, _screen_turn),

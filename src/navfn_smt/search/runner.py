@@ -1,4 +1,4 @@
-"""``navfn-smt search KIND``: one hunt per mode, at one size or growing up to a maximum.
+"""``navfn-smt search KIND``: one hunt per mode, at one size or for the smallest map up to a maximum.
 
 The kind ``overflow`` is hunted by :mod:`navfn_smt.search.overflow` (imported only when
 asked for); every other kind by :mod:`.hunt`.  Each mode's hunt is one task of the
@@ -13,10 +13,11 @@ from typing import Optional
 from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from ..maps.suite import modes_of
-from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_growing
+from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_smallest
 from .kinds import KINDS, SEARCH_KINDS
 
 DEFAULT_SIZE = {"cost": (5, 7)}
+DEFAULT_MAX_SIZE = {"unreached": (9, 9)}  # hunted for the smallest map up to this size
 DEFAULT_HUNT_SIZE = (8, 8)  # the other kinds: hunted here, then shrunk
 PARALLEL_SHARE = 10.0  # --jobs auto: modes side by side when each has this many seconds (workers start in ~3 s)
 
@@ -41,8 +42,10 @@ def _hunt_mode(task) -> tuple[list, Optional[dict]]:
     kind, m, size, max_size, share, seed, costs_range, progress, variant = task
     if kind == "overflow":
         return _overflow(m, size, max_size, share, seed, progress), None
+    if size is None and max_size is None:
+        max_size = DEFAULT_MAX_SIZE.get(kind)
     if max_size is not None:
-        f, t = hunt_growing(kind, m, max_size, share, seed, costs_range, progress, variant)
+        f, t = hunt_smallest(kind, m, max_size, share, seed, costs_range, progress, variant)
         return [f] if f is not None else [], {"mode": m, "sizes": t}
     f = hunt(kind, m, tuple(size or DEFAULT_SIZE.get(kind, DEFAULT_HUNT_SIZE)), share, seed, costs_range, progress,
              variant=variant)
@@ -79,4 +82,7 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
 
 
 def default_size(kind: str) -> Optional[tuple[int, int]]:
-    return DEFAULT_SIZE.get(kind, DEFAULT_HUNT_SIZE) if kind in KINDS else None
+    """The size a kind is hunted at without ``--size`` (None: hunted for the smallest map, or not a hunt kind)."""
+    if kind not in KINDS or kind in DEFAULT_MAX_SIZE:
+        return None
+    return DEFAULT_SIZE.get(kind, DEFAULT_HUNT_SIZE)

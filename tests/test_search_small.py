@@ -1,0 +1,133 @@
+"""The smallest-map hunt (``--max-size``, the default of ``search unreached``), the guide it
+climbs on, and the batch planning the hunt uses.  Budgets are counted in evaluations, never
+in seconds, so every verdict here is the same on a loaded machine."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from navfn_smt.backends import get_backend
+from navfn_smt.check import properties as P
+from navfn_smt.cli import main
+from navfn_smt.search import kinds as KD
+from navfn_smt.search.hunt import _Climb, hunt, hunt_smallest, interior, sizes_upto
+from navfn_smt.spec.constants import COST_OBS, POT_HIGH
+from navfn_smt.spec.planner import plan
+from navfn_smt.spec.propagation import cycle_limit
+
+
+def _random_map(rng, w, h, lethal=0.2):
+    c = rng.integers(50, 254, (h, w)).astype(np.uint8)
+    c[rng.random((h, w)) < lethal] = COST_OBS
+    c[0, :] = c[-1, :] = c[:, 0] = c[:, -1] = COST_OBS
+    return c
+
+
+def test_jit_batch_equals_the_backends_run_batch():
+    """The hunt's batch planning (one vectorised check of the cases) plans exactly what the JIT
+    backend's run_batch plans, column for column."""
+    rng = np.random.default_rng(5)
+    for _ in range(6):
+        w, h = (int(v) for v in rng.integers(3, 9, 2))
+        c = _random_map(rng, w, h)
+        cases = np.array([(rng.integers(w), rng.integers(h), rng.integers(w), rng.integers(h)) for _ in range(30)])
+        for astar in (True, False):
+            a = KD.jit_batch(c, cases, astar)
+            b = get_backend("jit").prepare(c).run_batch(cases, astar)
+            assert a.keys() == b.keys()
+            for k in a:
+                assert np.array_equal(a[k], b[k]), k
+    with pytest.raises(Exception):
+        KD.jit_batch(c, np.array([[0, 0, w, 0]]), True)
+
+
+@pytest.mark.parametrize("astar", [True, False])
+def test_unreached_guide_counts_the_specs_cycles(astar):
+    """The guide is the most cycles a connected, reached start needed (the spec's count), plus
+    the share of cases needing that many, over the cycle limit."""
+    rng = np.random.default_rng(11)
+    for _ in range(3):
+        c = _random_map(rng, 5, 7, lethal=0.25)
+        cells = [(x, y) for y in range(1, 6) for x in range(1, 4)]
+        cases = np.array([(*s, *g) for s in cells for g in cells if s != g])[::4]
+        b = KD.plan_batch(c, cases, astar)
+        cycles = []
+        for sx, sy, gx, gy in cases.tolist():
+            r = plan(c, (sx, sy), (gx, gy), astar, record_trace=False)
+            reached = r.start_potential < np.float32(POT_HIGH)
+            cycles.append(r.cycles if reached and P.connected(c, (sx, sy), (gx, gy)) else 0)
+        most = max(cycles)
+        share = cycles.count(most) / (len(cycles) + 1)
+        assert KD.KINDS["unreached"].guide(b) == pytest.approx((most + share) / cycle_limit(5, 7))
+
+
+def test_the_guide_lets_the_climb_find_what_the_screen_alone_does_not():
+    """On 5x7 maps the climb on the guide finds an unreached start; with the screen alone (0 on
+    every map until the first counterexample) the same budget finds none."""
+    guided = _Climb("unreached", "dijkstra", (5, 7), (50, 253), 0, "original", 0.0)
+    guided.advance(6000, math.inf, lambda line: None)
+    assert guided.best is not None and guided.evaluations <= 6000
+    blind = _Climb("unreached", "dijkstra", (5, 7), (50, 253), 0, "original", 0.0)
+    blind.cl.kind = KD.Kind(**{**KD.KINDS["unreached"].__dict__, "guide": None})
+    blind.advance(6000, math.inf, lambda line: None)
+    assert blind.best is None
+
+
+@pytest.mark.parametrize("mode, evaluations", [("astar", 50000), ("dijkstra", 20000)])
+def test_unreached_under_16_interior_cells(mode, evaluations):
+    """The default hunt of ``search unreached`` (sizes up to 9x9) finds, for a fixed seed and
+    number of evaluations, a map of fewer than 16 interior cells whose start is connected to
+    the goal and unreached, as the reference spec replays it."""
+    f, tried = hunt_smallest("unreached", mode, (9, 9), math.inf, seed=0, max_evaluations=evaluations)
+    assert f is not None and f.interior < 16, (f and f.size, tried)
+    assert sum(t["evaluations"] for t in tried) <= evaluations
+    r = P.run(f.costs, f.start, f.goal, mode == "astar")
+    assert P.connected(f.costs, f.start, f.goal) and r.start_potential == np.float32(POT_HIGH)
+    assert KD.KINDS["unreached"].judge(r) is not None
+    # the sizes at least as large as the one reported were dropped once it was found
+    assert not any(t["found"] and t["interior"] < f.interior for t in tried)
+
+
+def test_smallest_hunt_is_deterministic_and_reports_every_size():
+    a, ta = hunt_smallest("turn", "dijkstra", (6, 6), math.inf, seed=0, max_evaluations=3000)
+    b, tb = hunt_smallest("turn", "dijkstra", (6, 6), math.inf, seed=0, max_evaluations=3000)
+    assert a is not None and (a.costs == b.costs).all() and (a.start, a.goal) == (b.start, b.goal)
+    assert [t["evaluations"] for t in ta] == [t["evaluations"] for t in tb]
+    assert {tuple(t["size"]) for t in ta} <= set(sizes_upto((6, 6)))
+    assert KD.KINDS["turn"].judge(P.run(a.costs, a.start, a.goal, False)) is not None
+
+
+def test_smallest_hunt_of_cost_gives_the_best_gap_per_size():
+    """A maximised kind hunts every size alike; the finding has the largest gap, and every
+    size tried reports its own best gap."""
+    f, tried = hunt_smallest("cost", "astar", (5, 5), math.inf, seed=0, max_evaluations=2400)
+    best = {tuple(t["size"]): t["best"] for t in tried}
+    assert len(best) == len(sizes_upto((5, 5)))
+    assert f is not None and f.score == max(v for v in best.values() if v is not None)
+    assert P.cost_gap(P.run(f.costs, f.start, f.goal, True)) == f.detail["gap"] >= f.score
+
+
+def test_cost_climb_keeps_its_best_through_restarts():
+    """Restarts (fresh maps, or kicks of the best map) never lose the best gap: the history
+    only rises, and the reported gap is the last of it."""
+    f = hunt("cost", "dijkstra", (5, 7), math.inf, seed=2, max_evaluations=4000, shrink_result=False)
+    scores = [s for _, s in f.history]
+    assert scores == sorted(scores) and len(set(scores)) == len(scores) and scores[-1] == f.score
+
+
+def test_interior_and_sizes():
+    assert interior((5, 7)) == 15 and interior((3, 3)) == 1
+    assert sizes_upto((4, 4))[0] == (3, 4) and all(interior(s) >= 2 for s in sizes_upto((6, 6)))
+
+
+def test_cli_unreached_defaults_to_the_smallest_map_hunt(tmp_path, capsys):
+    js = tmp_path / "u.json"
+    assert main(["search", "unreached", "--mode", "dijkstra", "--timeout", "8", "--json", str(js)]) == 0
+    doc = json.loads(js.read_text())
+    sizes = doc["sizes_tried"][0]
+    assert sizes["mode"] == "dijkstra" and sizes["sizes"][0]["size"] == [9, 9]
+    for row in doc["findings"]:
+        assert row["interior_cells"] <= min(t["interior"] for t in sizes["sizes"] if t["found"])
+    assert "sizes hunted" in capsys.readouterr().out
