@@ -104,8 +104,9 @@ def test_exhaustive_evaluation_equals_z3():
         asked.append((a, v))
         return B.solve_bitwuzla(a, v, t)
 
+    # every query through ``solve``: no incremental solver, no exhaustive evaluation first
     explore(Case(4, 4, frozenset({10}), (2, 1), (1, 2), True), CHECKABLE, 50, 253, FPDomain, timeout=30,
-            solve=recording)
+            solve=recording, incremental=False, exhaustive_limit=0)
     assert asked
     rng = np.random.default_rng(0)
     for a, v in asked:

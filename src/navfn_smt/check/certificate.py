@@ -128,7 +128,10 @@ def _all_unsat(box: list, unsat: dict, variables: dict, timeout: float) -> list:
     their disjunction (unsat exactly when each is); only when it is not, each on its own."""
     if not unsat:
         return []
-    either = z3.Or([z3.And(c) for c in unsat.values()])
+    def join(op, xs):  # SMT-LIB's and/or take two arguments or more
+        return xs[0] if len(xs) == 1 else op(xs)
+
+    either = join(z3.Or, [join(z3.And, c) for c in unsat.values()])
     if B.solve_bitwuzla(box + [either], variables, timeout)[0] == "unsat":
         return []
     got = [(what, B.solve_bitwuzla(box + c, variables, timeout)[0]) for what, c in unsat.items()]
