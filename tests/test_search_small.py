@@ -13,34 +13,46 @@ from navfn_smt.check import properties as P
 from navfn_smt.cli import main
 from navfn_smt.search import kinds as KD
 from navfn_smt.search.hunt import _Climb, hunt, hunt_smallest, interior, sizes_upto
-from navfn_smt.spec.constants import COST_OBS, POT_HIGH
+from navfn_smt.spec.constants import POT_HIGH
 from navfn_smt.spec.planner import plan
 from navfn_smt.spec.propagation import cycle_limit
+from test_search import _random_map
 
 
-def _random_map(rng, w, h, lethal=0.2):
-    c = rng.integers(50, 254, (h, w)).astype(np.uint8)
-    c[rng.random((h, w)) < lethal] = COST_OBS
-    c[0, :] = c[-1, :] = c[:, 0] = c[:, -1] = COST_OBS
-    return c
+def test_jit_run_batch_equals_its_run_case_by_case():
+    """The JIT's batch planning (the cells checked in one vectorised test, then one compiled call)
+    plans exactly what its ``run`` plans case by case, column for column, and refuses a case off
+    the map as ``run`` does."""
+    from navfn_smt.backends import _SCALARS, _row
+    from navfn_smt.backends.jit import EXIT_UB
+    from navfn_smt.errors import NavfnInputError
+    from navfn_smt.spec.extraction import ExtractionExit, UndefinedBehaviour
 
-
-def test_jit_batch_equals_the_backends_run_batch():
-    """The hunt's batch planning (one vectorised check of the cases) plans exactly what the JIT
-    backend's run_batch plans, column for column."""
     rng = np.random.default_rng(5)
+    checked = 0
     for _ in range(6):
         w, h = (int(v) for v in rng.integers(3, 9, 2))
         c = _random_map(rng, w, h)
         cases = np.array([(rng.integers(w), rng.integers(h), rng.integers(w), rng.integers(h)) for _ in range(30)])
+        planner = get_backend("jit").prepare(c)
         for astar in (True, False):
-            a = KD.jit_batch(c, cases, astar)
-            b = get_backend("jit").prepare(c).run_batch(cases, astar)
-            assert a.keys() == b.keys()
-            for k in a:
-                assert np.array_equal(a[k], b[k]), k
-    with pytest.raises(Exception):
-        KD.jit_batch(c, np.array([[0, 0, w, 0]]), True)
+            a = planner.run_batch(cases, astar)
+            for i, (sx, sy, gx, gy) in enumerate(cases.tolist()):
+                try:
+                    r = planner.run((sx, sy), (gx, gy), astar, trace=False)
+                except UndefinedBehaviour:  # run raises what the batch reports as an exit code
+                    assert a["exit"][i] == EXIT_UB
+                    continue
+                *scalars, path = _row(a, i)
+                want = [r.start_reached, r.start_potential, r.cycles, r.updates, r.dropped,
+                        list(ExtractionExit).index(r.exit)]
+                assert [np.asarray(v).tobytes() for v in scalars] == [
+                    np.asarray(v, a[k].dtype).tobytes() for v, k in zip(want, _SCALARS)], (sx, sy, gx, gy)
+                assert path.tobytes() == r.path.tobytes()
+                checked += 1
+    assert checked > 200
+    with pytest.raises(NavfnInputError, match=rf"goal \({w}, 0\) is off the {w}x{h} map"):
+        planner.run_batch(np.array([[0, 0, 0, 0], [0, 0, w, 0]]), True)
 
 
 @pytest.mark.parametrize("astar", [True, False])

@@ -229,7 +229,7 @@ class PathSolver:
     def __init__(self, box: list, pc: list, variables: dict, timeout: float):
         import bitwuzla as bw
 
-        self.bw, self.variables = bw, variables
+        self.bw = bw
         names = [z3.Bool(f"navfn_smt!flip{j}") for j in range(len(pc))]
         q = smtlib.prepare(box + [n == b for n, b in zip(names, pc)])
         opts = bw.Options()

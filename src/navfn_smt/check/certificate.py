@@ -96,7 +96,7 @@ def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: floa
         seeds.setdefault(bound, []).append(dict(zip(inner, seed)))
     for seed, bound, marks, flips in log:
         conc = dict(zip(inner, seed))
-        D, costs, sp, ex = B._symbolic_run(case, conc, lo, hi, lambda: _domain("fp32")(), variant)
+        D, costs, sp, ex = B._symbolic_run(case, conc, lo, hi, _domain("fp32"), variant)
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches

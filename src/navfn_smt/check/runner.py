@@ -97,12 +97,12 @@ def replay(case: Case, costs: dict, name: str, variant: str = "original"):
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
                    timeout: float = 60.0, jobs=1, start=None, goal=None, ends: str = "any",
                    exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None,
-                   variant: str = "original", reduce: bool = True, certificate: Optional[list] = None) -> dict:
+                   variant: str = "original", certificate: Optional[list] = None) -> dict:
     """Every case of the size; returns ``{property: SizeResult}``, the same wherever the cases
     run.  ``jobs``: an :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number
-    of cases), or a number of local workers.  ``reduce``: explore one representative per layout
-    of the goal's component and decide starts outside it without exploring
-    (:func:`~.bounded.reduce_cases`, by ReachedWithinComponent); off, every case is explored.
+    of cases), or a number of local workers.  One representative per layout of the goal's
+    component is explored, and a start outside it decided without exploring
+    (:func:`~.bounded.reduce_cases`, by ReachedWithinComponent).
     ``certificate``: a list that gets ``[case key, weight, path log]`` of every explored case,
     in order (:mod:`.certificate`)."""
     check_size(nx, ny)
@@ -115,8 +115,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         if cell is not None and not (1 <= cell[0] <= nx - 2 and 1 <= cell[1] <= ny - 2):
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
                                   f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
-    red = reduce_cases(cases(nx, ny, modes, start, goal, ends)) if reduce else _unreduced(
-        cases(nx, ny, modes, start, goal, ends))
+    red = reduce_cases(cases(nx, ny, modes, start, goal, ends))
     todo = list(red.representatives)
     out = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
                          cases_holding=red.outside) for n in names}
@@ -131,16 +130,6 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         if r.counterexample is None and r.cases_unknown:
             r.status = "unknown"
     return out
-
-
-def _unreduced(todo):
-    """Every enumerated case explored on its own (``reduce=False``: the reductions off)."""
-    from .bounded import Reduced
-
-    reps = {}
-    for case in todo:
-        reps[case] = reps.get(case, 0) + 1
-    return Reduced(sum(reps.values()), reps, 0)
 
 
 def _collect(batches, out: dict, total: int, progress, variant: str = "original", weight=None,

@@ -52,16 +52,10 @@ def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), variant: str = "or
           progress=None) -> Sweep:
     """Every map of ``nx`` x ``ny`` whose interior cells take a cost of ``costs`` or COST_OBS,
     every interior start and goal, each mode (``True``: A*)."""
-    from ..backends.jit import JitPlanner, run_cases
+    from ..backends import get_backend
     from ..maps.regions import reaches_all, regions
-    from ..spec.costs import add_border
-    from ..spec.planner import path_cycle_limit
-    from ..spec.propagation import cycle_limit
 
-    if variant != "original":
-        from ..backends import get_backend
-
-        planner = get_backend("jit", variant)
+    backend = get_backend("jit", variant)
     inner = [(x, y) for y in range(1, ny - 1) for x in range(1, nx - 1)]
     pairs = np.array([(sx, sy, gx, gy) for sx, sy in inner for gx, gy in inner], np.int64)
     out = Sweep((nx, ny), tuple(costs), variant)
@@ -74,10 +68,7 @@ def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), variant: str = "or
         out.maps += 1
         connected = reaches_all(regions(arr), pairs)
         for astar in modes:
-            if variant == "original":
-                got = run_cases(JitPlanner(add_border(arr)), pairs, astar, cycle_limit(nx, ny), path_cycle_limit(nx))
-            else:
-                got = planner.prepare(arr).run_batch(pairs, astar)
+            got = backend.prepare(arr).run_batch(pairs, astar)
             finite = got["start_potential"] < high
             returned = got["exit"] == _NEAR_GOAL
             bad = {n: failing(n, finite, returned, connected) for n in SWEPT}

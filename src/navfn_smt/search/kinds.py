@@ -22,13 +22,10 @@ from typing import Callable, Optional
 import numpy as np
 
 from ..check import properties as P
-from ..errors import NavfnInputError
-from ..inputs import check_inputs
 from ..maps.regions import reaches_all, regions
 from ..spec import extraction as _extraction
 from ..spec import kernels as _kernels
 from ..spec.constants import INT_MAX, INT_MIN, POT_HIGH
-from ..spec.costs import add_border
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour, exit_code
 from ..spec.planner import path_cycle_limit
 from ..spec.propagation import cycle_limit
@@ -75,25 +72,8 @@ def plan_batch(costs: np.ndarray, cases, astar: bool, backend: str = "jit", vari
     from ..backends import get_backend
 
     cases = np.asarray(cases, np.int64).reshape(-1, 4)
-    if backend == "jit" and variant == "original":
-        out = jit_batch(costs, cases, astar)
-    else:
-        out = get_backend(backend, variant).prepare(costs).run_batch(cases, astar)
+    out = get_backend(backend, variant).prepare(costs).run_batch(cases, astar)
     return Batch(np.asarray(costs, np.uint8), cases, astar, out)
-
-
-def jit_batch(costs: np.ndarray, cases: np.ndarray, astar: bool) -> dict:
-    """The JIT backend's ``run_batch`` (the same compiled ``run_cases`` with NavFn's budgets),
-    with the cases checked in one vectorised test instead of one Python call per case: the
-    hunt plans hundreds of cases a map, and the per-case check took half of its time."""
-    from ..backends.jit import JitPlanner, run_cases
-
-    arr = check_inputs(costs, (0, 0), (0, 0))
-    ny, nx = arr.shape
-    xs, ys = cases[:, 0::2], cases[:, 1::2]
-    if not ((xs >= 0) & (xs < nx) & (ys >= 0) & (ys < ny)).all():
-        raise NavfnInputError(f"a start or goal is off the {nx}x{ny} map")
-    return run_cases(JitPlanner(add_border(arr)), cases, astar, cycle_limit(nx, ny), path_cycle_limit(nx))
 
 
 # ---------------------------------------------------------------------------------------
