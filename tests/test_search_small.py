@@ -129,6 +129,23 @@ def test_cost_climb_keeps_its_best_through_restarts():
     assert scores == sorted(scores) and len(set(scores)) == len(scores) and scores[-1] == f.score
 
 
+def test_cost_climb_plans_mutants_on_its_focus_and_reports_the_score_of_every_pair():
+    """Mutants are planned on the FOCUS best pairs of the current map only (far fewer plans
+    than every pair each time), yet the best gap reported is that of the best map over every
+    pair: a score seen on the focus alone never becomes the best."""
+    from navfn_smt.search.hunt import FOCUS
+
+    c = _Climb("cost", "dijkstra", (5, 7), (50, 253), 4, "original", 0.0)
+    c.advance(3000, math.inf, lambda line: None)
+    pairs = len(c.cl.pairs)
+    assert FOCUS < pairs and c.cl.plans < c.evaluations * pairs / 2
+    score, costs, start, goal = c.best[:4]
+    b = KD.plan_batch(costs, c.cl.pairs, False)
+    gaps = KD.KINDS["cost"].screen(b)
+    assert gaps.max() == score
+    assert gaps[[tuple(r) for r in b.cases.tolist()].index((*start, *goal))] == score
+
+
 def test_interior_and_sizes():
     assert interior((5, 7)) == 15 and interior((3, 3)) == 1
     assert sizes_upto((4, 4))[0] == (3, 4) and all(interior(s) >= 2 for s in sizes_upto((6, 6)))
