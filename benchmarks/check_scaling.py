@@ -4,7 +4,8 @@
                                        [--serial] [--json FILE]
 
 For each number of workers a fresh Dask ``LocalCluster`` of that many single-threaded worker
-processes is started and ``check`` runs on it through ``--scheduler`` (the cluster's start-up
+processes is started (by the engine's own ``client``, as ``--jobs N`` starts it) and ``check``
+runs on it through its scheduler address, as with ``--scheduler`` (the cluster's start-up
 is not timed, the check's scheduling is); ``--serial`` adds the run in this process without
 Dask.  Each run must reach the same verdicts and the same counts (cases, representatives,
 control paths, queries): the engine changes where the cases run, never what they find.  The
@@ -15,7 +16,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import logging
 import sys
 import time
 
@@ -40,9 +40,7 @@ def main() -> int:
     ap.add_argument("--serial", action="store_true", help="also time the check in this process, without Dask")
     ap.add_argument("--json", help="write the rows here")
     a = ap.parse_args()
-    from distributed import LocalCluster
-
-    from navfn_smt.engine import Engine
+    from navfn_smt.engine import Engine, client
 
     rows = []
     if a.serial:
@@ -50,9 +48,8 @@ def main() -> int:
         rows.append({"engine": "this process", "workers": 1, "seconds": round(s, 1), "results": res})
         print(f"this process: {s:.1f} s", flush=True)
     for n in a.workers:
-        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                          silence_logs=logging.ERROR, memory_limit=0, host="127.0.0.1") as cluster:
-            s, res = run(a.size, a.properties, Engine(scheduler=cluster.scheduler_address))
+        with client(Engine(n)) as c:
+            s, res = run(a.size, a.properties, Engine(scheduler=c.scheduler.address))
         rows.append({"engine": "dask", "workers": n, "seconds": round(s, 1), "results": res})
         print(f"dask, {n} worker(s): {s:.1f} s", flush=True)
     base = next((r["seconds"] for r in rows if r["engine"] == "dask" and r["workers"] == 1), None)

@@ -7,8 +7,9 @@ whole map, which the climb follows while the screen is still 0.  The climb keeps
 map when its score is not worse (drifting on plateaus), and restarts when it has not
 improved for a while: from a fresh random map, or (``cost``) every other time from a kick
 of the best map so far.  ``cost`` plans its mutants on the current map's best 32 pairs only,
-and a mutant that beats it there on every pair again: about twice the maps in the same time.  A kind that is not maximised stops at its first candidate; ``cost``
-climbs until the budget is spent.  The best candidate is then shrunk (rows and columns
+and a mutant that beats it there on every pair again: about twice the maps in the same
+time.  A kind that is not maximised stops at its first candidate; ``cost`` climbs until the
+budget is spent.  The best candidate is then shrunk (rows and columns
 dropped, start and goal moved with them, obstacles removed, costs lowered toward the
 cheapest) while the screen still shows it (``cost``: while the gap does not fall), and
 finally replayed on the reference spec, whose judge gives what is reported.  Nothing the
@@ -253,17 +254,18 @@ class _Climb:
         cand = self.restart_map() if fresh else self.cl.mutate(self.cur)
         focus = self.focus if self.spec.maximise and not fresh else None
         sc, i, b, guide = self.cl.score(cand, focus)
+        every_pair = focus is None  # b holds every pair (or MAX_CASES of them), not the focus
         v = (sc, guide)
         if fresh:
             self.stale = 0
         if fresh or v >= self.cur_v:
             if not fresh and v > self.cur_v:
                 self.stale = 0
-                if focus is not None:
+                if not every_pair:
                     sc, i, b, guide = self.cl.score(cand)
-                    v, focus = (sc, guide), None
+                    v, every_pair = (sc, guide), True
             self.cur, self.cur_v = cand, v
-            if self.spec.maximise and focus is None:
+            if self.spec.maximise and every_pair:
                 self.focus = b.cases[np.argsort(-self.spec.screen(b), kind="stable")[:FOCUS]]
         self.stale += 1
         self.closest = max(self.closest, float(guide))
