@@ -310,6 +310,7 @@ def test_check_heartbeat_does_not_wait_for_a_case(capsys):
     (["check", "valid-path", "--budget", "-1"], "--budget -1"),
     (["check", "valid-path", "--timeout", "nan"], "--timeout nan"),
     (["bench", "--sweep", "40", "--sweep-astar-goals", "many"], "--sweep-astar-goals many"),
+    (["bench", "--climb", "0"], "--climb 0"),
     (["prove", "--timeout", "inf"], "--timeout inf"),
     (["search", "cost", "--timeout", "-1"], "--timeout -1"),
     (["mutate", "--timeout", "0"], "--timeout 0"),

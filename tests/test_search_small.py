@@ -146,6 +146,42 @@ def test_cost_climb_plans_mutants_on_its_focus_and_reports_the_score_of_every_pa
     assert gaps[[tuple(r) for r in b.cases.tolist()].index((*start, *goal))] == score
 
 
+@pytest.mark.parametrize("mode,seed,size", [("astar", 0, (5, 7)), ("dijkstra", 3, (5, 7)), ("astar", 1, (5, 5)),
+                                            ("dijkstra", 2, (7, 5))])
+def test_compiled_cost_steps_climb_as_the_python_step_map_for_map(mode, seed, size):
+    """The cost climb's compiled plateau steps (``search/steps.py``) and the Python step make
+    the same climb: the same draws, the same current map, stale count, evaluations, plans,
+    improvements and best map.  A compiled step that kept a different mutant, scored a gap
+    differently or drew one number more would part the two climbs within a few maps."""
+    a = _Climb("cost", mode, size, (50, 253), seed, "original", 0.0)
+    b = _Climb("cost", mode, size, (50, 253), seed, "original", 0.0, compiled=False)
+    assert a.compiled is not None and b.compiled is None
+    for until in (1, 2, 700, 4000, 9000):  # stops between chunks, at restarts and mid-plateau
+        a.advance(until, math.inf, lambda line: None)
+        b.advance(until, math.inf, lambda line: None)
+        assert (a.evaluations, a.cl.plans, a.stale, a.kicks) == (b.evaluations, b.cl.plans, b.stale, b.kicks)
+        assert np.array_equal(a.cur, b.cur) and a.cur_v == b.cur_v and np.array_equal(a.focus, b.focus)
+        assert [h[1] for h in a.history] == [h[1] for h in b.history]
+        assert (a.best is None) == (b.best is None)
+        if a.best is not None:
+            assert a.best[0] == b.best[0] and a.best[2:4] == b.best[2:4] and a.best[5:] == b.best[5:]
+            assert np.array_equal(a.best[1], b.best[1])
+    assert len(a.history) > 3  # the climb improved, so improving steps were compared too
+    assert a.cl.rng.random() == b.cl.rng.random()
+
+
+def test_bench_climb_times_both_kinds_of_step_on_the_same_climb(tmp_path, capsys):
+    """``bench --climb``: a row per mode and kind of step, each over the maps asked for, and the
+    two kinds of step ending with the same plans and best gap (the bench refuses otherwise)."""
+    js = tmp_path / "climb.json"
+    assert main(["bench", "--climb", "3000", "--mode", "dijkstra", "--json", str(js)]) == 0
+    rows = json.loads(js.read_text())["climb"]
+    assert [(r["mode"], r["steps"]) for r in rows] == [("dijkstra", "compiled"), ("dijkstra", "python")]
+    assert all(r["maps"] == 3000 and r["maps_per_second"] > 0 for r in rows)
+    assert rows[0]["plans"] == rows[1]["plans"] and rows[0]["best_gap"] == rows[1]["best_gap"] > 0
+    assert "the cost climb" in capsys.readouterr().out
+
+
 def test_interior_and_sizes():
     assert interior((5, 7)) == 15 and interior((3, 3)) == 1
     assert sizes_upto((4, 4))[0] == (3, 4) and all(interior(s) >= 2 for s in sizes_upto((6, 6)))

@@ -6,7 +6,10 @@
 * size mode (``--size N ...``): plans on generated NxN maps, an open one (cost 50) and
   a random-cost one (costs 50..253 from ``numpy.random.default_rng(12345)``), both with
   a lethal border, from start (5, 5) to goal (N-6, N-6), and reports seconds per plan
-  and the planner's working memory (its arrays; no trace is recorded when timing).
+  and the planner's working memory (its arrays; no trace is recorded when timing);
+* climb mode (``--climb [MAPS]``): the cost climb of ``search cost`` on 5x7 maps, MAPS maps
+  per mode with the compiled plateau steps and again with the Python step, from the same
+  seed: maps per second of each, and a check that both made the same climb.
 """
 
 from __future__ import annotations
@@ -228,4 +231,38 @@ def bench_sweep(n: int = SWEEP_SIZE, modes: str = "both", astar_goals=SWEEP_ASTA
                      "goals_per_second": round(len(r) / r.seconds, 1), "first_call_seconds": round(warm, 3),
                      "planned": counts["ok"] + counts["ok_tolerance"], "issue_4655": counts["legal_no_plan"],
                      "no_path": counts["no_legal"]})
+    return rows
+
+
+# ------------------------------------------------------------------------- the cost climb
+CLIMB_MAPS = 50_000
+CLIMB_SIZE = (5, 7)
+
+
+def bench_climb(maps: int = CLIMB_MAPS, modes: str = "both", seed: int = 0) -> list[dict]:
+    """Time ``maps`` evaluations of the cost climb per mode on CLIMB_SIZE maps, with the
+    compiled plateau steps (:mod:`.search.steps`) and with the Python step (one row each, the
+    first call's compilation excluded); refuses to report when the two climbs differ."""
+    import math
+
+    from .search.hunt import _Climb
+
+    if maps < 1:
+        raise NavfnInputError(f"--climb {maps}: at least one map")
+    rows = []
+    for md in modes_of(modes):
+        _Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0).advance(300, math.inf, lambda line: None)
+        ends = []
+        for compiled in (True, False):
+            c = _Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0, compiled=compiled)
+            t0 = time.perf_counter()
+            c.advance(maps, math.inf, lambda line: None)
+            sec = time.perf_counter() - t0
+            best = c.best[0] if c.best is not None else 0.0
+            ends.append((c.cl.plans, best, c.cur.tobytes()))
+            rows.append({"mode": md, "steps": "compiled" if compiled else "python", "maps": c.evaluations,
+                         "plans": c.cl.plans, "seconds": round(sec, 3), "maps_per_second": round(c.evaluations / sec),
+                         "best_gap": best})
+        if ends[0] != ends[1]:
+            raise RuntimeError(f"bench --climb, {md}: the compiled steps and the Python step made different climbs")
     return rows

@@ -1,4 +1,4 @@
-"""``navfn-smt bench``: timing of a suite, of generated maps, or of the whole-map sweep."""
+"""``navfn-smt bench``: timing of a suite, of generated maps, of the whole-map sweep or of the cost climb."""
 
 from __future__ import annotations
 
@@ -11,6 +11,17 @@ def cmd_bench(args) -> int:
     from ..bench import SEED, bench_sizes, bench_suite, check_sizes
     from ..report import bench as report
 
+    if args.climb is not None:  # the cost climb
+        from ..bench import bench_climb
+
+        if args.climb < 1:
+            raise NavfnInputError(f"--climb {args.climb}: at least one map")
+        check_files(args.json)
+        rows = bench_climb(args.climb, args.mode)
+        report.climb_table(rows)
+        if args.json:
+            report.write_climb_json(args.json, 0, rows)
+        return 0
     if args.sweep is not None:  # whole-map sweep benchmark
         from ..bench import bench_sweep
 
@@ -90,4 +101,7 @@ def register(sub) -> None:
                          "generated NxN rooms costmap (default 400)")
     be.add_argument("--sweep-astar-goals", default="2000", metavar="K|all",
                     help="goals sampled for the A* sweep (one propagation each; default 2000)")
+    be.add_argument("--climb", nargs="?", type=int, const=50_000, metavar="MAPS",
+                    help="instead, time the cost climb of search cost on 5x7 maps: MAPS maps per mode "
+                         "(default 50000) with the compiled steps and with the Python step")
     be.set_defaults(func=cmd_bench)

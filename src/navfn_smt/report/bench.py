@@ -114,3 +114,18 @@ def sweep_table(rows: list[dict]) -> None:
 def write_sweep_json(path, seed: int, rows: list[dict]) -> None:
     """Write a sweep benchmark (with its map's seed) as one JSON document."""
     atomic_write_text(path, json.dumps({"seed": seed, "sweep": rows}, indent=1))
+
+
+CLIMB_COLUMNS = ["mode", "steps", "maps", "plans", "seconds", "maps_per_second", "best_gap"]
+
+
+def climb_table(rows: list[dict]) -> None:
+    """Print maps per second of the cost climb per mode and kind of step."""
+    _table("bench: the cost climb on 5x7 maps (same seed, same climb)", rows, CLIMB_COLUMNS,
+           headers={"seconds": "time", "maps_per_second": "maps/s", "best_gap": "best gap"},
+           fmt={"seconds": duration, "best_gap": lambda g: f"{g:g}"})
+
+
+def write_climb_json(path, seed: int, rows: list[dict]) -> None:
+    """Write a climb benchmark (with its seed) as one JSON document."""
+    atomic_write_text(path, json.dumps({"seed": seed, "climb": rows}, indent=1))

@@ -36,6 +36,9 @@ import numpy as np
 from ..check import properties as P
 from ..errors import NavfnInputError
 from ..spec.constants import COST_NEUTRAL, COST_OBS
+from ..spec.planner import path_cycle_limit
+from ..spec.propagation import cycle_limit
+from . import steps
 from .kinds import KINDS, Batch, plan_batch
 
 DEFAULT_COSTS = (COST_NEUTRAL, COST_OBS - 1)  # what setCostmap produces for passable cells
@@ -44,9 +47,9 @@ HEARTBEAT = 5.0  # seconds between progress lines when nothing improves
 PATIENCE = 400  # evaluations without improvement before a climb restarts
 MAXIMISE_PATIENCE = 1500  # the same for a maximised kind: its climbs go deeper
 EXTREMES = 0.5  # a maximised kind's restarts: extra share of maps of the cheapest and dearest costs only
-FINE = 0.3  # a maximised kind's mutations: share of single small nudges (Climber.nudge)
 KICK = (2, 6)  # a restart from the best map mutates it this many times (at least, at most)
 FOCUS = 32  # a maximised kind's mutants are planned on the current map's best start/goal pairs only
+CHUNK = 256  # cost: compiled steps between two looks at the clock
 FIRST_ROUND = 250  # evaluations per size in the first round of hunt_smallest (doubling per round)
 
 
@@ -139,43 +142,9 @@ class _Climber:
         return _with_border(inner.astype(np.uint8))
 
     def mutate(self, costs: np.ndarray) -> np.ndarray:
-        """A mutant of ``costs`` (a copy): a few cells set to random costs or the extremes,
-        obstacles toggled, costs nudged, cells swapped; for a maximised kind, a share FINE of
-        the mutants is a single small nudge (:meth:`nudge`)."""
+        """A mutant of ``costs`` (a copy), by :func:`.steps.mutate`."""
         c = costs.copy()
-        rng = self.rng
-        if self.kind.maximise and rng.random() < FINE:
-            return self.nudge(c)
-        for _ in range(int(rng.geometric(0.5)) + int(rng.random() < 0.3)):
-            x, y = int(rng.integers(1, self.w - 1)), int(rng.integers(1, self.h - 1))
-            op = rng.random()
-            v = int(c[y, x])
-            if op < 0.35:
-                v = int(rng.integers(self.lo, self.hi + 1))
-            elif op < 0.55:
-                v = self.lo if rng.random() < 0.5 else self.hi
-            elif op < 0.7:
-                v = int(rng.integers(self.lo, self.hi + 1)) if v >= COST_OBS else COST_OBS
-            elif op < 0.9:
-                if v < COST_OBS:
-                    v = int(np.clip(v + rng.integers(-20, 21), self.lo, self.hi))
-            else:
-                x2, y2 = int(rng.integers(1, self.w - 1)), int(rng.integers(1, self.h - 1))
-                c[y, x], c[y2, x2] = c[y2, x2], c[y, x]
-                continue
-            c[y, x] = v
-        return c
-
-    def nudge(self, c: np.ndarray) -> np.ndarray:
-        """One passable cell's cost moved by 1 to 3 (within the cost range): a maximised kind's
-        best maps sit where tiny changes of the float arithmetic decide (cost: how long the
-        path hovers around a corner of the goal before calcPath's float32 points repeat)."""
-        rng = self.rng
-        free = np.argwhere(c[1:-1, 1:-1] < COST_OBS)
-        if not len(free):
-            return c
-        y, x = free[int(rng.integers(len(free)))] + 1
-        c[y, x] = int(np.clip(int(c[y, x]) + int(rng.choice((-3, -2, -1, 1, 2, 3))), self.lo, self.hi))
+        steps.mutate(self.rng, c, self.lo, self.hi, self.kind.maximise)
         return c
 
     def cases(self) -> np.ndarray:
@@ -207,7 +176,8 @@ class _Climb:
     """The climb on one size, resumable: :meth:`advance` evaluates maps until a total number of
     evaluations, the deadline or (a kind that is not maximised) its first candidate."""
 
-    def __init__(self, kind: str, mode: str, size, costs_range, seed: int, variant: str, t0: float):
+    def __init__(self, kind: str, mode: str, size, costs_range, seed: int, variant: str, t0: float,
+                 compiled: bool = True):
         w, h = size
         astar = mode == "astar"
         rng = np.random.default_rng([seed, zlib.crc32(kind.encode()), int(astar), w, h])
@@ -223,6 +193,8 @@ class _Climb:
         self.history: list = []  # (seconds, score) at every improvement
         self.closest = 0.0  # the highest guide seen
         self.seconds = 0.0  # time spent in this climb
+        self.compiled = (steps.FocusSteps(w, h, FOCUS, cycle_limit(w, h), path_cycle_limit(w))
+                         if compiled and kind == "cost" and variant == "original" else None)
 
     @property
     def evaluations(self) -> int:
@@ -254,7 +226,13 @@ class _Climb:
         cand = self.restart_map() if fresh else self.cl.mutate(self.cur)
         focus = self.focus if self.spec.maximise and not fresh else None
         sc, i, b, guide = self.cl.score(cand, focus)
-        every_pair = focus is None  # b holds every pair (or MAX_CASES of them), not the focus
+        return self._take(cand, fresh, focus is None, sc, i, b, guide)
+
+    def _take(self, cand: np.ndarray, fresh: bool, every_pair: bool, sc: float, i: int, b: Optional[Batch],
+              guide: float) -> bool:
+        """The rest of :meth:`step` once ``cand`` is scored (``every_pair``: ``b`` holds every
+        pair, or MAX_CASES of them, not the focus; ``b`` may be None for a focus mutant that
+        beats the current map, which is planned again here)."""
         v = (sc, guide)
         if fresh:
             self.stale = 0
@@ -277,6 +255,23 @@ class _Climb:
             return True
         return False
 
+    def next_steps(self, until: int) -> bool:
+        """One :meth:`step`, or (``cost`` of NavFn as shipped, between restarts) up to CHUNK
+        steps compiled (:class:`.steps.FocusSteps`): the plateau steps there, and the one
+        whose mutant beats the current map finished here.  True when the best score rose."""
+        if self.compiled is None or self.focus is None or self.stale > self.patience:
+            return self.step()
+        cur = self.cur.copy()  # changed in place on plateaus; the old map may be the best one
+        taken, self.stale, sc, at = self.compiled.run(
+            self.cl.rng, cur, self.cur_v[0], self.cl.lo, self.cl.hi, self.focus, self.cl.astar, self.stale,
+            self.patience, min(CHUNK, until - self.evaluations))
+        self.cur = cur
+        self.cl.evaluations += taken
+        self.cl.plans += taken * len(self.focus)
+        if at < 0:
+            return False
+        return self._take(self.compiled.cand.copy(), False, False, sc, at, None, 0.0)
+
     def advance(self, until: int, deadline: float, say: Progress) -> None:
         """Evaluate maps until ``until`` evaluations in all, the deadline, or :attr:`done`;
         a progress line at every improvement and a heartbeat every HEARTBEAT seconds."""
@@ -285,7 +280,7 @@ class _Climb:
             now = time.perf_counter()
             if now > deadline:
                 break
-            if self.step():
+            if self.next_steps(until):
                 say(f"[{self.tag}] {now - self.t0:6.1f}s {self.evaluations} maps {self.cl.plans} plans: "
                     f"score {self.best[0]:g}")
                 last = time.perf_counter()
