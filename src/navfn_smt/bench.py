@@ -245,16 +245,16 @@ def bench_climb(maps: int = CLIMB_MAPS, modes: str = "both", seed: int = 0) -> l
     first call's compilation excluded); refuses to report when the two climbs differ."""
     import math
 
-    from .search.hunt import _Climb
+    from .search.hunt import Climb
 
     if maps < 1:
         raise NavfnInputError(f"--climb {maps}: at least one map")
     rows = []
     for md in modes_of(modes):
-        _Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0).advance(300, math.inf, lambda line: None)
+        Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0).advance(300, math.inf, lambda line: None)
         ends = []
         for compiled in (True, False):
-            c = _Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0, compiled=compiled)
+            c = Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0, compiled=compiled)
             t0 = time.perf_counter()
             c.advance(maps, math.inf, lambda line: None)
             sec = time.perf_counter() - t0

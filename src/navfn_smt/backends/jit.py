@@ -398,7 +398,7 @@ class JitPlanner:
 
 
 @jit
-def _run_cases(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
+def plan_cases_into(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
                reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     """Plan every case of one map in one call (no trace); results go to the output arrays.
 
@@ -442,7 +442,7 @@ def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int
         "path_offsets": np.zeros(n + 1, np.int64),
         "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
     }
-    _run_cases(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
+    plan_cases_into(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
                planner.pending, planner.pb, planner.fill, planner.role, planner.curt, planner.memo, planner.gradx,
                planner.grady, out["start_reached"], out["start_potential"], out["cycles"], out["updates"],
                out["dropped"], out["exit"], out["path_offsets"], out["path"])

@@ -172,7 +172,7 @@ def _quiet(line: str) -> None:
     """A progress callback that says nothing."""
 
 
-class _Climb:
+class Climb:
     """The climb on one size, resumable: :meth:`advance` evaluates maps until a total number of
     evaluations, the deadline or (a kind that is not maximised) its first candidate."""
 
@@ -377,7 +377,7 @@ def _check_kind(kind: str) -> None:
         raise NavfnInputError(f"unknown search kind {kind!r} (choose from {', '.join(KINDS)})")
 
 
-def _confirm(climb: _Climb, kind: str, mode: str, seed: int, costs_range, shrink_result: bool, keep_size: bool,
+def _confirm(climb: Climb, kind: str, mode: str, seed: int, costs_range, shrink_result: bool, keep_size: bool,
              shrink_seconds: float, variant: str, say: Progress) -> Optional[Finding]:
     """The climb's best candidate, shrunk (``shrink_result``) and replayed on the reference spec:
     a :class:`Finding` when the kind's judge confirms it, else None."""
@@ -408,7 +408,7 @@ def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=
     w, h = size
     check_size(w, h)
     t0 = time.perf_counter()
-    climb = _Climb(kind, mode, (w, h), costs_range, seed, variant, t0)
+    climb = Climb(kind, mode, (w, h), costs_range, seed, variant, t0)
     say = progress or _quiet
     climb.advance(sys.maxsize if max_evaluations is None else max_evaluations, t0 + timeout, say)
     return _confirm(climb, kind, mode, seed, costs_range, shrink_result, KINDS[kind].maximise,
@@ -474,7 +474,7 @@ def hunt_smallest(kind: str, mode: str, max_size, timeout: float, seed: int = 0,
         for sz in live():
             if sz not in live() or time.perf_counter() > deadline or spent() >= total:
                 continue
-            c = climbs.get(sz) or climbs.setdefault(sz, _Climb(kind, mode, sz, costs_range, seed, variant, t0))
+            c = climbs.get(sz) or climbs.setdefault(sz, Climb(kind, mode, sz, costs_range, seed, variant, t0))
             if c.done:
                 continue
             until = max(1, int(budget * _share(sz, live(), spec.maximise)))

@@ -6,9 +6,9 @@ stream NumPy does), so a seed gives the same maps whether a step runs here or in
 
 :class:`FocusSteps` runs the steps of a ``cost`` climb that do not improve it: a mutant of
 the current map, planned on the focus pairs (NavFn as shipped, by the fast backend's
-``_run_cases``) and scored by ``fast.gaps``, replaces the current map when its gap is equal
+``plan_cases_into``) and scored by ``fast.gaps``, replaces the current map when its gap is equal
 and is dropped when it is lower.  It stops before a step that is due to restart and after a
-step whose mutant beats the current map; the Python climb (``hunt._Climb``) takes both.
+step whose mutant beats the current map; the Python climb (``hunt.Climb``) takes both.
 ``tests/test_search.py`` holds its climbs equal, map for map, to the Python step.
 """
 
@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..backends.jit import HEURISTIC_MEMO_CELLS, _run_cases
+from ..backends.jit import HEURISTIC_MEMO_CELLS, plan_cases_into
 from ..spec.constants import COST_OBS, PRIORITYBUFSIZE
 from .fast import gaps
 
@@ -89,7 +89,7 @@ def _best_gap(cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, r
     the first case that has it, as ``np.argmax`` of ``kinds._screen_cost`` picks it."""
     ny, nx = cand.shape
     flat = cand.ravel()
-    _run_cases(flat, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
+    plan_cases_into(flat, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
                grady, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts)
     n = cases.shape[0]
     g, _ = gaps(flat, nx, ny, path_pts[: path_off[n]], path_off[: n + 1])
