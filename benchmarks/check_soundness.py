@@ -1,6 +1,7 @@
 """Soundness of the committed bounded checks: every size a report proves, swept concretely.
 
     python benchmarks/check_soundness.py [--reports docs/reports] [--max-cells 8] [--json FILE]
+    python benchmarks/check_soundness.py --open W H [--open W H ...] [--random MAPS --seed S]
 
 For each size and property that a committed ``check`` report (``docs/reports/check-*.json``)
 proves, every map of the size whose passable cells cost one of 50, 51, 100, 200, 253 (and
@@ -9,6 +10,11 @@ judged (``navfn_smt.check.soundness``).  Exit 1 when a proved size shows a failu
 ``proved`` that a concrete map refutes.  6 ** cells maps a size: about 20 s at 6 cells, 2 min
 at 7, 12 min at 8 on one core.  The test run sweeps the sizes of up to 5 cells
 (``tests/test_check_reductions.py``).
+
+``--open W H`` sweeps a size no report proves (an open size) the same way and reports what
+fails there: a failure is then a counterexample (replay it with ``navfn-smt plan``), and none
+is evidence, not a proof.  ``--random MAPS`` replaces the product over the reduced set by MAPS
+seeded random maps over the whole range 50..253 (each cell lethal with probability 0.15).
 """
 
 from __future__ import annotations
@@ -19,7 +25,7 @@ import sys
 import time
 from pathlib import Path
 
-from navfn_smt.check.soundness import COSTS, SWEPT, sweep
+from navfn_smt.check.soundness import COSTS, SWEPT, sample, sweep
 
 REPORTS = Path(__file__).resolve().parent.parent / "docs" / "reports"
 
@@ -41,7 +47,13 @@ def main() -> int:
     ap.add_argument("--reports", type=Path, default=REPORTS)
     ap.add_argument("--max-cells", type=int, default=8)
     ap.add_argument("--json", type=Path)
+    ap.add_argument("--open", nargs=2, type=int, action="append", metavar=("W", "H"),
+                    help="sweep this size (no report proves it): failures are counterexamples")
+    ap.add_argument("--random", type=int, metavar="MAPS", help="with --open: MAPS random maps per size")
+    ap.add_argument("--seed", type=int, default=0)
     a = ap.parse_args()
+    if a.open:
+        return open_sizes(a)
     rows, bad = [], 0
     for (size, variant), names in proved(a.reports, a.max_cells).items():
         t0 = time.perf_counter()
@@ -60,6 +72,27 @@ def main() -> int:
                 print(f"  UNSOUND: {n} proved, refuted by {got.first[n]}")
     if a.json:
         a.json.write_text(json.dumps({"costs": list(COSTS), "sizes": rows}, indent=1) + "\n")
+    return 1 if bad else 0
+
+
+def open_sizes(a) -> int:
+    """Sweep the ``--open`` sizes (the reduced product, or ``--random`` maps); exit 1 when a
+    property fails on one of them (a counterexample, printed)."""
+    rows, bad = [], 0
+    for nx, ny in a.open:
+        t0 = time.perf_counter()
+        got = sample(nx, ny, a.random, a.seed) if a.random else sweep(nx, ny)
+        row = {"size": [nx, ny], "maps": got.maps, "cases": got.cases, "failures": dict(got.failures),
+               "first": got.first, "seconds": round(time.perf_counter() - t0, 1),
+               **({"random": a.random, "seed": a.seed} if a.random else {"costs": list(COSTS)})}
+        rows.append(row)
+        bad += sum(got.failures.values())
+        print(f"{nx}x{ny} (open): {got.maps:,} maps, {got.cases:,} cases, "
+              + ", ".join(f"{n} {got.failures[n]} failures" for n in SWEPT) + f" ({row['seconds']} s)", flush=True)
+        for n, first in got.first.items():
+            print(f"  counterexample to {n}: {first}")
+    if a.json:
+        a.json.write_text(json.dumps({"open": rows}, indent=1) + "\n")
     return 1 if bad else 0
 
 

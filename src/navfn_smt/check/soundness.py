@@ -48,38 +48,72 @@ def failing(name: str, finite: np.ndarray, returned: np.ndarray, connected: np.n
     raise ValueError(f"the sweep does not judge {name!r}")
 
 
+def _judge(out: Sweep, backend, arr: np.ndarray, pairs: np.ndarray, modes) -> None:
+    """Plan every pair of ``pairs`` on the map ``arr`` in each mode, judged into ``out``."""
+    from ..maps.regions import reaches_all, regions
+
+    high = np.float32(POT_HIGH)
+    out.maps += 1
+    connected = reaches_all(regions(arr), pairs)
+    for astar in modes:
+        got = backend.prepare(arr).run_batch(pairs, astar)
+        finite = got["start_potential"] < high
+        returned = got["exit"] == _NEAR_GOAL
+        out.cases += len(pairs)
+        for n in SWEPT:
+            f = failing(n, finite, returned, connected)
+            if f.any():
+                out.failures[n] += int(f.sum())
+                if n not in out.first:
+                    i = int(np.argmax(f))
+                    out.first[n] = {"costs": arr.tolist(), "start": pairs[i, :2].tolist(),
+                                    "goal": pairs[i, 2:].tolist(), "mode": "astar" if astar else "dijkstra"}
+
+
+def _cells(nx: int, ny: int):
+    """The interior cells of the size, and every ordered start/goal pair of them."""
+    inner = [(x, y) for y in range(1, ny - 1) for x in range(1, nx - 1)]
+    return inner, np.array([(sx, sy, gx, gy) for sx, sy in inner for gx, gy in inner], np.int64)
+
+
+def _map(nx: int, ny: int, inner, combo) -> np.ndarray:
+    arr = np.full((ny, nx), COST_OBS, np.uint8)
+    for (x, y), c in zip(inner, combo):
+        arr[y, x] = c
+    return arr
+
+
 def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), variant: str = "original",
           progress=None) -> Sweep:
     """Every map of ``nx`` x ``ny`` whose interior cells take a cost of ``costs`` or COST_OBS,
     every interior start and goal, each mode (``True``: A*)."""
     from ..backends import get_backend
-    from ..maps.regions import reaches_all, regions
 
     backend = get_backend("jit", variant)
-    inner = [(x, y) for y in range(1, ny - 1) for x in range(1, nx - 1)]
-    pairs = np.array([(sx, sy, gx, gy) for sx, sy in inner for gx, gy in inner], np.int64)
+    inner, pairs = _cells(nx, ny)
     out = Sweep((nx, ny), tuple(costs), variant)
-    values = tuple(costs) + (COST_OBS,)
-    high = np.float32(POT_HIGH)
-    for k, combo in enumerate(itertools.product(values, repeat=len(inner))):
-        arr = np.full((ny, nx), COST_OBS, np.uint8)
-        for (x, y), c in zip(inner, combo):
-            arr[y, x] = c
-        out.maps += 1
-        connected = reaches_all(regions(arr), pairs)
-        for astar in modes:
-            got = backend.prepare(arr).run_batch(pairs, astar)
-            finite = got["start_potential"] < high
-            returned = got["exit"] == _NEAR_GOAL
-            bad = {n: failing(n, finite, returned, connected) for n in SWEPT}
-            out.cases += len(pairs)
-            for n, f in bad.items():
-                if f.any():
-                    out.failures[n] += int(f.sum())
-                    if n not in out.first:
-                        i = int(np.argmax(f))
-                        out.first[n] = {"costs": arr.tolist(), "start": pairs[i, :2].tolist(),
-                                        "goal": pairs[i, 2:].tolist(), "mode": "astar" if astar else "dijkstra"}
+    for k, combo in enumerate(itertools.product(tuple(costs) + (COST_OBS,), repeat=len(inner))):
+        _judge(out, backend, _map(nx, ny, inner, combo), pairs, modes)
+        if progress and k % 1000 == 0:
+            progress(out)
+    return out
+
+
+def sample(nx: int, ny: int, maps: int, seed: int = 0, lo: int = 50, hi: int = COST_OBS - 1, lethal: float = 0.15,
+           modes=(True, False), variant: str = "original", progress=None) -> Sweep:
+    """``maps`` random maps of ``nx`` x ``ny`` (``numpy.random.default_rng(seed)``): each interior
+    cell lethal with probability ``lethal``, else a cost uniform in ``lo..hi``; every interior
+    start and goal, each mode.  Evidence, not a proof: the product of :func:`sweep` is exhaustive
+    over its cost set, this covers the whole cost range thinly."""
+    from ..backends import get_backend
+
+    backend = get_backend("jit", variant)
+    inner, pairs = _cells(nx, ny)
+    rng = np.random.default_rng(seed)
+    out = Sweep((nx, ny), (lo, hi), variant)
+    for k in range(maps):
+        combo = np.where(rng.random(len(inner)) < lethal, COST_OBS, rng.integers(lo, hi + 1, len(inner)))
+        _judge(out, backend, _map(nx, ny, inner, combo), pairs, modes)
         if progress and k % 1000 == 0:
             progress(out)
     return out

@@ -14,7 +14,7 @@ from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from ..maps.suite import modes_of
 from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_smallest
-from .kinds import KINDS, SEARCH_KINDS
+from .kinds import SEARCH_KINDS
 
 DEFAULT_SIZE = {"cost": (5, 7)}
 DEFAULT_MAX_SIZE = {"unreached": (9, 9)}  # hunted for the smallest map up to this size
@@ -80,9 +80,3 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
     tried = [got[i][1] for i in range(len(modes)) if got[i][1] is not None]
     return findings, tried
 
-
-def default_size(kind: str) -> Optional[tuple[int, int]]:
-    """The size a kind is hunted at without ``--size`` (None: hunted for the smallest map, or not a hunt kind)."""
-    if kind not in KINDS or kind in DEFAULT_MAX_SIZE:
-        return None
-    return DEFAULT_SIZE.get(kind, DEFAULT_HUNT_SIZE)
