@@ -87,6 +87,23 @@ def test_the_sweep_judges_a_known_incomplete_map():
     assert not failing("start-reached", finite, returned, b.connected()).any()
 
 
+def test_the_random_sample_reports_failures_the_spec_confirms():
+    """``soundness.sample`` (``check_soundness.py --open W H --random MAPS``): on 7x7, where
+    NavFn is known to fail, its first failure of each property is a map the reference spec
+    judges the same way; the same seed gives the same count."""
+    from navfn_smt.check.soundness import sample
+
+    got = sample(7, 7, 1500, seed=3)
+    assert got.maps == 1500 and got.cases == 1500 * 25 * 25 * 2
+    assert got.failures["complete"] > 0
+    for name in ("complete", "start-reached"):
+        if name in got.first:
+            f = got.first[name]
+            r = P.run(np.array(f["costs"], np.uint8), tuple(f["start"]), tuple(f["goal"]), f["mode"] == "astar")
+            assert P.judge(name, r) is not None
+    assert sample(7, 7, 1500, seed=3).failures == got.failures
+
+
 def _proved_sizes():
     out = []
     for f in sorted(REPORTS.glob("check-*.json")):
