@@ -196,6 +196,39 @@ ConnectedStartReached = Predicate(
           "every potential below 2**30: a run-time condition, as for DescentPath"),
 )
 
+FallbackPath = Predicate(
+    "FallbackPath",
+    statement="On a map whose interior is at most two cells wide or at most two cells tall, calcPath returns a "
+              "path from every start with a finite potential when the map has at most 4*nx passable cells: every "
+              "step is the grid-following fallback, which moves to a strictly lower reached neighbour until a cell "
+              "below COST_NEUTRAL. Needs every potential below 2**30.",
+    applies="path extraction (calcPath, NavFn as shipped), by induction over its iterations, on every map at most "
+            "two interior cells wide or tall (any length up to 4*nx passable cells); navfn-smt check decides "
+            "complete on such sizes by it",
+    lemmas=("update_keeps_a_neighbour_below_its_floor", "fallback_step_moves_below_the_floor",
+            "fallback_step_goes_strictly_lower", "update_raises_at_most_twice_its_cost",
+            "Monotone.update_never_raises"),
+    rests_on=("Progress", "PositionSafe"),
+    trusted=("every interior cell of such a map has a border cell among its eight neighbours, and a border cell is "
+             "lethal, never pushed (ObstacleFreeQueue) and never reached: calcPath's fallback test "
+             "(an unreached neighbour) holds at every cell it visits, so every step is the fallback, with offsets "
+             "0 and the nearest cell the current one",
+             "a reached cell n other than the goal has a 4-neighbour m with potarr[m] < (float)(int)potarr[n]: m is "
+             "its lowest neighbour at its last update (update_keeps_a_neighbour_below_its_floor, below the bound), "
+             "and m's potential only fell since (Monotone.update_never_raises); so the fallback moves "
+             "(fallback_step_moves_below_the_floor) to a reached neighbour strictly lower than the cell "
+             "(fallback_step_goes_strictly_lower)",
+             "potentials strictly fall along the walk, so no cell repeats: from a start among k passable cells the "
+             "walk meets a cell below COST_NEUTRAL (the goal, potential 0, at the latest) within k - 1 moves, "
+             "inside calcPath's 4*nx iterations when k <= 4*nx",
+             "a cell the walk reaches is reached, so no obstacle (PositionSafe) and not on the border: no "
+             "out-of-bounds exit and no stop at an unreached cell",
+             "the bound: the i-th cell to become reached (the goal first, potential 0) gets at most its reached "
+             "neighbour's potential plus twice its cost (update_raises_at_most_twice_its_cost) and only falls "
+             "after, so every finite potential is at most 506 * (k - 1): below 2**30 on every map of fewer than "
+             "two million passable cells"),
+)
+
 ReachedWithinComponent = Predicate(
     "ReachedWithinComponent",
     statement="Only the goal's component (the goal and the passable cells 4-connected to a passable neighbour of "
@@ -217,5 +250,5 @@ ReachedWithinComponent = Predicate(
 
 # in the order the invariants page lists them: propagation, then path extraction, then the fix
 PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
-              NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, DescentPath,
+              NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, FallbackPath, DescentPath,
               ConnectedStartReached, ReachedWithinComponent)
