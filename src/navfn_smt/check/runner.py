@@ -34,6 +34,10 @@ INDUCTION_FIXED = {
     "complete": ("DescentPath",),
     "start-reached": ("ConnectedStartReached",),
 }
+# ... and on a narrow size (interior at most two cells wide or tall, at most 4*nx cells), NavFn as
+# shipped: calcPath takes its fallback at every step there (every cell has a border neighbour)
+INDUCTION_NARROW = {"complete": ("FallbackPath",)}
+BOUND_CELLS = 2_000_000  # FallbackPath's bound 2**30 holds below this many passable cells (506 * cells)
 PARALLEL_FROM = 200  # --jobs auto: local workers from this many cases of a size on
 BATCH = 4  # cases per task: a case of a small size takes milliseconds, a task's round trip about as much
 
@@ -61,14 +65,48 @@ class SizeResult:
     seconds: float = 0.0
     counterexample: Optional[dict] = None
     unknown_cases: list = field(default_factory=list)
+    method: str = "exploration"  # or "induction: P (fp32 status)": decided for every map of the size without exploring
+
+
+MAX_CELLS = 12  # interior cells a bounded check enumerates at most
+
+
+def narrow(nx: int, ny: int) -> bool:
+    """An interior at most two cells wide or tall, of at most 4*nx cells: where FallbackPath carries complete."""
+    w, h = nx - 2, ny - 2
+    return min(w, h) <= 2 and w * h <= 4 * nx and w * h < BOUND_CELLS
+
+
+def carried_at(nx: int, ny: int, variant: str = "original") -> dict:
+    """The properties an induction decides on every map of this size without exploring, and
+    the predicates that carry each."""
+    return INDUCTION_NARROW if variant == "original" and narrow(nx, ny) else {}
+
+
+def carried_status(carriers) -> tuple[str, str]:
+    """``(status, why)`` of a size decided by the predicates ``carriers``: their fp32 status
+    derived from what is known of their links (declarations, splits, the bound cache: what
+    ``navfn-smt prove`` checks and CI re-checks), ``proved`` for the size when that status is
+    proved or bounded (the bound, potentials below 2**30, holds on a map below BOUND_CELLS
+    passable cells: see FallbackPath), ``unknown`` otherwise."""
+    from ..proofs import PREDICATES
+    from ..smt.chains import STATUS_RANK, derive, known_verdicts
+    from ..smt.runner import default_proof_files
+    from ..smt.split import known_of_files
+
+    verdict_of = known_verdicts(known_of_files(default_proof_files(), None, PREDICATES))
+    statuses = [derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers]
+    worst = max(statuses, key=STATUS_RANK.index) if statuses else "open"
+    why = f"induction: {', '.join(carriers)} (fp32 {worst})"
+    return ("proved" if worst in ("proved", "bounded") else "unknown"), why
 
 
 def check_size(nx: int, ny: int) -> None:
     if nx < 3 or ny < 3:
         raise NavfnInputError(f"--size {nx} {ny}: NavFn needs at least 3x3 cells (the border is lethal)")
-    if (nx - 2) * (ny - 2) > 12:
+    if (nx - 2) * (ny - 2) > MAX_CELLS:
         raise NavfnInputError(f"--size {nx} {ny}: {(nx - 2) * (ny - 2)} interior cells; bounded checks enumerate "
-                              f"2**cells layouts and cells**2 start/goal pairs (at most 12 cells)")
+                              f"2**cells layouts and cells**2 start/goal pairs (at most {MAX_CELLS} cells)")
 
 
 def _domain(semantics: str):
@@ -116,10 +154,20 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
                                   f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
     red = reduce_cases(cases(nx, ny, modes, start, goal, ends))
+    carried = carried_at(nx, ny, variant)
+    t0 = time.perf_counter()
+    if names and all(n in carried for n in names):  # every property decided by an induction: nothing to explore
+        out = {}
+        for n in names:
+            status, why = carried_status(carried[n])
+            out[n] = SizeResult((nx, ny), n, status, cases=red.total, outside=red.outside,
+                                cases_holding=red.total if status == "proved" else 0,
+                                cases_unknown=0 if status == "proved" else red.total, method=why,
+                                seconds=time.perf_counter() - t0)
+        return out
     todo = list(red.representatives)
     out = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
                          cases_holding=red.outside) for n in names}
-    t0 = time.perf_counter()
     eng = as_engine(jobs)
     work = [(tuple(todo[k:k + BATCH]), tuple(names), lo, hi, semantics, timeout, exhaustive_limit, variant)
             for k in range(0, len(todo), BATCH)]
@@ -129,6 +177,9 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         r.seconds = time.perf_counter() - t0
         if r.counterexample is None and r.cases_unknown:
             r.status = "unknown"
+        if r.property in carried and r.status == "refuted":  # explored beside others: must agree with the induction
+            raise RuntimeError(f"{r.property} refuted on {nx}x{ny}, where {', '.join(carried[r.property])} proves "
+                               f"it for every map: {r.counterexample}")
     return out
 
 
@@ -189,10 +240,11 @@ def _case_json(case: Case) -> dict:
 def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> list[tuple[int, int]]:
     """Sizes from ``min`` up to ``max``, smallest interior first (ties: wider first).
 
-    A side is cut at 15 cells: any longer side gives more interior cells than :func:`check_size`
-    accepts (so ``--max-size 100000 100000`` lists some hundred sizes, not 10**10)."""
+    A side is cut at 15 cells, and a size with more interior cells than :func:`check_size`
+    accepts is left out (so ``--max-size 100000 100000`` lists some dozen sizes, not 10**10)."""
     max_nx, max_ny = min(max_nx, 15), min(max_ny, 15)
-    out = [(w, h) for w in range(min_nx, max_nx + 1) for h in range(min_ny, max_ny + 1)]
+    out = [(w, h) for w in range(min_nx, max_nx + 1) for h in range(min_ny, max_ny + 1)
+           if (w - 2) * (h - 2) <= MAX_CELLS]
     return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), -s[0], s[1]))
 
 
@@ -222,7 +274,7 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
                              int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), variant=variant,
                              certificate=entries)
         if certify and all(r.status in ("proved", "refuted") for r in got.values()) and any(
-                r.status == "proved" for r in got.values()):
+                r.status == "proved" for r in got.values()) and any(r.method == "exploration" for r in got.values()):
             certify(nx, ny, got, entries)
         for n in list(open_names):
             results.append(got[n])

@@ -53,7 +53,7 @@ def progress(label: str, every: float = 20.0):
 
 def row(r) -> dict:
     return {
-        "property": r.property, "size": list(r.size), "status": r.status,
+        "property": r.property, "size": list(r.size), "status": r.status, "method": r.method,
         "interior_cells": (r.size[0] - 2) * (r.size[1] - 2),
         "enumerated": {"cases": r.cases, "what": "every layout of lethal interior cells x every start x every goal "
                                                   "x each mode",
@@ -77,7 +77,8 @@ def table(results: list) -> None:
     for r in results:
         cx = r.counterexample
         what = (f"{cx['mode']} start {tuple(cx['start'])} goal {tuple(cx['goal'])}: {cx['reason']}" if cx else "")
-        t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", r.status, str(r.cases), str(r.representatives), str(r.paths), str(r.queries),
+        status = r.status if r.method == "exploration" else f"{r.status} ({r.method})"
+        t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", status, str(r.cases), str(r.representatives), str(r.paths), str(r.queries),
                   f"{r.seconds:.1f} s", what)
     _console.print(t)
 

@@ -394,7 +394,7 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
     induction's status is derived from its predicates' standings (``verdict_of``, the page's
     one status per obligation), not copied from the check report that ran it."""
     from ..check.properties import PROPERTIES
-    from ..check.runner import CHECKABLE, INDUCTION, NOT_INDUCTIVE, induction_status
+    from ..check.runner import CHECKABLE, INDUCTION, INDUCTION_NARROW, NOT_INDUCTIVE, induction_status
 
     rows, induction, not_inductive = _merge_checks(checks)
     if verdict_of is not None:
@@ -441,6 +441,9 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
             out += [f"*Every size:* carried by {', '.join(INDUCTION[n])}; no report of the induction.", ""]
         else:
             out += [f"*Every size:* not inductive: {not_inductive.get(n, NOT_INDUCTIVE.get(n, ''))}.", ""]
+        if n in INDUCTION_NARROW:
+            out += [f"*Narrow sizes* (interior at most two cells wide or tall, at most 4*nx cells): by induction over "
+                    f"{', '.join(INDUCTION_NARROW[n])}; `check {n}` alone decides them without exploring.", ""]
         by_size = rows.get(n, {})
         if not by_size:
             out += ["*Bounded sizes:* not run (no report).", ""]
@@ -450,7 +453,9 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
                 "|---|---|---|---|---|---|---|---|---|---|"]
         for s in _sorted_sizes(by_size):
             r, label = by_size[s]
-            out.append(f"| {_size(s)} | {r.get('interior_cells', (s[0] - 2) * (s[1] - 2))} | {r['status']} | "
+            method = r.get("method", "exploration")
+            verdict = r["status"] if method == "exploration" else f"{r['status']} ({method})"
+            out.append(f"| {_size(s)} | {r.get('interior_cells', (s[0] - 2) * (s[1] - 2))} | {verdict} | "
                        f"{r['enumerated'].get('cases', '?')} | {r['enumerated'].get('explored', '-')} | "
                        f"{r['solved'].get('control_paths', '?')} | "
                        f"{r['solved'].get('solver_queries', '?')} | {_fmt_seconds(r['seconds'])} | {label} | "

@@ -1,0 +1,57 @@
+"""``complete`` on narrow maps, by the induction FallbackPath: decided without exploring.
+
+On a map whose interior is at most two cells wide or tall, every interior cell has a lethal
+border cell among its eight neighbours, so calcPath takes its grid-following fallback at
+every step and descends to the goal (``proofs/fallback.py``).  ``check complete`` decides such
+a size by the induction when no other property asks for an exploration.  The concrete runs
+here hold the induction's conclusion against the spec beyond the sizes it is used for, and
+show that its budget condition (at most 4*nx passable cells) is needed."""
+
+import json
+
+import pytest
+
+from navfn_smt.check import runner as CR
+from navfn_smt.check.soundness import sample
+from navfn_smt.cli import main
+
+
+@pytest.mark.parametrize("size,narrow", [((4, 5), True), ((5, 4), True), ((4, 6), True), ((6, 4), True),
+                                         ((3, 14), True), ((4, 10), True), ((4, 11), False), ((3, 15), False),
+                                         ((5, 5), False), ((14, 3), True)])
+def test_narrow_sizes_are_at_most_two_cells_wide_and_within_the_budget(size, narrow):
+    assert CR.narrow(*size) is narrow
+    assert bool(CR.carried_at(*size)) is narrow and not CR.carried_at(*size, variant="fixed")
+
+
+def test_check_complete_on_a_narrow_size_is_decided_by_fallback_path(tmp_path, capsys):
+    js = tmp_path / "c.json"
+    assert main(["check", "complete", "--size", "4", "5", "--json", str(js)]) == 0
+    row = json.loads(js.read_text())["results"][0]
+    assert row["status"] == "proved" and row["method"].startswith("induction: FallbackPath")
+    assert row["enumerated"]["explored"] == 0 and row["solved"]["control_paths"] == 0
+    assert row["cases_holding"] == row["enumerated"]["cases"] == 4608
+    assert "induction: FallbackPath" in capsys.readouterr().out
+
+
+def test_a_narrow_size_is_explored_when_another_property_asks(tmp_path):
+    js = tmp_path / "c.json"
+    assert main(["check", "complete", "start-reached", "--size", "3", "4", "--json", str(js)]) == 0
+    rows = json.loads(js.read_text())["results"]
+    assert [(r["property"], r["status"], r["method"]) for r in rows] == [
+        ("complete", "proved", "exploration"), ("start-reached", "proved", "exploration")]
+    assert rows[0]["solved"]["control_paths"] > 0
+
+
+@pytest.mark.parametrize("size", [(4, 10), (10, 4), (3, 14), (14, 3)])
+def test_calcpath_returns_a_path_on_narrow_maps_concretely(size):
+    """FallbackPath's conclusion on seeded random maps of narrow sizes larger than check
+    enumerates (up to 16 cells): every reached start gets a path."""
+    assert sample(*size, 1500, seed=1, lethal=0.1).failures["complete"] == 0
+
+
+def test_past_the_budget_a_narrow_map_can_be_incomplete():
+    """The budget condition is needed: a corridor of 14 cells on a 3-wide map (4*nx = 12
+    iterations) is not narrow, and there calcPath runs out on reached starts."""
+    assert not CR.narrow(3, 16)
+    assert sample(3, 16, 1500, seed=1, lethal=0.1).failures["complete"] > 0
