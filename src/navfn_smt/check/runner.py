@@ -20,6 +20,7 @@ from typing import Callable, Optional
 
 from ..engine import Engine, as_engine, in_order, stream
 from ..errors import NavfnInputError
+from ..spec.constants import COST_NEUTRAL, COST_OBS
 from . import properties as P
 from .bounded import CHECKABLE, Case, cases, explore, reduce_cases
 
@@ -77,10 +78,13 @@ def narrow(nx: int, ny: int) -> bool:
     return min(w, h) <= 2 and w * h <= 4 * nx and w * h < BOUND_CELLS
 
 
-def carried_at(nx: int, ny: int, variant: str = "original") -> dict:
+def carried_at(nx: int, ny: int, variant: str = "original", lo: int = COST_NEUTRAL, hi: int = COST_OBS - 1) -> dict:
     """The properties an induction decides on every map of this size without exploring, and
-    the predicates that carry each."""
-    return INDUCTION_NARROW if variant == "original" and narrow(nx, ny) else {}
+    the predicates that carry each.  The inductions' obligations assume the costs setCostmap
+    produces (COST_NEUTRAL..COST_OBS-1): a wider cost box (``--costs 0..253``) is explored."""
+    if variant != "original" or not narrow(nx, ny) or lo < COST_NEUTRAL or hi >= COST_OBS:
+        return {}
+    return INDUCTION_NARROW
 
 
 def carried_status(carriers) -> tuple[str, str]:
@@ -154,7 +158,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
                                   f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
     red = reduce_cases(cases(nx, ny, modes, start, goal, ends))
-    carried = carried_at(nx, ny, variant)
+    carried = carried_at(nx, ny, variant, lo, hi)
     t0 = time.perf_counter()
     if names and all(n in carried for n in names):  # every property decided by an induction: nothing to explore
         out = {}
