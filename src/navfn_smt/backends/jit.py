@@ -365,6 +365,10 @@ class JitPlanner:
         self.memo = np.full(memo, np.nan, np.float32)
         self.path = np.empty((path_cycle_limit(self.nx) + 1, 2), np.float32)
 
+    def work_arrays(self) -> tuple:
+        """The arrays :func:`plan_cases_into` works in, in its argument order (pot to grady)."""
+        return (self.pot, self.pending, self.pb, self.fill, self.role, self.curt, self.memo, self.gradx, self.grady)
+
     def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True,
             fixed: bool = False):
         """Plan one case; with ``record_trace`` False no trace is kept (memory stays linear
@@ -428,11 +432,9 @@ def plan_cases_into(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pendi
         path_off[i + 1] = off
 
 
-def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int, path_cycles: int) -> dict:
-    """Batch form of :meth:`JitPlanner.run` for benchmarks and bulk planning (no traces)."""
-    cases = np.ascontiguousarray(cases, dtype=np.int64).reshape(-1, 4)
-    n = cases.shape[0]
-    out = {
+def case_columns(n: int, path_cycles: int) -> dict:
+    """Zeroed output columns of :func:`plan_cases_into` for ``n`` cases, in its argument order."""
+    return {
         "start_reached": np.zeros(n, np.bool_),
         "start_potential": np.zeros(n, np.float32),
         "cycles": np.zeros(n, np.int64),
@@ -442,9 +444,13 @@ def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int
         "path_offsets": np.zeros(n + 1, np.int64),
         "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
     }
-    plan_cases_into(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, planner.pot,
-               planner.pending, planner.pb, planner.fill, planner.role, planner.curt, planner.memo, planner.gradx,
-               planner.grady, out["start_reached"], out["start_potential"], out["cycles"], out["updates"],
-               out["dropped"], out["exit"], out["path_offsets"], out["path"])
+
+
+def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int, path_cycles: int) -> dict:
+    """Batch form of :meth:`JitPlanner.run` for benchmarks and bulk planning (no traces)."""
+    cases = np.ascontiguousarray(cases, dtype=np.int64).reshape(-1, 4)
+    out = case_columns(cases.shape[0], path_cycles)
+    plan_cases_into(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, *planner.work_arrays(),
+                    *out.values())
     out["path"] = out["path"][: out["path_offsets"][-1]]
     return out

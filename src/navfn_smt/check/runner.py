@@ -12,6 +12,7 @@ predicate that carries the induction are checked (:data:`INDUCTION`).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import time
@@ -87,7 +88,8 @@ def carried_at(nx: int, ny: int, variant: str = "original", lo: int = COST_NEUTR
     return INDUCTION_NARROW
 
 
-def carried_status(carriers) -> tuple[str, str]:
+@functools.lru_cache(maxsize=None)  # the proof files are read once a run, not once a size
+def carried_status(carriers: tuple) -> tuple[str, str]:
     """``(status, why)`` of a size decided by the predicates ``carriers``: their fp32 status
     derived from what is known of their links (declarations, splits, the bound cache: what
     ``navfn-smt prove`` checks and CI re-checks), ``proved`` for the size when that status is

@@ -51,6 +51,11 @@ def progress(label: str, every: float = 20.0):
     return tick
 
 
+def verdict_text(status: str, method: str = "exploration") -> str:
+    """A size's verdict as tables show it: the status, and the induction that decided it if any."""
+    return status if method == "exploration" else f"{status} ({method})"
+
+
 def row(r) -> dict:
     return {
         "property": r.property, "size": list(r.size), "status": r.status, "method": r.method,
@@ -77,8 +82,7 @@ def table(results: list) -> None:
     for r in results:
         cx = r.counterexample
         what = (f"{cx['mode']} start {tuple(cx['start'])} goal {tuple(cx['goal'])}: {cx['reason']}" if cx else "")
-        status = r.status if r.method == "exploration" else f"{r.status} ({r.method})"
-        t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", status, str(r.cases), str(r.representatives), str(r.paths), str(r.queries),
+        t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", verdict_text(r.status, r.method), str(r.cases), str(r.representatives), str(r.paths), str(r.queries),
                   f"{r.seconds:.1f} s", what)
     _console.print(t)
 

@@ -395,6 +395,7 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
     one status per obligation), not copied from the check report that ran it."""
     from ..check.properties import PROPERTIES
     from ..check.runner import CHECKABLE, INDUCTION, INDUCTION_NARROW, NOT_INDUCTIVE, induction_status
+    from .check import verdict_text
 
     rows, induction, not_inductive = _merge_checks(checks)
     if verdict_of is not None:
@@ -453,8 +454,7 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
                 "|---|---|---|---|---|---|---|---|---|---|"]
         for s in _sorted_sizes(by_size):
             r, label = by_size[s]
-            method = r.get("method", "exploration")
-            verdict = r["status"] if method == "exploration" else f"{r['status']} ({method})"
+            verdict = verdict_text(r["status"], r.get("method", "exploration"))
             out.append(f"| {_size(s)} | {r.get('interior_cells', (s[0] - 2) * (s[1] - 2))} | {verdict} | "
                        f"{r['enumerated'].get('cases', '?')} | {r['enumerated'].get('explored', '-')} | "
                        f"{r['solved'].get('control_paths', '?')} | "

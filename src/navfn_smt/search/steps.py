@@ -9,7 +9,7 @@ the current map, planned on the focus pairs (NavFn as shipped, by the fast backe
 ``plan_cases_into``) and scored by ``fast.gaps``, replaces the current map when its gap is equal
 and is dropped when it is lower.  It stops before a step that is due to restart and after a
 step whose mutant beats the current map; the Python climb (``hunt.Climb``) takes both.
-``tests/test_search.py`` holds its climbs equal, map for map, to the Python step.
+``tests/test_search_small.py`` holds its climbs equal, map for map, to the Python step.
 """
 
 from __future__ import annotations
@@ -17,8 +17,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..backends.jit import HEURISTIC_MEMO_CELLS, plan_cases_into
-from ..spec.constants import COST_OBS, PRIORITYBUFSIZE
+from ..backends.jit import JitPlanner, case_columns, plan_cases_into
+from ..spec.constants import COST_OBS
 from .fast import gaps
 
 FINE = 0.3  # a maximised kind's mutations: share of single small nudges (:func:`nudge`)
@@ -123,15 +123,9 @@ class FocusSteps:
     """Work arrays for the compiled plateau steps on maps of one size and one number of focus pairs."""
 
     def __init__(self, nx: int, ny: int, pairs: int, cycles: int, path_cycles: int):
-        ns = nx * ny
         self.cycles, self.path_cycles = int(cycles), int(path_cycles)
-        self.work = (np.empty(ns, np.float32), np.zeros(ns, np.bool_), np.zeros((3, min(PRIORITYBUFSIZE, ns)), np.int64),
-                     np.zeros(3, np.int64), np.zeros(3, np.int64), np.zeros(1, np.float32),
-                     np.full((2 * nx - 1) * (2 * ny - 1) if ns <= HEURISTIC_MEMO_CELLS else 0, np.nan, np.float32),
-                     np.zeros(ns, np.float32), np.zeros(ns, np.float32))
-        self.out = (np.zeros(pairs, np.bool_), np.zeros(pairs, np.float32), np.zeros(pairs, np.int64),
-                    np.zeros(pairs, np.int64), np.zeros(pairs, np.int64), np.zeros(pairs, np.int64),
-                    np.zeros(pairs + 1, np.int64), np.zeros((pairs * (self.path_cycles + 1), 2), np.float32))
+        self.work = JitPlanner(np.full((ny, nx), COST_OBS, np.uint8)).work_arrays()
+        self.out = tuple(case_columns(pairs, self.path_cycles).values())
         self.cand = np.empty((ny, nx), np.uint8)
 
     def run(self, rng, cur: np.ndarray, cur_score: float, lo: int, hi: int, cases: np.ndarray, astar: bool,
