@@ -146,3 +146,45 @@ def test_check_command(tmp_path, capsys):
     assert again["detail"] and not any(again["golden"].values())  # still violated; goldens bit-equal
     for bad in (["--costs", "9"], ["--size", "2", "4"], ["--start", "0", "1"], ["--semantics", "real"]):
         assert main(["check", "complete", "--size", "3", "4", *bad]) == 2
+
+
+def test_the_propagation_run_is_the_whole_runs_propagation():
+    """Alone, start-reached and queues-obstacle-free are judged on the run without calcPath
+    (``run_of``): its path condition must be the whole run's up to calcPath's first branch, term
+    for term, and the properties' values the same, on seeded cost vectors of several cases."""
+    from navfn_smt.check.bounded import _propagation_run, property_value, run_of
+
+    assert run_of(["start-reached", "queues-obstacle-free"]) is _propagation_run
+    assert run_of(["start-reached", "complete"]) is _symbolic_run
+    rng = np.random.default_rng(3)
+    for case in [Case(4, 5, frozenset(), (1, 1), (2, 3), False), Case(5, 4, frozenset({11}), (3, 2), (1, 1), True),
+                 Case(4, 4, frozenset(), (2, 2), (1, 1), True), Case(3, 6, frozenset({10}), (1, 1), (1, 4), False)]:
+        free = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
+        for _ in range(5):
+            conc = {k: int(rng.integers(50, 254)) for k in free}
+            Dp, costs_p, sp_p, ex_p = _propagation_run(case, conc, 50, 253, FPDomain)
+            Dw, costs_w, sp_w, ex_w = _symbolic_run(case, conc, 50, 253, FPDomain)
+            n = len(Dp.branches)
+            assert n <= len(Dw.branches)
+            assert all(a.eq(b) for a, b in zip(Dp.branches, Dw.branches[:n])), (case, conc)
+            for name in ("start-reached", "queues-obstacle-free"):
+                vp = property_value(name, Dp, case, costs_p, sp_p, ex_p)
+                vw = property_value(name, Dw, case, costs_w, sp_w, ex_w)
+                assert bool(getattr(vp, "conc", vp)) == bool(getattr(vw, "conc", vw))
+
+
+def test_the_propagation_run_refutes_a_known_unreached_start():
+    """The 14-cell Dijkstra map whose connected start stays unreached: explored alone from its
+    costs, start-reached is refuted on the first control path."""
+    from conftest import DATA
+    from navfn_smt.maps.suite import load_map
+
+    smap = load_map(DATA / "counterexamples" / "unreached-dijkstra-9x4")
+    sx, sy, gx, gy = (int(v) for v in smap.cases[0])
+    ny, nx = smap.costs.shape
+    lethal = frozenset(k for k in _interior(nx, ny) if smap.costs.flat[k] >= 254)
+    case = Case(nx, ny, lethal, (sx, sy), (gx, gy), False)
+    conc = {k: int(smap.costs.flat[k]) for k in _interior(nx, ny) if k not in lethal}
+    res = explore(case, ["start-reached"], 50, 253, FPDomain, timeout=30, initial=conc)
+    assert res.results["start-reached"].status == "refuted"
+    assert res.results["start-reached"].counterexample == conc

@@ -3,7 +3,7 @@
 On a map whose interior is at most two cells wide or tall, every interior cell has a lethal
 border cell among its eight neighbours, so calcPath takes its grid-following fallback at
 every step and descends to the goal (``proofs/fallback.py``).  ``check complete`` decides such
-a size by the induction when no other property asks for an exploration.  The concrete runs
+a size by the induction, also when another property is explored beside it.  The concrete runs
 here hold the induction's conclusion against the spec beyond the sizes it is used for, and
 show that its budget condition (at most 4*nx passable cells) is needed."""
 
@@ -44,13 +44,15 @@ def test_a_cost_box_below_cost_neutral_is_explored(tmp_path):
     assert row["method"] == "exploration" and row["solved"]["control_paths"] > 0
 
 
-def test_a_narrow_size_is_explored_when_another_property_asks(tmp_path):
+def test_beside_another_property_complete_stays_decided_by_the_induction(tmp_path):
+    """``check complete start-reached`` on a narrow size: complete by FallbackPath, start-reached
+    explored alone (its control paths end with propagation)."""
     js = tmp_path / "c.json"
     assert main(["check", "complete", "start-reached", "--size", "3", "4", "--json", str(js)]) == 0
     rows = json.loads(js.read_text())["results"]
-    assert [(r["property"], r["status"], r["method"]) for r in rows] == [
-        ("complete", "proved", "exploration"), ("start-reached", "proved", "exploration")]
-    assert rows[0]["solved"]["control_paths"] > 0
+    assert [(r["property"], r["status"], r["method"].split(":")[0]) for r in rows] == [
+        ("complete", "proved", "induction"), ("start-reached", "proved", "exploration")]
+    assert rows[0]["solved"]["control_paths"] == 0 < rows[1]["solved"]["control_paths"]
 
 
 @pytest.mark.parametrize("size", [(4, 10), (10, 4), (3, 14), (14, 3)])

@@ -38,7 +38,7 @@ from . import properties as P
 from . import exhaustive
 from .concolic import ConcolicDomain, V, concrete, term
 from ..spec.extraction import EXIT_UNDEFINED, exit_code
-from .encoding import _interior, descend, extract, propagate
+from .encoding import RUNNING, SymbolicExtraction, _interior, descend, extract, propagate
 
 NEAR_GOAL = exit_code(P.ExtractionExit.NEAR_GOAL)
 CHECKABLE = tuple(P.PROPERTIES)
@@ -333,6 +333,33 @@ def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callabl
     return D, costs, sp, ex
 
 
+# properties whose value on the encoded run reads the propagation only (property_value never
+# looks at calcPath's exit or points for them): explored alone, a case's control paths end
+# where propagation does, and calcPath's branches (the hardest queries) are never flipped
+PROPAGATION_ONLY = frozenset({"start-reached", "queues-obstacle-free"})
+NOT_EXTRACTED = SymbolicExtraction(RUNNING, [], None)  # calcPath not run: no exit, no points
+
+
+def reads_path(names) -> bool:
+    """Whether some property of ``names`` reads calcPath's result."""
+    return not set(names) <= PROPAGATION_ONLY
+
+
+def _propagation_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, variant: str = "original"):
+    """:func:`_symbolic_run` without calcPath (the same propagation, the same domains): for the
+    properties of :data:`PROPAGATION_ONLY`, which judge the potentials and the buffers alone."""
+    D = ConcolicDomain(make_domain())
+    inner = _interior(case.nx, case.ny)
+    costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}
+    sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar, variant == "fixed")
+    return D, costs, sp, NOT_EXTRACTED
+
+
+def run_of(names) -> Callable:
+    """The encoded run that judging ``names`` needs: with calcPath when a property reads it."""
+    return _symbolic_run if reads_path(names) else _propagation_run
+
+
 def _ask(conditions: list, variables: dict, ranges: dict, lo: int, hi: int, D, timeout: float, solve,
          limit: int):
     """:func:`solve_split` on the box of the costs the conditions mention (:func:`relevant`);
@@ -349,16 +376,18 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
             exhaustive_limit: int = EXHAUSTIVE_LIMIT, variant: str = "original",
             incremental: bool = True) -> CaseResult:
     """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each
-    (``variant="fixed"``: of the planner with the fix).  ``incremental``: a path's flips are
+    (``variant="fixed"``: of the planner with the fix).  The run ends with propagation when no
+    property reads calcPath's result (:func:`run_of`).  ``incremental``: a path's flips are
     asked of one solver instance (:class:`PathSolver`), what it leaves undecided of ``solve``."""
     t0 = time.perf_counter()
     inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
     results = {n: PropertyResult(n) for n in names}
     out = CaseResult(case, results)
     todo = [(initial or {k: lo for k in inner}, 0)]
+    run = run_of(names)
     while todo:
         conc, bound = todo.pop()
-        D, costs, sp, ex = _symbolic_run(case, conc, lo, hi, make_domain, variant)
+        D, costs, sp, ex = run(case, conc, lo, hi, make_domain, variant)
         out.paths += 1
         variables = {k: costs[k].term for k in inner}
         ranges = {k: (lo, hi) for k in inner}

@@ -33,19 +33,25 @@ SOURCES = ("spec/kernels.py", "spec/constants.py", "spec/numeric.py", "spec/extr
            "spec/propagation.py", "smt/domains.py", "check/encoding.py", "check/concolic.py")
 # ... and of check/bounded.py the functions that build a path's terms and its properties
 FUNCTIONS = ("Case", "_symbolic_run", "_reached", "property_value", "component", "representative", "reduce_cases")
+# ... and, for properties of the propagation alone, the run without calcPath
+PROPAGATION_FUNCTIONS = ("_propagation_run", "PROPAGATION_ONLY", "run_of")
 
 
-def code_hash() -> str:
-    """SHA-256 over the sources the queries are built from: the files of :data:`SOURCES` and
-    the functions of :data:`FUNCTIONS`, in order."""
+def code_hash(names=None) -> str:
+    """SHA-256 over the sources the queries of a check of ``names`` are built from: the files of
+    :data:`SOURCES` and the functions of :data:`FUNCTIONS`, in order, and when no property of
+    ``names`` reads calcPath's result, those of :data:`PROPAGATION_FUNCTIONS` too."""
     import inspect
 
     root = Path(__file__).resolve().parents[1]
     h = hashlib.sha256()
     for rel in SOURCES:
         h.update(rel.encode() + b"\0" + (root / rel).read_bytes() + b"\0")
-    for name in FUNCTIONS:
-        h.update(name.encode() + b"\0" + inspect.getsource(getattr(B, name)).encode() + b"\0")
+    extra = () if names is None or B.reads_path(names) else PROPAGATION_FUNCTIONS
+    for name in FUNCTIONS + extra:
+        obj = getattr(B, name)
+        text = repr(sorted(obj)) if isinstance(obj, frozenset) else inspect.getsource(obj)
+        h.update(name.encode() + b"\0" + text.encode() + b"\0")
     return h.hexdigest()
 
 
@@ -63,7 +69,7 @@ def write(path, header: dict, entries: list) -> None:
     verdicts) and ``entries`` ``[case key, weight, path log]`` of every explored case."""
     from ..fileio import atomic_write_bytes
 
-    doc = {"format": FORMAT, "code_hash": code_hash(), **header, "cases": entries}
+    doc = {"format": FORMAT, "code_hash": code_hash(header["properties"]), **header, "cases": entries}
     atomic_write_bytes(path, gzip.compress(json.dumps(doc, separators=(",", ":")).encode(), mtime=0))
 
 
@@ -96,7 +102,7 @@ def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: floa
         seeds.setdefault(bound, []).append(dict(zip(inner, seed)))
     for seed, bound, marks, flips in log:
         conc = dict(zip(inner, seed))
-        D, costs, sp, ex = B._symbolic_run(case, conc, lo, hi, _domain("fp32"), variant)
+        D, costs, sp, ex = B.run_of(names)(case, conc, lo, hi, _domain("fp32"), variant)
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches
@@ -150,11 +156,13 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None) -> dict:
     from .runner import BATCH, PARALLEL_FROM
 
     doc = read(path)
-    head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "verdicts") if k in doc}
-    if doc["code_hash"] != code_hash():
+    head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "verdicts", "induction")
+            if k in doc}
+    now = code_hash(doc["properties"])
+    if doc["code_hash"] != now:
         return {**head, "status": "refused", "problems": [
             "the kernels or the encoding changed since the certificate was written (code hash "
-            f"{doc['code_hash'][:12]}, now {code_hash()[:12]}): run the check again"]}
+            f"{doc['code_hash'][:12]}, now {now[:12]}): run the check again"]}
     nx, ny = doc["size"]
     red = B.reduce_cases(B.cases(nx, ny, [m == "astar" for m in doc["modes"]], None, None, doc.get("ends", "any")))
     want = {json.dumps(case_key(c)): w for c, w in red.representatives.items()}

@@ -162,31 +162,30 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     red = reduce_cases(cases(nx, ny, modes, start, goal, ends))
     carried = carried_at(nx, ny, variant, lo, hi)
     t0 = time.perf_counter()
-    if names and all(n in carried for n in names):  # every property decided by an induction: nothing to explore
-        out = {}
-        for n in names:
+    out = {}
+    for n in names:  # decided by an induction: not explored
+        if n in carried:
             status, why = carried_status(carried[n])
             out[n] = SizeResult((nx, ny), n, status, cases=red.total, outside=red.outside,
                                 cases_holding=red.total if status == "proved" else 0,
                                 cases_unknown=0 if status == "proved" else red.total, method=why,
                                 seconds=time.perf_counter() - t0)
-        return out
-    todo = list(red.representatives)
-    out = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
-                         cases_holding=red.outside) for n in names}
-    eng = as_engine(jobs)
-    work = [(tuple(todo[k:k + BATCH]), tuple(names), lo, hi, semantics, timeout, exhaustive_limit, variant)
-            for k in range(0, len(todo), BATCH)]
-    _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), out, len(todo), progress, variant,
-             red.representatives, certificate)
-    for r in out.values():
-        r.seconds = time.perf_counter() - t0
-        if r.counterexample is None and r.cases_unknown:
-            r.status = "unknown"
-        if r.property in carried and r.status == "refuted":  # explored beside others: must agree with the induction
-            raise RuntimeError(f"{r.property} refuted on {nx}x{ny}, where {', '.join(carried[r.property])} proves "
-                               f"it for every map: {r.counterexample}")
-    return out
+    explored = [n for n in names if n not in carried]
+    if explored:  # alone, a property of the propagation ends each control path where propagation does
+        todo = list(red.representatives)
+        got = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
+                             cases_holding=red.outside) for n in explored}
+        eng = as_engine(jobs)
+        work = [(tuple(todo[k:k + BATCH]), tuple(explored), lo, hi, semantics, timeout, exhaustive_limit, variant)
+                for k in range(0, len(todo), BATCH)]
+        _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), got, len(todo), progress,
+                 variant, red.representatives, certificate)
+        for r in got.values():
+            r.seconds = time.perf_counter() - t0
+            if r.counterexample is None and r.cases_unknown:
+                r.status = "unknown"
+        out.update(got)
+    return {n: out[n] for n in names}
 
 
 def _collect(batches, out: dict, total: int, progress, variant: str = "original", weight=None,

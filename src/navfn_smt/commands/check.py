@@ -104,11 +104,13 @@ def _certify(args, lo: int, hi: int, modes):
     def write(nx: int, ny: int, got: dict, entries: list) -> None:
         path = Path(args.certificates) / f"check-{nx}x{ny}.cert.json.gz"
         r = next(iter(got.values()))
+        explored = [n for n, g in got.items() if g.method == "exploration"]  # what the path logs judge
         certificate.write(path, {
-            "size": [nx, ny], "properties": list(got), "costs": [lo, hi], "modes": ["astar" if m else "dijkstra"
-                                                                                   for m in modes],
+            "size": [nx, ny], "properties": explored, "costs": [lo, hi], "modes": ["astar" if m else "dijkstra"
+                                                                                  for m in modes],
             "variant": args.variant, "ends": args.ends, "total": r.cases, "outside": r.outside,
-            "verdicts": {n: g.status for n, g in got.items()}}, entries)
+            "verdicts": {n: g.status for n, g in got.items()},
+            "induction": {n: g.method for n, g in got.items() if g.method != "exploration"}}, entries)
         print(f"{nx}x{ny}: certificate written to {path}")
 
     return write
