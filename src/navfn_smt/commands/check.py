@@ -135,7 +135,9 @@ def _replay(args) -> int:
         report.write_json(args.json, {"command": "check --replay", "certificate": args.replay, **got})
     size = "x".join(map(str, got.get("size", [])))
     if got["status"] == "replayed":
-        print(f"{args.replay}: replayed: {', '.join(f'{n} {v}' for n, v in got['verdicts'].items())} on every "
+        ind = got.get("induction", {})  # decided by an induction, not by the certificate's paths
+        verdicts = ", ".join(f"{n} {v}" + (f" ({ind[n]})" if n in ind else "") for n, v in got["verdicts"].items())
+        print(f"{args.replay}: replayed: {verdicts} on every "
               f"{size} map ({got['cases']} cases explored, {got['paths']} control paths re-checked, "
               f"{got['seconds']} s)")
         return 0
