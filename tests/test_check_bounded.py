@@ -17,7 +17,7 @@ import z3
 
 from navfn_smt.check import properties as P
 from navfn_smt.check.bounded import CHECKABLE, Case, _symbolic_run, cases, explore
-from navfn_smt.check.concolic import V
+from navfn_smt.check.concolic import V, concrete
 from navfn_smt.check.encoding import _interior
 from navfn_smt.check.runner import check_one_size
 from navfn_smt.smt.domains import FPDomain
@@ -170,7 +170,7 @@ def test_the_propagation_run_is_the_whole_runs_propagation():
             for name in ("start-reached", "queues-obstacle-free"):
                 vp = property_value(name, Dp, case, costs_p, sp_p, ex_p)
                 vw = property_value(name, Dw, case, costs_w, sp_w, ex_w)
-                assert bool(getattr(vp, "conc", vp)) == bool(getattr(vw, "conc", vw))
+                assert bool(concrete(vp)) == bool(concrete(vw))
 
 
 def test_the_propagation_run_refutes_a_known_unreached_start():
@@ -178,11 +178,12 @@ def test_the_propagation_run_refutes_a_known_unreached_start():
     costs, start-reached is refuted on the first control path."""
     from conftest import DATA
     from navfn_smt.maps.suite import load_map
+    from navfn_smt.spec.constants import COST_OBS
 
     smap = load_map(DATA / "counterexamples" / "unreached-dijkstra-9x4")
     sx, sy, gx, gy = (int(v) for v in smap.cases[0])
     ny, nx = smap.costs.shape
-    lethal = frozenset(k for k in _interior(nx, ny) if smap.costs.flat[k] >= 254)
+    lethal = frozenset(k for k in _interior(nx, ny) if smap.costs.flat[k] >= COST_OBS)
     case = Case(nx, ny, lethal, (sx, sy), (gx, gy), False)
     conc = {k: int(smap.costs.flat[k]) for k in _interior(nx, ny) if k not in lethal}
     res = explore(case, ["start-reached"], 50, 253, FPDomain, timeout=30, initial=conc)

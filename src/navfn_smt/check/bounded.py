@@ -347,7 +347,10 @@ def reads_path(names) -> bool:
 
 def _propagation_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, variant: str = "original"):
     """:func:`_symbolic_run` without calcPath (the same propagation, the same domains): for the
-    properties of :data:`PROPAGATION_ONLY`, which judge the potentials and the buffers alone."""
+    properties of :data:`PROPAGATION_ONLY`, which judge the potentials and the buffers alone.
+    Its first lines restate :func:`_symbolic_run`'s rather than being called from it: the
+    committed certificates' hash covers ``_symbolic_run``'s source, and a shared helper would
+    change it (``tests/test_check_bounded.py`` holds the two runs' propagation term-equal)."""
     D = ConcolicDomain(make_domain())
     inner = _interior(case.nx, case.ny)
     costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}

@@ -100,9 +100,10 @@ def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: floa
     seeds = {}  # bound -> seeds of the paths recorded with it
     for seed, bound, _, _ in log:
         seeds.setdefault(bound, []).append(dict(zip(inner, seed)))
+    run = B.run_of(names)
     for seed, bound, marks, flips in log:
         conc = dict(zip(inner, seed))
-        D, costs, sp, ex = B.run_of(names)(case, conc, lo, hi, _domain("fp32"), variant)
+        D, costs, sp, ex = run(case, conc, lo, hi, _domain("fp32"), variant)
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches

@@ -136,7 +136,8 @@ def _replay(args) -> int:
     size = "x".join(map(str, got.get("size", [])))
     if got["status"] == "replayed":
         ind = got.get("induction", {})  # decided by an induction, not by the certificate's paths
-        verdicts = ", ".join(f"{n} {v}" + (f" ({ind[n]})" if n in ind else "") for n, v in got["verdicts"].items())
+        verdicts = ", ".join(f"{n} {report.verdict_text(v, ind.get(n, 'exploration'))}"
+                             for n, v in got["verdicts"].items())
         print(f"{args.replay}: replayed: {verdicts} on every "
               f"{size} map ({got['cases']} cases explored, {got['paths']} control paths re-checked, "
               f"{got['seconds']} s)")
