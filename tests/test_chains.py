@@ -26,6 +26,7 @@ EXPECTED = {
     "DescentPath": ("proved", "bounded"),  # the fix: Progress's float32 bound 2**30 carries over
     "ConnectedStartReached": ("proved", "proved"),
     "ReachedWithinComponent": ("proved", "proved"),
+    "QueuedStartReached": ("proved", "proved"),
 }
 
 

@@ -189,3 +189,66 @@ def test_the_propagation_run_refutes_a_known_unreached_start():
     res = explore(case, ["start-reached"], 50, 253, FPDomain, timeout=30, initial=conc)
     assert res.results["start-reached"].status == "refuted"
     assert res.results["start-reached"].counterexample == conc
+
+
+def _case_of_map(name: str, mode: str):
+    """The case and costs of a saved counterexample map (its first start/goal pair), in ``mode``."""
+    from conftest import DATA
+    from navfn_smt.maps.suite import load_map
+    from navfn_smt.spec.constants import COST_OBS
+
+    smap = load_map(DATA / "counterexamples" / name)
+    sx, sy, gx, gy = (int(v) for v in smap.cases[0])
+    ny, nx = smap.costs.shape
+    lethal = frozenset(k for k in _interior(nx, ny) if smap.costs.flat[k] >= COST_OBS)
+    return Case(nx, ny, lethal, (sx, sy), (gx, gy), mode == "astar"), \
+        {k: int(smap.costs.flat[k]) for k in _interior(nx, ny) if k not in lethal}
+
+
+UNREACHED_MAPS = [("unreached-astar-5x7", "astar"), ("unreached-astar-7x8", "astar"),
+                  ("unreached-dijkstra-7x8", "dijkstra"), ("unreached-dijkstra-9x4", "dijkstra"),
+                  ("start-reached-astar-7x7", "astar"), ("start-reached-dijkstra-7x7", "dijkstra")]
+
+
+@pytest.mark.parametrize("name, mode", UNREACHED_MAPS)
+def test_an_unreached_start_is_never_queued_for_certain(name, mode):
+    """QueuedStartReached: on every saved map whose connected start stays unreached (the spec
+    says so), the encoded run never marks the start's reach certain; a mark there would let
+    the exploration skip the very branches that lead to such a map."""
+    from navfn_smt.check.bounded import _propagation_run
+
+    case, conc = _case_of_map(name, mode)
+    r = P.run(case.costs_array(conc), case.start, case.goal, case.astar)
+    assert P.judge("start-reached", r)  # the map is a counterexample
+    sp = _propagation_run(case, conc, 50, 253, FPDomain)[2]
+    assert sp.start_certain is None
+
+
+@pytest.mark.parametrize("nx, ny", [(4, 5), (5, 4), (3, 10), (9, 4), (5, 7), (7, 8)])
+def test_a_start_queued_for_certain_is_reached(nx, ny):
+    """QueuedStartReached on seeded maps (random lethal cells and costs, both modes): when the
+    encoded run marks the start's reach certain, the spec reaches the start, and a path
+    condition cut there keeps the branches up to the mark (the prefix every such map shares).
+    The seeds give marks and, on the larger sizes, unreached starts too."""
+    from navfn_smt.check.bounded import _propagation_run
+    from navfn_smt.check.runner import replay
+
+    rng = np.random.default_rng(nx * 100 + ny)
+    inner = _interior(nx, ny)
+    marked = 0
+    for i in range(60):
+        lethal = frozenset(k for k in inner if rng.random() < 0.2)
+        free = [k for k in inner if k not in lethal]
+        if len(free) < 2:
+            continue
+        s, g = rng.choice(free, 2, replace=False)
+        case = Case(nx, ny, lethal, (int(s) % nx, int(s) // nx), (int(g) % nx, int(g) // nx), bool(i % 2))
+        conc = {k: int(rng.choice([50, 51, 100, 200, 253]) if i % 3 else rng.integers(50, 254)) for k in free}
+        D, _, sp, _ = _propagation_run(case, conc, 50, 253, FPDomain)
+        if sp.start_certain is None:
+            continue
+        marked += 1
+        assert 0 <= sp.start_certain <= len(D.branches)
+        _, run, why = replay(case, conc, "start-reached")
+        assert run.start_potential < 1e10 and why is None, (case, conc)
+    assert marked >= 10

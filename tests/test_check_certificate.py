@@ -46,6 +46,27 @@ def test_a_proved_size_writes_a_certificate_that_replays(cert):
     assert r.returncode == 0 and "replayed" in r.stdout
 
 
+def test_start_reached_alone_records_flips_up_to_the_queued_start(cert):
+    """Explored alone, start-reached flips a path's branches only up to the mark where the run
+    queued the start for certain (QueuedStartReached): the certificate records that many flips,
+    fewer than the path's branches on some paths, and the replay asks for exactly as many."""
+    from navfn_smt.check import bounded as B
+    from navfn_smt.smt.domains import FPDomain
+
+    doc = C.read(cert)
+    lo, hi = doc["costs"]
+    cut = 0
+    for key, _, log in doc["cases"]:
+        case = C.case_of(key)
+        inner = [k for k in B._interior(case.nx, case.ny) if k not in case.lethal]
+        for seed, bound, _, flips in log:
+            D, _, sp, _ = B.run_of(doc["properties"])(case, dict(zip(inner, seed)), lo, hi, FPDomain)
+            last = B.flippable(doc["properties"], D.branches, sp, lo)
+            assert bound + len(flips) == last or (not flips and bound >= last)
+            cut += last < len(D.branches)
+    assert cut > 0
+
+
 def test_a_changed_code_hash_is_refused(cert, tmp_path):
     bad = _edit(cert, tmp_path / "c.gz", lambda d: d.update(code_hash="0" * 64))
     got = C.replay(bad)

@@ -358,6 +358,21 @@ def _propagation_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Call
     return D, costs, sp, NOT_EXTRACTED
 
 
+# properties settled on a control path once the start's reach is certain (encoding._queued,
+# QueuedStartReached): explored alone, a path's branches after that point are never flipped
+SETTLED_BY_REACH = frozenset({"start-reached"})
+
+
+def flippable(names, pc: list, sp, lo: int) -> int:
+    """How many of a path's first branches are flipped: all of them, or for properties of
+    :data:`SETTLED_BY_REACH` alone those recorded before the start's reach became certain
+    (QueuedStartReached: every path sharing that prefix reaches the start; its lemma needs
+    costs from COST_NEUTRAL up, what setCostmap gives)."""
+    if sp.start_certain is None or not set(names) <= SETTLED_BY_REACH or lo < COST_NEUTRAL:
+        return len(pc)
+    return min(len(pc), sp.start_certain)
+
+
 def run_of(names) -> Callable:
     """The encoded run that judging ``names`` needs: with calcPath when a property reads it."""
     return _symbolic_run if reads_path(names) else _propagation_run
@@ -422,8 +437,9 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
         out.log.append([[conc[k] for k in inner], bound, marks, flips])
         if all(r.status == "refuted" for r in results.values()):
             break  # nothing left to prove in this case
-        inc = PathSolver(box, pc, variables, timeout) if incremental and len(pc) > bound else None
-        for j in range(bound, len(pc)):
+        last = flippable(names, pc, sp, lo)
+        inc = PathSolver(box, pc[:last], variables, timeout) if incremental and last > bound else None
+        for j in range(bound, last):
             out.flip_queries += 1
             status, model = inc.flip(j) if inc else ("unknown", "")
             if status == "sat":

@@ -32,7 +32,8 @@ FORMAT = "navfn-smt check certificate 1"
 SOURCES = ("spec/kernels.py", "spec/constants.py", "spec/numeric.py", "spec/extraction.py", "spec/fix.py",
            "spec/propagation.py", "smt/domains.py", "check/encoding.py", "check/concolic.py")
 # ... and of check/bounded.py the functions that build a path's terms and its properties
-FUNCTIONS = ("Case", "_symbolic_run", "_reached", "property_value", "component", "representative", "reduce_cases")
+FUNCTIONS = ("Case", "_symbolic_run", "_reached", "property_value", "component", "representative", "reduce_cases",
+             "SETTLED_BY_REACH", "flippable")
 # ... and, for properties of the propagation alone, the run without calcPath
 PROPAGATION_FUNCTIONS = ("_propagation_run", "PROPAGATION_ONLY", "run_of")
 
@@ -107,8 +108,10 @@ def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: floa
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches
-        if flips and bound + len(flips) != len(pc):
-            return [f"{case_key(case)}: a path from {seed} has {len(pc)} branches, the certificate {bound + len(flips)}"]
+        last = B.flippable(names, pc, sp, lo)
+        if flips and bound + len(flips) != last:
+            return [f"{case_key(case)}: a path from {seed} has {last} branches to flip, the certificate "
+                    f"{bound + len(flips)}"]
         unsat = {}  # what the certificate says is unsat on this path: name -> conditions
         for n, m in zip(names, marks):
             p = B.property_value(n, D, case, costs, sp, ex)

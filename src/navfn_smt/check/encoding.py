@@ -48,6 +48,7 @@ class SymbolicPropagation:
     pending: list = field(default_factory=list)
     trace: list = field(default_factory=list)  # per unrolled cycle: (processed?, fill, slots)
     buffers: list = field(default_factory=list)  # every Buffer state the run passes through
+    start_certain: object = None  # branches recorded when the start's reach became certain (see _queued)
 
 
 def _interior(nx: int, ny: int) -> list[int]:
@@ -66,6 +67,15 @@ def _fix(D, c):
     terms of that branch.  Symbolic domains build both."""
     decide = getattr(D, "decide", None)
     return c if decide is None or isinstance(c, bool) else decide(c)
+
+
+def _queued(D, buf: Buffer, cell: int) -> bool:
+    """Whether ``cell`` is known to be in the buffer: in a domain that follows one control path,
+    where fills and slots are plain ints.  A start in the current buffer of a cycle that runs,
+    or pushed to the next buffer in a cycle followed by another, is reached in that cycle or
+    the next (QueuedStartReached): what the run does after cannot unreach it."""
+    return (getattr(D, "decide", None) is not None and isinstance(buf.fill, int)
+            and any(isinstance(s, int) and s == cell for s in buf.slots[:buf.fill]))
 
 
 def _choose(D, c, a: Buffer, b: Buffer) -> Buffer:
@@ -112,6 +122,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
     trace = []
     buffers = [cur]
     limit, calls, in_call = cycle_limit(nx, ny), 0, 0
+    certain = None
     while True:
         if in_call == limit:  # propNavFn* returns; the fix calls it again while it must
             if not fixed:
@@ -130,6 +141,8 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
             running, in_call = True, 0
         in_call += 1
         running = D.and_(running, D.not_(D.and_(D.eq(cur.fill, 0), D.eq(nxt.fill, 0))))
+        if certain is None and running is True and _queued(D, cur, start_cell):
+            certain = len(D.branches)
         cycles = D.ite(running, D.add_int(cycles, 1), cycles)
         trace.append((running, cur.fill, list(cur.slots)))
         active = [D.and_(running, D.lt(i, cur.fill)) for i in range(n_slots)]
@@ -158,6 +171,8 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
                                        K.push_admitted(D, m, nx * ny, pending[m], cost_int[m], fill,
                                                        PRIORITYBUFSIZE)))
                     new_nxt = _push(D, new_nxt, D.and_(g, low), m)
+                    if certain is None and m == start_cell and in_call < limit and _queued(D, new_nxt, m):
+                        certain = len(D.branches)
                     new_over = _push(D, new_over, D.and_(g, D.not_(low)), m)
                     pending[m] = D.or_(pending[m], g)
         # swap: next becomes current; an empty one pulls in the overflow and raises curT
@@ -173,7 +188,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
     reached = D.lt(pot[start_cell], high)
     if not astar:  # Dijkstra returns cycle < cycles: true when it stopped early
         reached = D.not_(running)
-    return SymbolicPropagation(nx, ny, pot, reached, cycles, pending, trace, buffers)
+    return SymbolicPropagation(nx, ny, pot, reached, cycles, pending, trace, buffers, certain)
 
 
 # ---------------------------------------------------------------------------------------

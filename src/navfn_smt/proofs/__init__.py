@@ -248,7 +248,34 @@ ReachedWithinComponent = Predicate(
              "representative give the same potentials, exit and path"),
 )
 
+QueuedStartReached = Predicate(
+    "QueuedStartReached",
+    statement="A start in the current buffer of a cycle that runs gets a finite potential in that cycle; so does "
+              "a start pushed to the next buffer in a cycle that is not the last of its propNavFn* call (it is in "
+              "the current buffer of the next cycle). Needs costs of at least COST_NEUTRAL and every potential "
+              "below 2**30.",
+    applies="propagation, for every map size; the bounded checks (navfn-smt check) stop flipping a control path's "
+            "branches once it has queued the start so, when start-reached is explored alone: every path sharing "
+            "that prefix reaches the start",
+    lemmas=("queued_cell_gets_reached", "Monotone.update_never_raises"),
+    trusted=("a buffered cell has a 4-neighbour that was reached when it was pushed: initCost pushes the goal's "
+             "neighbours (the goal at 0), every later push happens in an update that changed its cell, to a finite "
+             "potential; potentials only fall since (Monotone.update_never_raises), so that neighbour is still "
+             "below the bound when the buffered cell is updated",
+             "a cycle that runs updates every cell of its current buffer, then ends the call if the start is "
+             "reached: the start, unreached and passable (only passable cells are pushed), is then reached "
+             "(queued_cell_gets_reached) and stays reached (potentials only fall)",
+             "a cycle whose next buffer is not empty makes it the following cycle's current buffer, and that cycle "
+             "runs when the call has cycles left and the start is not yet reached",
+             "the queueing is a fact of the control path up to the push (or the cycle's start): every run with "
+             "the same branches that far queues the start the same way",
+             "tests/test_check_bounded.py: on every case of the small sizes, the exploration with and without "
+             "the cut gives the same verdict, and concrete runs that queue the start so reach it"),
+    open=("every potential below 2**30: as for FallbackPath, true on maps of fewer than two million passable "
+          "cells",),
+)
+
 # in the order the invariants page lists them: propagation, then path extraction, then the fix
 PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
               NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, FallbackPath, DescentPath,
-              ConnectedStartReached, ReachedWithinComponent)
+              ConnectedStartReached, ReachedWithinComponent, QueuedStartReached)
