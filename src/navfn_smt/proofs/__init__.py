@@ -269,8 +269,9 @@ QueuedStartReached = Predicate(
              "runs when the call has cycles left and the start is not yet reached",
              "the queueing is a fact of the control path up to the push (or the cycle's start): every run with "
              "the same branches that far queues the start the same way",
-             "tests/test_check_bounded.py: on every case of the small sizes, the exploration with and without "
-             "the cut gives the same verdict, and concrete runs that queue the start so reach it"),
+             "tests/test_check_bounded.py: on every saved map whose connected start stays unreached the run never "
+             "queues the start so, and on seeded maps of six sizes every run that does reaches it (the spec's "
+             "run)"),
     open=("every potential below 2**30: as for FallbackPath, true on maps of fewer than two million passable "
           "cells",),
 )
