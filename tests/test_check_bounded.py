@@ -243,3 +243,35 @@ def test_a_start_queued_for_certain_is_reached(nx, ny):
         _, run, why = replay(case, conc, "start-reached")
         assert run.start_potential < POT_HIGH and why is None, (case, conc)
     assert marked >= 10
+
+
+def test_shortcut_answers_recheck_and_change_no_verdict(monkeypatch):
+    """The flips the exploration decides without asking: each unsat core it learns is unsat on
+    the box with its flipped branch negated (asked again of bitwuzla), each path it finds by a
+    sampled map re-checks as a certificate's path (the flip's witness is a recorded seed), and
+    the verdict is that of the exploration that asks every flip."""
+    from navfn_smt.check import bounded as B
+    from navfn_smt.check.certificate import recheck_case
+    from navfn_smt.smt.codec import free_constants
+
+    learned = []
+    learn = B._PathCores.learn
+
+    def recording(self, j, core):
+        core = list(core)
+        learned.append((self.pc, j, core))
+        learn(self, j, core)
+
+    monkeypatch.setattr(B._PathCores, "learn", recording)
+    case, names = Case(4, 5, frozenset(), (1, 1), (2, 3), True), ["start-reached"]
+    fast = explore(case, names, 50, 253, FPDomain, timeout=60)
+    plain = explore(case, names, 50, 253, FPDomain, timeout=60, shortcuts=False)
+    assert fast.cached_unsat and fast.sampled_sat and not plain.cached_unsat and not plain.sampled_sat
+    assert fast.results["start-reached"].status == plain.results["start-reached"].status == "holds"
+    assert recheck_case(case, names, 50, 253, fast.log, 60, "original") == []
+    assert learned
+    for pc, j, core in learned:
+        query = [pc[i] for i in core] + [z3.Not(pc[j])]
+        variables = {name: z3.BitVec(name, 8) for name in free_constants(query)}
+        box = [z3.And(z3.UGE(v, 50), z3.ULE(v, 253)) for v in variables.values()]
+        assert B.solve_bitwuzla(box + query, variables, 60)[0] == "unsat", (j, core)

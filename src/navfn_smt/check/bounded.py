@@ -234,6 +234,7 @@ class PathSolver:
         q = smtlib.prepare(box + [n == b for n, b in zip(names, pc)])
         opts = bw.Options()
         opts.set(bw.Option.PRODUCE_MODELS, True)
+        opts.set(bw.Option.PRODUCE_UNSAT_ASSUMPTIONS, True)
         opts.set(bw.Option.TIME_LIMIT_PER, max(1, int(min(timeout, QUICK) * 1000)))
         self.tm = bw.TermManager()
         parser = bw.Parser(self.tm, opts)
@@ -244,15 +245,84 @@ class PathSolver:
         self.costs = {k: funs.get(str(v)) for k, v in variables.items()}
 
     def flip(self, j: int):
-        """``("sat", {cell: cost})``, ``("unsat", None)`` or ``("unknown", reason)``."""
+        """``("sat", {cell: cost})``, ``("unsat", core)`` or ``("unknown", reason)``; the core is
+        the indices of the branches before ``j`` that bitwuzla's unsat assumptions name (with
+        ``not branch_j`` they are unsat on the box)."""
         bw = self.bw
         r = self.solver.check_sat(*self.flags[:j], self.tm.mk_term(bw.Kind.NOT, [self.flags[j]]))
         if r == bw.Result.SAT:
             return "sat", {k: int(self.solver.get_value(f).value(2), 2) for k, f in self.costs.items()
                            if f is not None}
         if r == bw.Result.UNSAT:
-            return "unsat", None
+            used = set(map(str, self.solver.get_unsat_assumptions()))
+            return "unsat", [i for i in range(j) if str(self.flags[i]) in used]
         return "unknown", f"bitwuzla (incremental): no answer within {QUICK:g} s"
+
+
+class UnsatCores:
+    """The unsat flips of one case, remembered by their cores.  A flip ``box & pc[:j] & not
+    pc[j]`` found unsat with core ``C`` (branches of ``pc[:j]``) proves every flip of the same
+    case that negates the same branch term while its prefix holds every branch of ``C``: that
+    query implies ``box & C & not pc[j]``.  Terms are z3's hash-consed ASTs, compared by id
+    and kept alive here so that no id is reused.  The model constraints of the domain
+    (``D.assumptions``) are part of a query: a core counts only on a path whose constraints
+    include those it was found under."""
+
+    def __init__(self):
+        self.cores: dict = {}  # id of the flipped branch -> [(branch ids, assumption ids)]
+        self.alive: list = []
+
+    def path(self, pc: list, assumptions: list) -> "_PathCores":
+        return _PathCores(self, pc, assumptions)
+
+
+class _PathCores:
+    def __init__(self, cache: UnsatCores, pc: list, assumptions: list):
+        self.cache, self.pc = cache, pc
+        self.ids = [t.get_id() for t in pc]
+        self.assumed = frozenset(a.get_id() for a in assumptions)
+        cache.alive += list(pc) + list(assumptions)
+
+    def implied(self, j: int) -> bool:
+        """Whether an earlier core proves flip ``j`` of this path unsat."""
+        known = self.cache.cores.get(self.ids[j], ())
+        prefix = None
+        for core, assumed in known:
+            prefix = set(self.ids[:j]) if prefix is None else prefix
+            if core <= prefix and assumed <= self.assumed:
+                return True
+        return False
+
+    def learn(self, j: int, core) -> None:
+        """Flip ``j`` is unsat with the branches ``core`` (indices below ``j``)."""
+        entry = (frozenset(self.ids[i] for i in core), self.assumed)
+        self.cache.cores.setdefault(self.ids[j], []).append(entry)
+
+
+class Samples:
+    """Maps tried on every flip of a path before a solver is asked: a map of the box that takes
+    the path's first ``j`` branches and not branch ``j`` is a model of flip ``j`` (the terms
+    evaluated exactly, :func:`exhaustive.truths`).  The points are the path's seed changed in
+    one or two costs, the seeds of the case's paths, and uniform draws from the box (a fixed
+    random stream, so a run is repeatable)."""
+
+    UNIFORM, NEAR = 2048, 2048
+
+    def __init__(self, lo: int, hi: int, seed: int = 0):
+        self.lo, self.hi = lo, hi
+        self.rng = np.random.default_rng(seed)
+        self.seeds: list = []
+
+    def points(self, conc: dict, cells: list) -> np.ndarray:
+        base = np.array([conc[k] for k in cells], dtype=np.int64)
+        self.seeds.append(base)
+        n = len(cells)
+        uniform = self.rng.integers(self.lo, self.hi + 1, size=(self.UNIFORM, n))
+        near = np.repeat(base[None, :], self.NEAR, axis=0)
+        for _ in range(2):
+            col = self.rng.integers(0, n, size=self.NEAR)
+            near[np.arange(self.NEAR), col] = self.rng.integers(self.lo, self.hi + 1, size=self.NEAR)
+        return np.vstack([near, np.array(self.seeds), uniform])
 
 
 EXHAUSTIVE_LIMIT = 10_000_000  # points of a box worth evaluating one by one (numpy: about a minute)
@@ -311,6 +381,8 @@ class CaseResult:
     decided_by_intervals: int = 0
     seconds: float = 0.0
     unknown_flips: list = field(default_factory=list)
+    cached_unsat: int = 0  # flips found unsat by an earlier flip's core (UnsatCores), not asked
+    sampled_sat: int = 0  # flips found sat at a sampled map (Samples), not asked
     log: list = field(default_factory=list)  # per control path: [seed costs, bound, property marks, flip marks]
 
 
@@ -392,17 +464,22 @@ def _ask(conditions: list, variables: dict, ranges: dict, lo: int, hi: int, D, t
 def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
             solve=solve_bitwuzla, initial: Optional[dict] = None,
             exhaustive_limit: int = EXHAUSTIVE_LIMIT, variant: str = "original",
-            incremental: bool = True) -> CaseResult:
+            incremental: bool = True, shortcuts: bool = True) -> CaseResult:
     """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each
     (``variant="fixed"``: of the planner with the fix).  The run ends with propagation when no
     property reads calcPath's result (:func:`run_of`).  ``incremental``: a path's flips are
-    asked of one solver instance (:class:`PathSolver`), what it leaves undecided of ``solve``."""
+    asked of one solver instance (:class:`PathSolver`), what it leaves undecided of ``solve``.
+    ``shortcuts``: before a flip is asked, an earlier flip's unsat core (:class:`UnsatCores`)
+    or a sampled map (:class:`Samples`, exact evaluation) may decide it; a certificate
+    re-checks those answers like any other."""
     t0 = time.perf_counter()
     inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
     results = {n: PropertyResult(n) for n in names}
     out = CaseResult(case, results)
     todo = [(initial or {k: lo for k in inner}, 0)]
     run = run_of(names)
+    cores = UnsatCores()
+    sampled = Samples(lo, hi)
     while todo:
         conc, bound = todo.pop()
         D, costs, sp, ex = run(case, conc, lo, hi, make_domain, variant)
@@ -438,15 +515,34 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
         if all(r.status == "refuted" for r in results.values()):
             break  # nothing left to prove in this case
         last = flippable(names, pc, sp, lo)
-        inc = PathSolver(box, pc[:last], variables, timeout) if incremental and last > bound else None
+        inc = None
+        held = cores.path(pc, D.assumptions) if shortcuts else None
+        pts = tv = None
+        if shortcuts and last > bound and inner and not D.assumptions:
+            pts = sampled.points(conc, inner)
+            tv = exhaustive.truths(pc[:last], variables, pts)
         for j in range(bound, last):
             out.flip_queries += 1
+            if held is not None and held.implied(j):
+                out.cached_unsat += 1
+                flips += UNSAT
+                continue
+            hit = None if tv is None else np.flatnonzero(tv[:j].all(axis=0) & ~tv[j])
+            if hit is not None and len(hit):
+                out.sampled_sat += 1
+                flips += SAT
+                todo.append(({k: int(c) for k, c in zip(inner, pts[hit[0]])}, j + 1))
+                continue
+            if inc is None and incremental:
+                inc = PathSolver(box, pc[:last], variables, timeout)
             status, model = inc.flip(j) if inc else ("unknown", "")
             if status == "sat":
                 model = {k: model.get(k, lo) for k in inner}
             elif status == "unknown":
                 status, model = _ask(pc[:j] + [z3.Not(pc[j])], variables, ranges, lo, hi, D, timeout, solve,
                                      exhaustive_limit)
+            if status == "unsat" and held is not None:
+                held.learn(j, model if isinstance(model, list) else range(j))
             flips += {"sat": SAT, "unsat": UNSAT}.get(status, UNKNOWN)
             if status == "sat":
                 todo.append((model, j + 1))

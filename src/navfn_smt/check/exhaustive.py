@@ -198,3 +198,18 @@ def solve(assertions: list, variables: dict, ranges: dict):
                      for k in ranges}
             return "sat", model
     return "unsat", None
+
+
+def truths(terms: list, variables: dict, costs: np.ndarray) -> Optional[np.ndarray]:
+    """Each Boolean term's value at each of the given points (``costs``: one row per point, one
+    column per cell of ``variables``, in its order), exact like :func:`solve`: a (terms, points)
+    array, or None when a term needs a constant other than a cost or an operator not known."""
+    names = {str(v): i for i, v in enumerate(variables.values())}
+    if set(free_constants(terms)) - set(names):
+        return None
+    env = {name: costs[:, i].astype(np.int64) for name, i in names.items()}
+    memo: dict = {}
+    try:
+        return np.array([evaluate(t, env, len(costs), memo) for t in terms], dtype=bool).reshape(len(terms), -1)
+    except Unsupported:
+        return None

@@ -64,12 +64,16 @@ class SizeResult:
     paths: int = 0
     queries: int = 0
     decided_by_intervals: int = 0
+    flips_by_core: int = 0  # flips found unsat by an earlier flip's unsat core, not asked
+    flips_by_sample: int = 0  # flips found sat at a sampled map, not asked
+    slowest: list = field(default_factory=list)  # the explored cases that took longest, with their times
     seconds: float = 0.0
     counterexample: Optional[dict] = None
     unknown_cases: list = field(default_factory=list)
     method: str = "exploration"  # or "induction: P (fp32 status)": decided for every map of the size without exploring
 
 
+SLOWEST = 10  # explored cases a size's report lists with their times
 MAX_CELLS = 12  # interior cells a bounded check enumerates at most
 
 
@@ -141,14 +145,15 @@ def replay(case: Case, costs: dict, name: str, variant: str = "original"):
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
                    timeout: float = 60.0, jobs=1, start=None, goal=None, ends: str = "any",
                    exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None,
-                   variant: str = "original", certificate: Optional[list] = None) -> dict:
+                   variant: str = "original", certificate: Optional[list] = None, journal=None) -> dict:
     """Every case of the size; returns ``{property: SizeResult}``, the same wherever the cases
     run.  ``jobs``: an :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number
     of cases), or a number of local workers.  One representative per layout of the goal's
     component is explored, and a start outside it decided without exploring
     (:func:`~.bounded.reduce_cases`, by ReachedWithinComponent).
     ``certificate``: a list that gets ``[case key, weight, path log]`` of every explored case,
-    in order (:mod:`.certificate`)."""
+    in order (:mod:`.certificate`).  ``journal``: a file (:mod:`.journal`) that records each
+    explored case as it is decided; the cases it already holds are not explored again."""
     check_size(nx, ny)
     _domain(semantics)
     if not (timeout > 0 and math.isfinite(timeout)):
@@ -176,10 +181,22 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         got = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
                              cases_holding=red.outside) for n in explored}
         eng = as_engine(jobs)
-        work = [(tuple(todo[k:k + BATCH]), tuple(explored), lo, hi, semantics, timeout, exhaustive_limit, variant)
-                for k in range(0, len(todo), BATCH)]
-        _collect(stream(_explore_job, work, eng.for_work(len(todo), PARALLEL_FROM)), got, len(todo), progress,
-                 variant, red.representatives, certificate)
+        book = None
+        if journal is not None:
+            from .journal import Journal, header
+
+            book = Journal(journal, header(explored, nx, ny, modes, lo, hi, variant, ends, start, goal, timeout,
+                                           exhaustive_limit))
+        done = {} if book is None else {c: book.done[book.key(c)] for c in todo if book.key(c) in book.done}
+        fresh = [c for c in todo if c not in done]
+        work = [(tuple(fresh[k:k + BATCH]), tuple(explored), lo, hi, semantics, timeout, exhaustive_limit, variant)
+                for k in range(0, len(fresh), BATCH)]
+        try:
+            _collect(stream(_explore_job, work, eng.for_work(len(fresh), PARALLEL_FROM)), got, todo, progress,
+                     variant, red.representatives, certificate, done, book)
+        finally:
+            if book is not None:
+                book.close()
         for r in got.values():
             r.seconds = time.perf_counter() - t0
             if r.counterexample is None and r.cases_unknown:
@@ -188,29 +205,37 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     return {n: out[n] for n in names}
 
 
-def _collect(batches, out: dict, total: int, progress, variant: str = "original", weight=None,
-             certificate: Optional[list] = None) -> None:
-    """Fold ``(index, [case result, ...])`` batches, arriving in any order, into ``out`` in
-    index order: counts, unknown cases and the counterexample (that of the first case refuting
-    a property) are those of a run in order.  ``progress`` hears of every case as it arrives.
-    ``weight[case]``: how many enumerated cases the explored case stands for."""
-    done = 0
+def _collect(batches, out: dict, todo: list, progress, variant: str = "original", weight=None,
+             certificate: Optional[list] = None, done: Optional[dict] = None, journal=None) -> None:
+    """Fold the results of the cases ``todo`` into ``out`` in their order: counts, unknown cases
+    and the counterexample (that of the first case refuting a property) are those of a run in
+    order.  ``done``: the results already known (a journal's); ``batches``: ``(index, [case
+    result, ...])`` of the others, arriving in any order, each recorded in ``journal`` as it
+    arrives.  ``progress`` hears of every case as it arrives.  ``weight[case]``: how many
+    enumerated cases the explored case stands for."""
+    got = dict(done or {})
+    count = len(got)
 
     def arrived(_, results) -> None:
-        nonlocal done
+        nonlocal count
+        if journal is not None:
+            journal.record(results)
         for cr in results:
-            done += 1
+            count += 1
             if progress:
-                progress(done, total, cr)
+                progress(count, len(todo), cr)
 
     for _, results in in_order(batches, arrived):
         for cr in results:
-            w = 1 if weight is None else weight[cr.case]
-            _fold(cr, out, variant, w)
-            if certificate is not None:
-                from .certificate import case_key
+            got[cr.case] = cr
+    for case in todo:
+        cr = got[case]
+        w = 1 if weight is None else weight[cr.case]
+        _fold(cr, out, variant, w)
+        if certificate is not None:
+            from .certificate import case_key
 
-                certificate.append([case_key(cr.case), w, cr.log])
+            certificate.append([case_key(cr.case), w, cr.log])
 
 
 def _fold(cr, out: dict, variant: str = "original", weight: int = 1) -> None:
@@ -220,8 +245,12 @@ def _fold(cr, out: dict, variant: str = "original", weight: int = 1) -> None:
     for name, pr in cr.results.items():
         r = out[name]
         r.paths += cr.paths
-        r.queries += pr.queries + cr.flip_queries
+        r.queries += pr.queries + cr.flip_queries - cr.cached_unsat - cr.sampled_sat
         r.decided_by_intervals += cr.decided_by_intervals
+        r.flips_by_core += cr.cached_unsat
+        r.flips_by_sample += cr.sampled_sat
+        r.slowest = sorted(r.slowest + [_case_json(case) | {"seconds": round(cr.seconds, 2), "paths": cr.paths}],
+                           key=lambda c: -c["seconds"])[:SLOWEST]
         if pr.status == "holds":
             r.cases_holding += weight
         elif pr.status == "unknown":
@@ -257,14 +286,17 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
                 ends: str, exhaustive_limit: int, budget: float = 0.0, smallest_only: bool = False,
                 progress_of: Callable[[str], Optional[Callable]] = lambda size: None,
                 t0: Optional[float] = None, variant: str = "original",
-                certify: Optional[Callable] = None) -> tuple[list, list]:
+                certify: Optional[Callable] = None, journal=None) -> tuple[list, list]:
     """:func:`check_one_size` for each of ``sizes`` in turn until ``budget`` seconds (0: no
     budget) have passed since ``t0``; the results in size order and the sizes not reached.
     With ``smallest_only`` a property refuted at one size is not checked at larger ones (its
     smallest counterexample is found).  ``progress_of("WxH")`` gives each size's progress.
     ``certify(nx, ny, {property: SizeResult}, entries)`` hears of each size where some property
     was proved and none left unknown, with its certificate's entries (:mod:`.certificate`; a
-    refuted property's verdict rests on its counterexample, replayed on the spec)."""
+    refuted property's verdict rests on its counterexample, replayed on the spec).  ``journal``:
+    the journal file of a single size (:mod:`.journal`)."""
+    if journal is not None and len(sizes) != 1:
+        raise NavfnInputError("--journal: a journal records the cases of one size (use --size, not --max-size)")
     t0 = time.perf_counter() if t0 is None else t0
     results, skipped = [], []
     open_names = list(names)
@@ -277,7 +309,7 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
         entries = [] if certify else None
         got = check_one_size(open_names, nx, ny, modes, lo, hi, semantics, timeout, jobs, start, goal, ends,
                              int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), variant=variant,
-                             certificate=entries)
+                             certificate=entries, journal=journal)
         if certify and all(r.status in ("proved", "refuted") for r in got.values()) and any(
                 r.status == "proved" for r in got.values()) and any(r.method == "exploration" for r in got.values()):
             certify(nx, ny, got, entries)

@@ -38,6 +38,8 @@ def cmd_check(args) -> int:
         check_writable_dir(args.certificates)
     if args.certificates and (args.start or args.goal):
         raise NavfnInputError("--certificates: a certificate covers every start and goal of a size (no --start/--goal)")
+    if args.journal:
+        check_files(args.journal)
     modes = [m == "astar" for m in modes_of(args.mode)]
     if args.max_size:
         sizes = CR.sizes_up_to(*args.max_size)
@@ -48,7 +50,8 @@ def cmd_check(args) -> int:
         results, skipped = CR.check_sizes(names, sizes, modes, lo, hi, args.semantics, args.timeout, eng, args.start,
                                           args.goal, args.ends, args.exhaustive, args.budget,
                                           smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0,
-                                          variant=args.variant, certify=_certify(args, lo, hi, modes))
+                                          variant=args.variant, certify=_certify(args, lo, hi, modes),
+                                          journal=args.journal)
     finally:
         report.stop_progress()
     report.table(results)
@@ -192,6 +195,9 @@ def register(sub) -> None:
     ck.add_argument("--json", metavar="FILE", help="write the verdicts, what was enumerated and solved, as JSON")
     ck.add_argument("--certificates", metavar="DIR", help="write a certificate of each size whose properties are all "
                     "proved to DIR/check-WxH.cert.json.gz: every case, control path and query, with the code's hash")
+    ck.add_argument("--journal", metavar="FILE", help="with --size: record each explored case in FILE as it is "
+                    "decided; a rerun with the same FILE explores only the cases it does not hold (refused when "
+                    "the arguments or the code differ), so a long check can be stopped and resumed")
     ck.add_argument("--replay", metavar="CERT", help="re-check a certificate without searching: every unsat asked "
                     "again, every sat flip witnessed; refused when the kernels or the encoding changed")
     ck.set_defaults(func=cmd_check)

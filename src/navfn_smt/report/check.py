@@ -68,7 +68,9 @@ def row(r) -> dict:
                                     "alike (one explored, every cell outside it lethal)"
                                     if r.representatives < r.cases else "none"},
         "solved": {"control_paths": r.paths, "solver_queries": r.queries,
-                   "decided_by_intervals": r.decided_by_intervals},
+                   "decided_by_intervals": r.decided_by_intervals,
+                   "flips_by_earlier_unsat_core": r.flips_by_core, "flips_by_sampled_map": r.flips_by_sample},
+        "slowest_cases": r.slowest,
         "cases_holding": r.cases_holding, "cases_unknown": r.cases_unknown,
         "unknown_cases": r.unknown_cases[:20],
         "counterexample": r.counterexample, "seconds": round(r.seconds, 2),
