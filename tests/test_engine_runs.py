@@ -53,8 +53,9 @@ def _outcomes(outcomes) -> list:
 
 
 def _size_results(results: dict) -> dict:
-    """What a check of one size decides: every field but the time."""
-    return {n: {k: v for k, v in dataclasses.asdict(r).items() if k != "seconds"} for n, r in results.items()}
+    """What a check of one size decides: every field but the times (its own, and its slowest cases')."""
+    return {n: {k: v for k, v in dataclasses.asdict(r).items() if k not in ("seconds", "slowest")}
+            for n, r in results.items()}
 
 
 def _summary(s: dict) -> dict:
