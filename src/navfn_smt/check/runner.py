@@ -189,6 +189,8 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
                                            exhaustive_limit))
         done = {} if book is None else {c: book.done[book.key(c)] for c in todo if book.key(c) in book.done}
         fresh = [c for c in todo if c not in done]
+        if done and progress:  # resumed: the journal's cases count as arrived
+            progress(len(done), len(todo), None)
         work = [(tuple(fresh[k:k + BATCH]), tuple(explored), lo, hi, semantics, timeout, exhaustive_limit, variant)
                 for k in range(0, len(fresh), BATCH)]
         try:
