@@ -461,6 +461,15 @@ def _ask(conditions: list, variables: dict, ranges: dict, lo: int, hi: int, D, t
     return status, model
 
 
+def _takes_flip(branches: list, parent: list, j: int) -> bool:
+    """Whether a path's branches are its parent's first ``j`` and then branch ``j`` negated: what
+    the map found for flip ``j`` (by a solver or a sample) must give, the run being exact."""
+    if len(branches) <= j or any(not a.eq(b) for a, b in zip(branches[:j], parent[:j])):
+        return False
+    a, b = branches[j], parent[j]
+    return (z3.is_not(a) and a.arg(0).eq(b)) or (z3.is_not(b) and b.arg(0).eq(a))
+
+
 def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
             solve=solve_bitwuzla, initial: Optional[dict] = None,
             exhaustive_limit: int = EXHAUSTIVE_LIMIT, variant: str = "original",
@@ -476,13 +485,15 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
     inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
     results = {n: PropertyResult(n) for n in names}
     out = CaseResult(case, results)
-    todo = [(initial or {k: lo for k in inner}, 0)]
+    todo = [(initial or {k: lo for k in inner}, 0, None)]
     run = run_of(names)
     cores = UnsatCores()
     sampled = Samples(lo, hi)
     while todo:
-        conc, bound = todo.pop()
+        conc, bound, parent = todo.pop()
         D, costs, sp, ex = run(case, conc, lo, hi, make_domain, variant)
+        if parent is not None and not _takes_flip(D.branches, parent, bound - 1):
+            raise RuntimeError(f"{case}: the map {conc} found for flip {bound - 1} does not take that flip")
         out.paths += 1
         variables = {k: costs[k].term for k in inner}
         ranges = {k: (lo, hi) for k in inner}
@@ -531,7 +542,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
             if hit is not None and len(hit):
                 out.sampled_sat += 1
                 flips += SAT
-                todo.append(({k: int(c) for k, c in zip(inner, pts[hit[0]])}, j + 1))
+                todo.append(({k: int(c) for k, c in zip(inner, pts[hit[0]])}, j + 1, pc))
                 continue
             if inc is None and incremental:
                 inc = PathSolver(box, pc[:last], variables, timeout)
@@ -545,7 +556,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
                 held.learn(j, model if isinstance(model, list) else range(j))
             flips += {"sat": SAT, "unsat": UNSAT}.get(status, UNKNOWN)
             if status == "sat":
-                todo.append((model, j + 1))
+                todo.append((model, j + 1, pc))
             elif status != "unsat":
                 out.unknown_flips.append(j)
                 for r in results.values():
