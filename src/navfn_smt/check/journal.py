@@ -101,8 +101,10 @@ class Journal:
         self._file.flush()
         os.fsync(self._file.fileno())
 
-    def key(self, case) -> str:
-        return json.dumps(case_key(case))
+    def known(self, cases) -> dict:
+        """The results this journal holds of ``cases`` (case -> :class:`CaseResult`)."""
+        keyed = ((c, json.dumps(case_key(c))) for c in cases)
+        return {c: self.done[k] for c, k in keyed if k in self.done}
 
     def record(self, results: list) -> None:
         """Append these explored cases' results."""

@@ -187,7 +187,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
 
             book = Journal(journal, header(explored, nx, ny, modes, lo, hi, variant, ends, start, goal, timeout,
                                            exhaustive_limit))
-        done = {} if book is None else {c: book.done[book.key(c)] for c in todo if book.key(c) in book.done}
+        done = {} if book is None else book.known(todo)
         fresh = [c for c in todo if c not in done]
         if done and progress:  # resumed: the journal's cases count as arrived
             progress(len(done), len(todo), None)
