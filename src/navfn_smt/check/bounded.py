@@ -36,7 +36,7 @@ from ..spec.constants import COST_NEUTRAL, COST_OBS, POT_HIGH
 from ..spec.planner import path_cycle_limit
 from . import properties as P
 from . import exhaustive
-from .concolic import ConcolicDomain, V, concrete, term
+from .concolic import ConcolicDomain, V, concrete, term  # noqa: F401  (V: named in docstrings)
 from ..spec.extraction import EXIT_UNDEFINED, exit_code
 from .encoding import RUNNING, SymbolicExtraction, _interior, descend, extract, propagate
 

@@ -19,11 +19,11 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable, Optional
 
-from ..engine import Engine, as_engine, in_order, stream
+from ..engine import Engine, as_engine, in_order, stream  # noqa: F401  (Engine: named in docstrings)
 from ..errors import NavfnInputError
 from ..spec.constants import COST_NEUTRAL, COST_OBS
 from . import properties as P
-from .bounded import CHECKABLE, Case, cases, explore, reduce_cases
+from .bounded import CHECKABLE, Case, cases, explore, reduce_cases  # noqa: F401  (CHECKABLE: re-exported)
 
 # Properties that hold by induction over the run, and the predicate whose obligations carry it.
 INDUCTION = {

@@ -208,7 +208,7 @@ def _success(d: Diagnosis, cm: Costmap, maxdim: int) -> None:
     run = d.run
     d.cause = "ok"
     if run.path is None:
-        d.summary = f"plan found: start and goal are the same position, a one-pose path (no planning)"
+        d.summary = "plan found: start and goal are the same position, a one-pose path (no planning)"
         return
     L = len(run.path)
     d.summary = f"plan found: {len(run.poses)} poses ({L} calcPath points, max_cycles {run.max_cycles})"
