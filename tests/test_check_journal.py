@@ -46,8 +46,11 @@ def test_a_stopped_check_resumes_where_it_stopped(tmp_path, monkeypatch):
     assert [e[:2] for e in again] == [e[:2] for e in entries]
     assert len(cut.read_text().splitlines()) == 1 + whole.representatives
     explored.clear()
-    _run(cut, monkeypatch, explored)
+    full, _ = _run(cut, monkeypatch, explored)
     assert explored == []  # a complete journal: nothing explored
+    assert (whole.from_journal, resumed.from_journal, full.from_journal) == (0, kept - 1, whole.representatives)
+    journaled = [json.loads(line)["seconds"] for line in cut.read_text().splitlines()[1:]]
+    assert full.case_seconds == pytest.approx(sum(journaled))  # the report's case time spans every run
 
 
 def test_a_journal_of_another_check_is_refused(tmp_path):

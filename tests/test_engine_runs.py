@@ -53,8 +53,9 @@ def _outcomes(outcomes) -> list:
 
 
 def _size_results(results: dict) -> dict:
-    """What a check of one size decides: every field but the times (its own, and its slowest cases')."""
-    return {n: {k: v for k, v in dataclasses.asdict(r).items() if k not in ("seconds", "slowest")}
+    """What a check of one size decides: every field but the times (its own, its cases' summed, and its
+    slowest cases')."""
+    return {n: {k: v for k, v in dataclasses.asdict(r).items() if k not in ("seconds", "case_seconds", "slowest")}
             for n, r in results.items()}
 
 

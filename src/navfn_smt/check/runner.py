@@ -67,6 +67,8 @@ class SizeResult:
     flips_by_core: int = 0  # flips found unsat by an earlier flip's unsat core, not asked
     flips_by_sample: int = 0  # flips found sat at a sampled map, not asked
     slowest: list = field(default_factory=list)  # the explored cases that took longest, with their times
+    case_seconds: float = 0.0  # the explored cases' own times, summed (those of a journal's cases too)
+    from_journal: int = 0  # explored cases whose results a journal held: explored by an earlier, stopped run
     seconds: float = 0.0
     counterexample: Optional[dict] = None
     unknown_cases: list = field(default_factory=list)
@@ -201,6 +203,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
                 book.close()
         for r in got.values():
             r.seconds = time.perf_counter() - t0
+            r.from_journal = len(done)
             if r.counterexample is None and r.cases_unknown:
                 r.status = "unknown"
         out.update(got)
@@ -247,6 +250,7 @@ def _fold(cr, out: dict, variant: str = "original", weight: int = 1) -> None:
     for name, pr in cr.results.items():
         r = out[name]
         r.paths += cr.paths
+        r.case_seconds += cr.seconds
         r.queries += pr.queries + cr.flip_queries - cr.cached_unsat - cr.sampled_sat
         r.decided_by_intervals += cr.decided_by_intervals
         r.flips_by_core += cr.cached_unsat

@@ -74,6 +74,7 @@ def row(r) -> dict:
         "cases_holding": r.cases_holding, "cases_unknown": r.cases_unknown,
         "unknown_cases": r.unknown_cases[:20],
         "counterexample": r.counterexample, "seconds": round(r.seconds, 2),
+        "case_seconds": round(r.case_seconds, 2), "cases_from_journal": r.from_journal,
     }
 
 
@@ -85,7 +86,8 @@ def table(results: list) -> None:
         cx = r.counterexample
         what = (f"{cx['mode']} start {tuple(cx['start'])} goal {tuple(cx['goal'])}: {cx['reason']}" if cx else "")
         t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", verdict_text(r.status, r.method), str(r.cases), str(r.representatives), str(r.paths), str(r.queries),
-                  f"{r.seconds:.1f} s", what)
+                  f"{r.seconds:.1f} s" + (f" ({r.from_journal} cases journaled before)" if r.from_journal else ""),
+                  what)
     _console.print(t)
 
 
