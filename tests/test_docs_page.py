@@ -108,6 +108,29 @@ def test_statuses_come_from_the_reports():
             assert f"| {r['size'][0]}x{r['size'][1]} | {r['interior_cells']} | {r['status']}" in text
 
 
+def test_a_certificate_is_linked_where_it_certifies_the_property():
+    """A size's row links its committed certificate under exactly the properties the certificate
+    gives a verdict for: 4x6's certificate covers start-reached, not complete (an induction's)."""
+    import gzip
+    import re
+
+    certified = {f.name: set(json.loads(gzip.decompress(f.read_bytes()))["verdicts"])
+                 for f in (REPORTS / "certificates").glob("check-*.cert.json.gz")}
+    assert certified
+    linked, section = set(), None
+    for line in PAGE.read_text().splitlines():
+        if m := re.match(r"### `([a-z-]+)`", line):
+            section = m.group(1)
+        elif line.startswith("| ") and section and (m := re.match(r"\| (\d+x\d+) \| \d+ \| proved", line)):
+            link = re.search(r"\[(check-\d+x\d+\.cert\.json\.gz)\]", line)
+            name = f"check-{m.group(1)}.cert.json.gz"
+            assert (link is not None) == (name in certified and section in certified[name]), (section, line)
+            if link:
+                linked.add((section, name))
+    assert ("start-reached", "check-4x6.cert.json.gz") in linked
+    assert ("complete", "check-4x6.cert.json.gz") not in linked
+
+
 def test_not_run_without_a_report(tmp_path):
     """An obligation missing from the prove report and a property no check report covers are
     listed as not run; the report's own time is the only one on the page (deterministic)."""

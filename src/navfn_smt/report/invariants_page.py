@@ -26,6 +26,7 @@ what is known of them (:func:`navfn_smt.commands.common.page_sources`).
 from __future__ import annotations
 
 import ast
+import functools
 import inspect
 import json
 import textwrap
@@ -326,10 +327,31 @@ def _open_sizes(by_size: dict) -> list:
     return [s for s in _sorted_sizes(dict.fromkeys(sizes)) if s not in decided]
 
 
-def _certificate(certs: Optional[Path], s) -> str:
-    """The size's committed certificate, as a link from docs/, or a dash."""
+def _certificate(certs: Optional[Path], s, prop: str) -> str:
+    """The size's committed certificate, as a link from docs/, when it certifies ``prop`` (its
+    header's verdicts name the properties it covers); else a dash."""
     name = f"check-{s[0]}x{s[1]}.cert.json.gz"
-    return f"[{name}](reports/certificates/{name})" if certs is not None and (certs / name).is_file() else "-"
+    if certs is None or not (certs / name).is_file():
+        return "-"
+    return f"[{name}](reports/certificates/{name})" if prop in _certified(certs / name) else "-"
+
+
+@functools.lru_cache(maxsize=None)
+def _certified(path: Path) -> frozenset:
+    """The properties a certificate gives a verdict for."""
+    import gzip
+
+    return frozenset(json.loads(gzip.decompress(path.read_bytes())).get("verdicts", {}))
+
+
+def _size_time(r: dict) -> str:
+    """A size's time; a run resumed from a journal adds the journaled cases and the case time
+    of every run."""
+    t = _fmt_seconds(r["seconds"])
+    if r.get("cases_from_journal"):
+        t += (f" (resumed: {r['cases_from_journal']} cases journaled by earlier runs; "
+              f"{_fmt_seconds(r['case_seconds'])} of case time in all)")
+    return t
 
 
 def _merge_checks(checks: list) -> tuple[dict, dict, dict]:
@@ -411,7 +433,9 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
         for label, doc in checks:
             out.append(f"- [{label}]({label}): `{_check_command(doc)}`; costs "
                        f"{'..'.join(map(str, doc.get('costs', []))) or '?'}, ends {doc.get('ends', '?')}, "
-                       f"{doc.get('semantics', '?')}; {_fmt_seconds(doc.get('seconds', 0))} in all")
+                       f"{doc.get('semantics', '?')}; {_fmt_seconds(doc.get('seconds', 0))} in all"
+                       + (", resumed from a journal" if any(r.get("cases_from_journal") for r in doc["results"])
+                          else ""))
         out.append("")
     else:
         out += ["No check report was given: every property is *not run*.", ""]
@@ -458,8 +482,8 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
             out.append(f"| {_size(s)} | {r.get('interior_cells', (s[0] - 2) * (s[1] - 2))} | {verdict} | "
                        f"{r['enumerated'].get('cases', '?')} | {r['enumerated'].get('explored', '-')} | "
                        f"{r['solved'].get('control_paths', '?')} | "
-                       f"{r['solved'].get('solver_queries', '?')} | {_fmt_seconds(r['seconds'])} | {label} | "
-                       f"{_certificate(certs, s) if r['status'] == 'proved' else '-'} |")
+                       f"{r['solved'].get('solver_queries', '?')} | {_size_time(r)} | {label} | "
+                       f"{_certificate(certs, s, n) if r['status'] == 'proved' else '-'} |")
         out.append("")
         still = [] if ind and ind.get("status") == "proved" else _open_sizes(by_size)
         if still:
