@@ -111,10 +111,11 @@ def test_statuses_come_from_the_reports():
 def test_a_certificate_is_linked_where_it_certifies_the_property():
     """A size's row links its committed certificate under exactly the properties the certificate
     gives a verdict for: 4x6's certificate covers start-reached, not complete (an induction's)."""
-    import gzip
     import re
 
-    certified = {f.name: set(json.loads(gzip.decompress(f.read_bytes()))["verdicts"])
+    from navfn_smt.check import certificate
+
+    certified = {f.name: set(certificate.read(f)["verdicts"])
                  for f in (REPORTS / "certificates").glob("check-*.cert.json.gz")}
     assert certified
     linked, section = set(), None

@@ -339,9 +339,9 @@ def _certificate(certs: Optional[Path], s, prop: str) -> str:
 @functools.lru_cache(maxsize=None)
 def _certified(path: Path) -> frozenset:
     """The properties a certificate gives a verdict for."""
-    import gzip
+    from ..check import certificate
 
-    return frozenset(json.loads(gzip.decompress(path.read_bytes())).get("verdicts", {}))
+    return frozenset(certificate.read(path)["verdicts"])
 
 
 def _size_time(r: dict) -> str:
