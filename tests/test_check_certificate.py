@@ -1,6 +1,7 @@
 """Certificates of bounded checks: written for a proved size, replayed without searching, and
 refused when they do not re-check (a changed code hash, a path tree that does not close, a
-recorded unsat that is not, cases that are not those of the size)."""
+case without its root path, marks that do not support the verdicts, a recorded unsat that is
+not, cases that are not those of the size), and a seeded mutation run of the checker itself."""
 
 import gzip
 import json
@@ -14,6 +15,7 @@ from navfn_smt.check import certificate as C
 from navfn_smt.errors import NavfnInputError
 
 REPORTS = Path(__file__).resolve().parents[1] / "docs" / "reports"
+FAST = ("bitwuzla",)  # the tests ask bitwuzla (fast); which solver answers is not what they test
 
 
 def _cli(*args):
@@ -80,26 +82,26 @@ def _first_with_flips(doc):
 
 def test_a_wrong_branch_count_is_refused(cert, tmp_path):
     bad = _edit(cert, tmp_path / "c.gz", lambda d: _first_with_flips(d).__setitem__(3, _first_with_flips(d)[3] + "u"))
-    assert C.replay(bad)["status"] == "refused"
+    assert C.replay(bad, order=FAST)["status"] == "refused"
 
 
 def test_a_sat_flip_recorded_unsat_is_refused(cert, tmp_path):
     def lie(doc):
         p = next(p for _, _, log in doc["cases"] for p in log if "s" in p[3])
         p[3] = p[3].replace("s", "u", 1)
-    assert C.replay(_edit(cert, tmp_path / "c.gz", lie))["status"] == "refused"
+    assert C.replay(_edit(cert, tmp_path / "c.gz", lie), order=FAST)["status"] == "refused"
 
 
 def test_a_missing_path_is_refused(cert, tmp_path):
     def drop(doc):
         log = next(log for _, _, log in doc["cases"] if len(log) > 1)
         log.pop()
-    assert C.replay(_edit(cert, tmp_path / "c.gz", drop))["status"] == "refused"
+    assert C.replay(_edit(cert, tmp_path / "c.gz", drop), order=FAST)["status"] == "refused"
 
 
 def test_a_missing_case_is_refused(cert, tmp_path):
-    got = C.replay(_edit(cert, tmp_path / "c.gz", lambda d: d["cases"].pop()))
-    assert got["status"] == "refused" and "enumeration" in got["problems"][0]
+    got = C.replay(_edit(cert, tmp_path / "c.gz", lambda d: d["cases"].pop()), order=FAST)
+    assert got["status"] == "refused" and "has no entry" in got["problems"][0]
 
 
 def test_an_unreadable_certificate_is_a_clear_error(tmp_path):
@@ -117,3 +119,265 @@ def test_every_committed_certificate_is_of_this_code(path):
     the encoding must come with new certificates); the CI replays them (.ci/run)."""
     doc = C.read(path)
     assert doc["code_hash"] == C.code_hash(doc["properties"])
+
+
+COMMITTED = REPORTS / "certificates"
+
+
+def _doc(name):
+    return C.read(COMMITTED / name)
+
+
+def _refused(doc, first: str, memo=None):
+    got = C.replay(None, doc=doc, order=FAST, memo=memo)
+    assert got["status"] == "refused" and first in got["problems"][0], got["problems"][:1]
+    return got
+
+
+def _every_path(doc):
+    return [p for _, _, log in doc["cases"] for p in log]
+
+
+@pytest.mark.parametrize("edit, first", [
+    ("empty", "no control path is recorded"),
+    ("no-root", "root"),
+    ("unknown", "marks start-reached unknown; the certificate calls it proved"),
+    ("refuted", "marks start-reached refuted; the certificate calls it proved")])
+def test_a_certificate_that_proves_nothing_is_refused(edit, first, tmp_path):
+    """Issue 35's four edits of 3x7's committed certificate: each replayed as a proof before;
+    each is refused now, with the first problem named (non-zero exit, no traceback)."""
+    doc = _doc("check-3x7.cert.json.gz")
+    for _, _, log in doc["cases"]:
+        if edit == "empty":
+            log.clear()
+        elif edit == "no-root":
+            log[:] = [p for p in log if p[1] != 0]
+        else:
+            for p in log:
+                p[2] = {"unknown": "?", "refuted": "r"}[edit] * len(p[2])
+    _refused(doc, first)
+    bad = tmp_path / "c.gz"
+    bad.write_bytes(gzip.compress(json.dumps(doc).encode()))
+    r = _cli("check", "--replay", str(bad), "--solver", "bitwuzla", "--jobs", "1")
+    assert r.returncode == 1 and "Traceback" not in r.stderr and first in r.stdout
+
+
+def test_a_child_without_its_parent_and_a_flip_without_its_child_are_refused():
+    doc = _doc("check-3x7.cert.json.gz")
+    log = next(log for _, _, log in doc["cases"] if len(log) > 2)
+    parent = next(p for p in log if "s" in p[3])
+    j = parent[1] + parent[3].index("s")
+    child = next(p for p in log if p[1] == j + 1)
+    child[1] += 1  # the child claims another flip
+    _refused(doc, "has no parent")
+    child[1] -= 1
+    log.remove(child)  # the flip is recorded sat, its path is gone
+    got = C.replay(None, doc=doc, order=FAST)
+    assert got["status"] == "refused" and ("no recorded path takes it" in got["problems"][0]
+                                           or "has no parent" in got["problems"][0])
+
+
+def test_a_verdict_the_paths_do_not_give_is_refused(cert):
+    doc = C.read(cert)
+    doc["verdicts"]["start-reached"] = "refuted"  # every path holds it; nothing refutes it
+    _refused(doc, "no recorded map refutes it")
+    doc = C.read(cert)
+    doc["verdicts"]["complete"] = "refuted"  # the induction that decides it says proved
+    _refused(doc, "what is known today gives proved")
+    doc = C.read(cert)
+    doc["verdicts"]["valid-path"] = "proved"  # neither explored nor by an induction
+    _refused(doc, "neither the paths nor a named induction")
+
+
+@pytest.fixture(scope="module")
+def refuting(tmp_path_factory):
+    """A certificate with a refuted property beside a proved one (3x3: valid-path fails there)."""
+    d = tmp_path_factory.mktemp("refuting")
+    r = _cli("check", "valid-path", "start-reached", "--size", "3", "3", "--certificates", str(d))
+    assert r.returncode == 1 and "refuted" in r.stdout, r.stdout + r.stderr
+    return d / "check-3x3.cert.json.gz"
+
+
+def test_a_refuted_verdict_needs_a_map_that_refutes_it_on_the_spec(refuting):
+    from navfn_smt.check.certificate import _witness_problems
+
+    doc = C.read(refuting)
+    got = C.replay(None, doc=doc, order=FAST)
+    assert got["status"] == "replayed" and got["verdicts"]["valid-path"] == "refuted", got["problems"]
+    assert got["evidence"]["refutations_witnessed"] >= 1
+    assert _witness_problems(doc, set()) == []  # the header's witness refutes it on its own
+    w = doc["witnesses"]["valid-path"]
+    w["costs"] = [[254, 254, 254], [254, 50, 254], [254, 254, 254]]  # a passable cell: the path is valid
+    assert "no recorded map refutes it" in _witness_problems(doc, set())[0]
+    for _, _, log in doc["cases"]:  # and no path's seed is said to refute it either
+        for p in log:
+            p[2] = p[2].replace("r", "?")
+    _refused(doc, "no recorded map refutes it")
+
+
+def test_costs_below_one_are_refused_where_nan_would_make_the_intervals_unsound(cert):
+    """At cost 0 updateCell divides 0 by 0: a NaN, for which the concolic same-term shortcut
+    (``x <= x`` decided true) is wrong; a check and a replay refuse such a box."""
+    import math
+
+    from navfn_smt.check.concolic import ConcolicDomain
+    from navfn_smt.smt.domains import FPDomain
+    from navfn_smt.spec.kernels import planar_wave
+    from navfn_smt.spec.numeric import CONCRETE as N
+
+    zero = N.f32const(0.0)  # planar_wave's div = dc / hf (built on both sides of its branch): 0/0 at cost 0
+    assert math.isnan(N.div(zero, zero)) and planar_wave(N, *(N.f32const(100.0),) * 4, zero) == 100.0
+    D = ConcolicDomain(FPDomain())
+    x = D.cost_as_f32(D.cost(1, 0, 253, "c"))
+    q = D.div(D.sub(x, x), x)  # 0/0 at cost 0, 0 elsewhere: the box holds a NaN
+    assert D.truth(D.le(q, q)) is True  # decided for the whole box, false at cost 0
+    r = _cli("check", "start-reached", "--size", "3", "4", "--costs", "0..253")
+    assert r.returncode != 0 and "at least 1" in r.stderr and "Traceback" not in r.stderr
+    doc = C.read(cert)
+    doc["costs"] = [0, 253]
+    _refused(doc, "costs below 1")
+
+
+# ---------------------------------------------------------------------------------------
+# The checker's own mutation test
+# ---------------------------------------------------------------------------------------
+MUTATIONS = 240  # at least 200 (issue 35)
+
+
+def _mutate(doc, rng):
+    """One random single-field corruption of ``doc`` (in place): ``(what, where)``; ``where`` is
+    ``("seed", case index, path index)`` for a seed's cost, ``("mark", property, new mark)`` for
+    a property's mark, else None."""
+    import random  # noqa: F401  (rng is a random.Random)
+
+    cases = doc["cases"]
+    ci = rng.randrange(len(cases))
+    key, _, log = cases[ci]
+    pi = rng.randrange(len(log))
+    path = log[pi]
+    kind = rng.choice(["seed"] * 6 + ["bound"] * 2 + ["mark"] * 2 + ["flip"] * 2
+                      + ["flip count", "case", "weight", "hash", "header", "path"])
+    if kind == "seed" and path[0]:
+        k = rng.randrange(len(path[0]))
+        lo, hi = doc["costs"]
+        path[0][k] = rng.choice([rng.randint(lo, hi), lo, hi, hi + 1, lo - 1])
+        return f"case {ci} path {pi}: seed cost {k} -> {path[0][k]}", ("seed", ci, pi)
+    if kind in ("seed", "bound"):
+        path[1] = rng.choice([path[1] + 1, max(0, path[1] - 1), rng.randint(0, 12)])
+        return f"case {ci} path {pi}: bound -> {path[1]}", None
+    if kind == "mark":
+        k = rng.randrange(len(path[2]))
+        path[2] = path[2][:k] + rng.choice([m for m in "iqr?" if m != path[2][k]]) + path[2][k + 1:]
+        return f"case {ci} path {pi}: mark {k} -> {path[2]}", ("mark", doc["properties"][k], path[2][k])
+    if kind == "flip" and path[3]:
+        k = rng.randrange(len(path[3]))
+        path[3] = path[3][:k] + rng.choice([m for m in "us?" if m != path[3][k]]) + path[3][k + 1:]
+        return f"case {ci} path {pi}: flip {k} -> {path[3]}", None
+    if kind in ("flip", "flip count"):
+        path[3] = path[3][:-1] if path[3] and rng.random() < 0.5 else path[3] + rng.choice("us")
+        return f"case {ci} path {pi}: flips -> {path[3]!r}", None
+    if kind == "case":
+        field = rng.randrange(6)
+        nx, ny = key[0], key[1]
+        cells = [x for x in range(nx * ny) if 0 < x % nx < nx - 1 and 0 < x // nx < ny - 1]
+        if field == 2:
+            key[2] = sorted(set(key[2]) ^ {rng.choice(cells)})
+        elif field in (3, 4):
+            c = rng.choice(cells)
+            key[field] = [c % nx, c // nx]
+        elif field == 5:
+            key[5] = not key[5]
+        else:
+            key[field] += rng.choice([-1, 1])
+        return f"case {ci}: key field {field} -> {key}", None
+    if kind == "weight":
+        cases[ci][1] += rng.choice([-1, 1, 2])
+        return f"case {ci}: weight -> {cases[ci][1]}", None
+    if kind == "hash":
+        h = doc["code_hash"]
+        k = rng.randrange(len(h))
+        doc["code_hash"] = h[:k] + ("0" if h[k] != "0" else "1") + h[k + 1:]
+        return "code hash", None
+    if kind == "path":
+        if rng.random() < 0.5 and len(log) > 1:
+            log.pop(pi)
+            return f"case {ci}: path {pi} dropped", None
+        log.insert(pi, json.loads(json.dumps(path)))
+        return f"case {ci}: path {pi} doubled", None
+    field = rng.choice(["total", "outside", "costs", "size", "modes", "verdicts", "properties"])
+    if field in ("total", "outside"):
+        doc[field] += rng.choice([-1, 1])
+    elif field == "costs":
+        doc["costs"] = rng.choice([[0, doc["costs"][1]], [doc["costs"][0], 254], [doc["costs"][0] - 1, 253]])
+    elif field == "size":
+        doc["size"] = [doc["size"][1], doc["size"][0]]
+    elif field == "modes":
+        doc["modes"] = doc["modes"][:1]
+    elif field == "verdicts":
+        n = rng.choice(sorted(doc["verdicts"]))
+        doc["verdicts"][n] = {"proved": "refuted", "refuted": "proved"}[doc["verdicts"][n]]
+    else:
+        doc["properties"] = doc["properties"] + ["valid-path"] if "valid-path" not in doc["properties"] else []
+    return f"header {field}", None
+
+
+def _harmless(doc, original, where) -> bool:
+    """Whether a corruption leaves what the certificate proves as it was: a seed's cost changed
+    where the run from the new seed records the same branch terms as from the old one, up to the
+    point the search stops flipping (the same flips, so the same queries), or a mark of a refuted property turned refuted or
+    unknown (such marks are not evidence: the verdict rests on a map replayed on the spec)."""
+    from navfn_smt.check import bounded as B
+    from navfn_smt.smt.domains import FPDomain
+
+    if where is None:
+        return False
+    if where[0] == "mark":
+        return doc["verdicts"][where[1]] == "refuted" and where[2] in "r?"
+    _, ci, pi = where
+    key, _, log = doc["cases"][ci]
+    case = C.case_of(key)
+    inner = [k for k in B._interior(case.nx, case.ny) if k not in case.lethal]
+    lo, hi = doc["costs"]
+    run, names = B.run_of(doc["properties"]), doc["properties"]
+
+    def flipped(seed):  # the branches the rule lets the search flip (flippable), as terms
+        D, _, sp, _ = run(case, dict(zip(inner, seed)), lo, hi, FPDomain, doc["variant"])
+        return D.branches[:B.flippable(names, D.branches, sp, lo)]
+
+    new, old = flipped(log[pi][0]), flipped(original["cases"][ci][2][pi][0])
+    return len(new) == len(old) and all(a.eq(b) for a, b in zip(new, old))
+
+
+def test_the_checker_refuses_every_harmful_corruption_of_a_committed_certificate(refuting, capsys):
+    """A seeded run of single-field corruptions (a seed's cost, a bound, a property mark, a flip
+    mark, a branch count, a case key, a weight, the hash, a header field, a path dropped or
+    doubled) of 3x7's and 7x3's committed certificates and of a 3x3 certificate with a refuted
+    property: each is refused, or shown harmless here (:func:`_harmless`: the certificate still
+    proves exactly what it did).  Replays share answers
+    (a memo of each case's result by its entry, and of unsats by their query), so only what a
+    corruption changed is re-checked."""
+    import random
+
+    rng = random.Random(35)
+    sources = [COMMITTED / "check-3x7.cert.json.gz", COMMITTED / "check-7x3.cert.json.gz", refuting]
+    memo: dict = {}
+    for src in sources:
+        assert C.replay(None, doc=C.read(src), order=FAST, memo=memo)["status"] == "replayed", src
+    tried = refused = harmless = 0
+    for i in range(MUTATIONS):
+        src = sources[i % len(sources)]
+        original = C.read(src)
+        doc = C.read(src)
+        what, where = _mutate(doc, rng)
+        while doc == original:  # a draw that changed nothing (a bound already 0 lowered) is drawn again
+            what, where = _mutate(doc, rng)
+        tried += 1
+        got = C.replay(None, doc=doc, order=FAST, memo=memo)
+        if got["status"] == "refused":
+            refused += 1
+            continue
+        assert _harmless(doc, original, where), f"{src.name}: {what} replays as a proof"
+        harmless += 1
+    with capsys.disabled():
+        print(f"\ncertificate mutations: {tried} tried, {refused} refused, {harmless} harmless")
+    assert tried >= 200 and refused + harmless == tried and refused > harmless

@@ -217,6 +217,24 @@ def relevant(conditions: list, variables: dict, ranges: dict, lo: int, hi: int, 
             {k: ranges[k] for k in keep})
 
 
+# the least cost a check's box may hold.  With a cost of 0 updateCell computes 0/0 (dc = hf = 0):
+# a NaN, which the concolic intervals do not track (their same-term shortcut decides ``x <= x``
+# true where a NaN makes it false).  From 1 up, every division of the propagation has a divisor
+# of at least 1 and every value is finite (argued in docs/check.md; tests/test_check_certificate.py
+# shows the NaN at 0), so the intervals are sound on every box a check accepts
+MIN_COST = 1
+
+
+def check_cost_box(lo: int, hi: int) -> None:
+    """A check's cost box ``lo..hi``, refused with a clear error below :data:`MIN_COST`."""
+    if lo < MIN_COST:
+        from ..errors import NavfnInputError
+
+        raise NavfnInputError(f"--costs {lo}..{hi}: a check needs costs of at least {MIN_COST}: with a cost of 0 "
+                              "updateCell divides 0 by 0 (NaN), where the concolic intervals are not sound "
+                              "(docs/check.md)")
+
+
 QUICK = 5.0  # seconds the incremental solver gets per flip before the flip is asked on its own
 
 
@@ -481,6 +499,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
     ``shortcuts``: before a flip is asked, an earlier flip's unsat core (:class:`UnsatCores`)
     or a sampled map (:class:`Samples`, exact evaluation) may decide it; a certificate
     re-checks those answers like any other."""
+    check_cost_box(lo, hi)
     t0 = time.perf_counter()
     inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
     results = {n: PropertyResult(n) for n in names}

@@ -3,17 +3,34 @@
 A certificate (gzipped JSON) holds, for one size: the arguments of the run, the hash of the
 code the queries are built from (:func:`code_hash`: the kernels, the encoding, the concolic
 and symbolic domains, the properties as conditions of the run; not the search strategy, which
-a replay does not use), the reduction's counts, and per explored case every control path:
-the costs it was found with (its *seed*), the first branch it was free to flip (its
-*bound*), how each property was judged on it, and how each flip was answered.
+a replay does not use), the reduction's counts, the verdicts, and per explored case every
+control path: the costs it was found with (its *seed*), the first branch it was free to flip
+(its *bound*), how each property was judged on it (its *marks*), and how each flip was
+answered.
 
-:func:`replay` re-checks it: the enumeration and the reduction are redone and must give the
-same cases; each path is re-run from its seed and must have as many branches as recorded;
-every unsat (a flip, or a property's query) is asked again of a fresh solver and must be
-unsat again (a path's unsats asked as one query, their disjunction, which is unsat exactly
-when each of them is; each on its own only when it is not); every sat flip must be witnessed by the seed of a recorded path, evaluated on
-the flip's query (no solver).  Nothing is searched for: a certificate whose path tree does
-not close is refused.  A changed hash refuses the certificate before any of this.
+:func:`replay` re-checks it and searches for nothing (docs/check.md has the table of what it
+re-checks and what it trusts):
+
+* the header: well formed, a cost box the intervals are sound on (:data:`~.bounded.MIN_COST`),
+  a verdict for every property, each from the paths or from a named induction;
+* coverage: the enumeration and the reduction are redone and give exactly the certificate's
+  cases and weights; every case has one root path (bound 0), first; every other path has a
+  parent, an earlier path whose flip ``bound - 1`` is recorded sat and whose first
+  ``bound - 1`` branches and that branch negated are exactly the path's own (the path re-run
+  from its seed); every sat flip has such a child; every path records as many flips as it has
+  branches from its bound to the point the property rule stops at (:func:`~.bounded.flippable`);
+* marks against verdicts: a property called proved is held on every path (on the box by the
+  intervals, or by a query) and no flip is left undecided; one called refuted has a witness
+  map that refutes it on the concrete spec;
+* every unsat (a flip, a property's query; with ``check_intervals`` a property held on the box
+  too) is asked again, of cvc5 first by default (the search asked bitwuzla), and must be unsat
+  (a path's unsats asked as one query, their disjunction, which is unsat exactly when each is;
+  each on its own only when it is not); every sat flip's query is evaluated true at its
+  child's seed by Z3 (no solving).
+
+What each decision rested on is counted in the result's ``evidence``: the unsats by the solver
+that answered, the witnessed flips, and what is trusted (the intervals' verdicts, the paths
+cut by QueuedStartReached, the cases decided by the reduction, the inductions).
 """
 
 from __future__ import annotations
@@ -21,11 +38,14 @@ from __future__ import annotations
 import gzip
 import hashlib
 import json
+from collections import Counter
 from pathlib import Path
+from typing import Optional
 
 import z3
 
 from ..errors import NavfnInputError
+from ..smt import smtlib, solvers
 from . import bounded as B
 
 FORMAT = "navfn-smt check certificate 1"
@@ -86,105 +106,451 @@ def read(path) -> dict:
     return doc
 
 
+
+
 def _holds_at(assertions: list, variables: dict, seed: dict) -> bool:
     """Whether the costs ``seed`` satisfy every assertion (evaluated by Z3, no solving)."""
     sub = [(v, z3.BitVecVal(seed[k], v.size())) for k, v in variables.items()]
     return all(z3.is_true(z3.simplify(z3.substitute(a, *sub))) for a in assertions)
 
 
-def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: float, variant: str) -> list[str]:
-    """The problems of one case's path log (empty: it re-checks)."""
+def _is_int(x) -> bool:
+    return isinstance(x, int) and not isinstance(x, bool)
+
+
+# ---------------------------------------------------------------------------------------
+# Asking again
+# ---------------------------------------------------------------------------------------
+SOLVERS = ("cvc5", "bitwuzla", "z3")
+# the search answers its flips with bitwuzla (an instance per path, cvc5 on what it leaves
+# open), exact evaluation of small boxes, or an earlier bitwuzla core: a replay asks cvc5 first,
+# and bitwuzla only what cvc5 leaves undecided (counted apart in the evidence)
+DEFAULT_SOLVERS = ("cvc5", "bitwuzla")
+
+
+def check_solvers(names) -> tuple:
+    """``--solver`` checked: names of :data:`SOLVERS`, each at most once, in the order asked."""
+    names = tuple(names)
+    if not names or len(set(names)) != len(names) or any(n not in SOLVERS for n in names):
+        raise NavfnInputError(f"--solver {','.join(names)}: name one or more of {', '.join(SOLVERS)}, each once, "
+                              "in the order they are asked")
+    return names
+
+
+def ask(assertions: list, order: tuple, timeout: float, memo: Optional[dict] = None) -> tuple:
+    """``(status, who)``: the answer of the first solver of ``order`` that decides the query (sat
+    or unsat) and its name; ``("unknown", reasons)`` when none does.  ``memo`` keeps the unsat
+    answers by the query's text (an unsat is a proof: asking it again gives nothing new)."""
+    q = smtlib.prepare(assertions)
+    key = hashlib.sha256(q.smt2.encode()).hexdigest()
+    if memo is not None and key in memo:
+        return "unsat", memo[key]
+    names = {n: n for n in q.consts}
+    reasons = []
+    for who in order:
+        if who == "z3":
+            r = solvers.run_z3(q.z3_text, timeout, names, q.logic)
+        elif who == "cvc5":
+            r = solvers.run_cvc5(q.smt2, timeout, names, q.logic, q.cvc5_fp_exp)
+        else:
+            r = solvers.run_bitwuzla(q.smt2, timeout, names, q.logic)
+        if r["status"] in ("sat", "unsat"):
+            if r["status"] == "unsat" and memo is not None:
+                memo[key] = who
+            return r["status"], who
+        reasons.append(f"{who}: {r.get('detail', r['status'])}")
+    return "unknown", "; ".join(reasons)
+
+
+def _all_unsat(box: list, unsat: dict, order: tuple, timeout: float, memo=None) -> tuple:
+    """``(problems, answered)``: the ``(what, status)`` of the queries ``box & conditions`` that
+    are not unsat, and how many unsats each solver confirmed.  First one query, their
+    disjunction (unsat exactly when each is); only when it is not, each on its own."""
+    answered: Counter = Counter()
+    if not unsat:
+        return [], answered
+
+    def join(op, xs):  # SMT-LIB's and/or take two arguments or more
+        return xs[0] if len(xs) == 1 else op(xs)
+
+    either = join(z3.Or, [join(z3.And, c) for c in unsat.values()])
+    st, who = ask(box + [either], order, timeout, memo)
+    if st == "unsat":
+        answered[who] += len(unsat)
+        return [], answered
+    problems = []
+    for what, c in unsat.items():
+        st, who = ask(box + c, order, timeout, memo)
+        if st == "unsat":
+            answered[who] += 1
+        else:
+            problems.append((what, st if st == "sat" else f"undecided ({who})"))
+    return problems, answered
+
+
+# ---------------------------------------------------------------------------------------
+# One case
+# ---------------------------------------------------------------------------------------
+MARKS = {B.HELD_ON_BOX: "held on the box", B.HELD_BY_QUERY: "held by a query", B.REFUTED: "refuted",
+         B.UNKNOWN: "unknown"}
+FLIP_MARKS = {B.UNSAT: "unsat", B.SAT: "sat", B.UNKNOWN: "undecided"}
+
+
+def new_evidence() -> dict:
+    """The counts of what a replay's decisions rested on (see :func:`replay`)."""
+    return {"unsat_reasked": {}, "sat_flips_witnessed": 0, "held_on_box_by_intervals": 0,
+            "held_on_box_checked": 0, "paths_cut_by_queued_start": 0, "refutations_witnessed": 0}
+
+
+def _add(total: dict, part: dict) -> None:
+    for k, v in part.items():
+        if isinstance(v, dict):
+            for s, n in v.items():
+                total[k][s] = total[k].get(s, 0) + n
+        else:
+            total[k] += v
+
+
+def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: float, variant: str,
+                 verdicts: Optional[dict] = None, order: tuple = DEFAULT_SOLVERS, check_intervals: bool = False,
+                 memo: Optional[dict] = None) -> list[str]:
+    """The problems of one case's path log (empty: it re-checks); see :func:`check_case`."""
+    return check_case(case, names, lo, hi, log, timeout, variant, verdicts, order, check_intervals, memo)["problems"]
+
+
+def _log_problem(log, cells: int, properties: int, lo: int, hi: int) -> Optional[str]:
+    """What is wrong with the shape of a case's path log, if anything: each path ``[seed, bound,
+    marks, flips]`` (a cost in ``lo..hi`` per passable cell, a branch index, a mark per property,
+    a mark per flip), one root (bound 0), first."""
+    if not isinstance(log, list) or not log:
+        return "no control path is recorded (the case has no root path)"
+    for i, p in enumerate(log):
+        if not (isinstance(p, list) and len(p) == 4):
+            return f"path {i} is not [seed, bound, marks, flips]"
+        seed, bound, marks, flips = p
+        if not (isinstance(seed, list) and len(seed) == cells and all(_is_int(c) and lo <= c <= hi for c in seed)):
+            return f"path {i}'s seed {seed!r} is not {cells} costs in {lo}..{hi}"
+        if not (_is_int(bound) and bound >= 0):
+            return f"path {i}'s bound {bound!r} is not a branch index"
+        if not (isinstance(marks, str) and len(marks) == properties and set(marks) <= set(MARKS)):
+            return f"path {i}'s property marks {marks!r} are not one of {''.join(MARKS)} per property"
+        if not (isinstance(flips, str) and set(flips) <= set(FLIP_MARKS)):
+            return f"path {i}'s flips {flips!r} are not marks {''.join(FLIP_MARKS)}"
+    roots = [i for i, p in enumerate(log) if p[1] == 0]
+    if roots[:1] != [0]:
+        return f"path 0 is not the root: its bound is {log[0][1]} (a case's first path has bound 0)"
+    if len(roots) > 1:
+        return f"paths {roots} all claim to be the root (bound 0)"
+    return None
+
+
+def _marks_problem(names, marks: str, verdicts: dict, run: tuple, conc: dict, variant: str, unsat: dict,
+                   out: dict, check_intervals: bool) -> Optional[str]:
+    """A path's property marks against the verdicts (what is wrong, if anything): held on the box
+    re-evaluated by the intervals (and asked of a solver with ``check_intervals``), held by a
+    query added to ``unsat``, refuted only where the verdict is, its seed tried as a witness on
+    the concrete spec (``out``'s witnesses and evidence), unknown never where proved."""
+    from .runner import replay as run_spec
+
+    D, case, costs, sp, ex = run
+    ev = out["evidence"]
+    for n, m in zip(names, marks):
+        if m in (B.REFUTED, B.UNKNOWN):
+            if verdicts[n] != "refuted":
+                return f" marks {n} {MARKS[m]}; the certificate calls it {verdicts[n]}"
+            if m == B.REFUTED and n not in out["witnesses"] and run_spec(case, conc, n, variant)[2]:
+                out["witnesses"].append(n)
+                ev["refutations_witnessed"] += 1
+            continue
+        p = B.property_value(n, D, case, costs, sp, ex)
+        truth, negated = D.truth(p), D.branches + [z3.Not(B.term(D, p))]
+        if m == B.HELD_ON_BOX:
+            if truth is not True:
+                return f": {n} is marked held on the box, and the intervals do not decide it"
+            ev["held_on_box_by_intervals"] += 1
+            if check_intervals:
+                unsat[f"{n} on the box"] = negated
+                ev["held_on_box_checked"] += 1
+        elif truth is True:
+            return f": {n} is marked held by a query, and the intervals decide it (the search asks no query then)"
+        else:
+            unsat[f"{n}'s query"] = negated
+    return None
+
+
+def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, variant: str,
+               verdicts: Optional[dict] = None, order: tuple = DEFAULT_SOLVERS, check_intervals: bool = False,
+               memo: Optional[dict] = None) -> dict:
+    """One case's path log re-checked (the module docstring): ``{"problems": [...], "evidence":
+    {...}, "witnesses": [properties refuted at some path's seed on the concrete spec]}``.
+    ``verdicts``: the certificate's verdict of each of ``names`` (default: every one proved)."""
     from .runner import _domain
 
+    verdicts = verdicts or {n: "proved" for n in names}
+    proved = [n for n in names if verdicts.get(n) == "proved"]
     inner = [k for k in B._interior(case.nx, case.ny) if k not in case.lethal]
-    problems = []
-    seeds = {}  # bound -> seeds of the paths recorded with it
-    for seed, bound, _, _ in log:
-        seeds.setdefault(bound, []).append(dict(zip(inner, seed)))
+    where = json.dumps(case_key(case))
+    ev = new_evidence()
+    out = {"problems": [], "evidence": ev, "witnesses": []}
+
+    def refuse(msg):
+        out["problems"].append(f"case {where}: {msg}")
+        return out
+
+    wrong = _log_problem(log, len(inner), len(names), lo, hi)
+    if wrong:
+        return refuse(wrong)
     run = B.run_of(names)
-    for seed, bound, marks, flips in log:
+    runs = []  # per path: (branches, box, variables)
+    open_sat: dict = {}  # flip index -> paths whose flip there is recorded sat and has no child yet
+    for i, (seed, bound, marks, flips) in enumerate(log):
         conc = dict(zip(inner, seed))
         D, costs, sp, ex = run(case, conc, lo, hi, _domain("fp32"), variant)
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches
-        last = B.flippable(names, pc, sp, lo)
-        if flips and bound + len(flips) != last:
-            return [f"{case_key(case)}: a path from {seed} has {last} branches to flip, the certificate "
-                    f"{bound + len(flips)}"]
+        runs.append((pc, box, variables))
+        at = f"path {i} (seed {seed}, bound {bound})"
+        if i:
+            j = bound - 1
+            parent = next((k for k in open_sat.get(j, []) if B._takes_flip(pc, runs[k][0], j)), None)
+            if parent is None:
+                return refuse(f"{at} has no parent: no earlier path records flip {j} sat with this path's "
+                              "branches on the other side")
+            open_sat[j].remove(parent)
+            ppc, pbox, pvars = runs[parent]
+            if not _holds_at(pbox + ppc[:j] + [z3.Not(ppc[j])], pvars, conc):
+                return refuse(f"{at}: its seed does not satisfy flip {j} of path {parent} (evaluated by Z3)")
+            ev["sat_flips_witnessed"] += 1
         unsat = {}  # what the certificate says is unsat on this path: name -> conditions
-        for n, m in zip(names, marks):
-            p = B.property_value(n, D, case, costs, sp, ex)
-            if m == B.HELD_ON_BOX and D.truth(p) is not True:
-                problems.append(f"{case_key(case)}: {n} not decided on the box from {seed}")
-            elif m == B.HELD_BY_QUERY:
-                unsat[f"{n}'s query"] = pc + [z3.Not(B.term(D, p))]
+        wrong = _marks_problem(names, marks, verdicts, (D, case, costs, sp, ex), conc, variant, unsat, out,
+                               check_intervals)
+        if wrong:
+            return refuse(f"{at}{wrong}")
+        last = B.flippable(names, pc, sp, lo)
+        ev["paths_cut_by_queued_start"] += last < len(pc)
+        settled = all(m == B.REFUTED for m in marks)  # every property refuted: the search flips nothing more
+        want = 0 if settled else max(0, last - bound)
+        if len(flips) != want:
+            return refuse(f"{at} has {want} branches to flip, the certificate records {len(flips)}")
         for j, m in enumerate(flips, start=bound):
             if m == B.UNSAT:
                 unsat[f"flip {j}"] = pc[:j] + [z3.Not(pc[j])]
             elif m == B.SAT:
-                flip = box + pc[:j] + [z3.Not(pc[j])]
-                if not any(_holds_at(flip, variables, s) for s in seeds.get(j + 1, [])):
-                    problems.append(f"{case_key(case)}: flip {j} of the path from {seed} has no recorded witness")
-            else:
-                problems.append(f"{case_key(case)}: flip {j} of the path from {seed} was left undecided")
-        problems += [f"{case_key(case)}: {what} of the path from {seed} is {st}, recorded unsat"
-                     for what, st in _all_unsat(box, unsat, variables, timeout)]
-    return problems
+                open_sat.setdefault(j, []).append(i)
+            elif proved:
+                return refuse(f"{at}: flip {j} was left undecided, and {proved[0]} is called proved")
+        bad, answered = _all_unsat(box, unsat, order, timeout, memo)
+        for what, st in bad:
+            return refuse(f"{at}: {what} is recorded unsat and is {st}")
+        _add(ev, {"unsat_reasked": dict(answered)})
+    for j, parents in sorted(open_sat.items()):
+        for k in parents:
+            return refuse(f"path {k} (seed {log[k][0]}) records flip {j} sat, and no recorded path takes it")
+    return out
 
 
-def _all_unsat(box: list, unsat: dict, variables: dict, timeout: float) -> list:
-    """The ``(what, status)`` of the queries ``box & conditions`` not unsat.  First one query,
-    their disjunction (unsat exactly when each is); only when it is not, each on its own."""
-    if not unsat:
-        return []
-    def join(op, xs):  # SMT-LIB's and/or take two arguments or more
-        return xs[0] if len(xs) == 1 else op(xs)
+# ---------------------------------------------------------------------------------------
+# The whole certificate
+# ---------------------------------------------------------------------------------------
+def header_problems(doc: dict) -> list[str]:
+    """What is wrong with a certificate's header (empty: it is well formed)."""
+    from ..spec.constants import COST_OBS
+    from ..spec.fix import VARIANTS
 
-    either = join(z3.Or, [join(z3.And, c) for c in unsat.values()])
-    if B.solve_bitwuzla(box + [either], variables, timeout)[0] == "unsat":
-        return []
-    got = [(what, B.solve_bitwuzla(box + c, variables, timeout)[0]) for what, c in unsat.items()]
-    return [(what, st) for what, st in got if st != "unsat"]
+    size, names, costs, modes = doc.get("size"), doc.get("properties"), doc.get("costs"), doc.get("modes")
+    if not (isinstance(size, list) and len(size) == 2 and all(_is_int(v) and 3 <= v <= 64 for v in size)):
+        return [f"size {size!r} is not a map size [W, H]"]
+    if not (isinstance(names, list) and names and len(set(map(str, names))) == len(names)
+            and all(n in B.CHECKABLE for n in names)):
+        return [f"properties {names!r} are not distinct properties of check ({', '.join(B.CHECKABLE)})"]
+    if not (isinstance(costs, list) and len(costs) == 2 and all(_is_int(v) for v in costs)
+            and 0 <= costs[0] <= costs[1] < COST_OBS):
+        return [f"costs {costs!r} are not a cost box [LO, HI] with 0 <= LO <= HI < {COST_OBS}"]
+    if costs[0] < B.MIN_COST:
+        return [f"costs {costs[0]}..{costs[1]}: costs below {B.MIN_COST} make NaN possible (0/0 in updateCell), where "
+                "the concolic intervals are not sound; such a certificate proves nothing"]
+    if not (isinstance(modes, list) and modes and len(set(modes)) == len(modes)
+            and all(m in ("astar", "dijkstra") for m in modes)):
+        return [f"modes {modes!r} are not distinct modes (astar, dijkstra)"]
+    if doc.get("variant") not in VARIANTS:
+        return [f"variant {doc.get('variant')!r} is not one of {', '.join(VARIANTS)}"]
+    if doc.get("ends", "any") not in ("any", "passable"):
+        return [f"ends {doc.get('ends')!r} is not any or passable"]
+    if not all(_is_int(doc.get(k)) and doc.get(k) >= 0 for k in ("total", "outside")):
+        return ["total and outside are not counts of cases"]
+    verdicts, induction = doc.get("verdicts"), doc.get("induction", {})
+    if not isinstance(verdicts, dict) or not isinstance(induction, dict):
+        return ["verdicts and induction are not tables of properties"]
+    for n in names:
+        if verdicts.get(n) not in ("proved", "refuted"):
+            return [f"{n} is explored and its verdict is {verdicts.get(n)!r}, not proved or refuted"]
+    for n, v in verdicts.items():
+        if n not in names and not (isinstance(induction.get(n), str) and induction[n].startswith("induction")):
+            return [f"{n} is called {v!r} and neither the paths nor a named induction decide it"]
+    if not isinstance(doc.get("cases"), list):
+        return ["cases is not a list"]
+    return []
+
+
+def induction_problems(doc: dict) -> list[str]:
+    """A verdict the paths do not decide must be the one an induction gives at this size today
+    (:func:`~.runner.carried_at`, its status from what is known of its predicates)."""
+    from .runner import carried_at, carried_status
+
+    nx, ny = doc["size"]
+    carried = carried_at(nx, ny, doc["variant"], *doc["costs"])
+    for n, v in doc["verdicts"].items():
+        if n in doc["properties"]:
+            continue
+        if n not in carried:
+            return [f"{n} is called {v} by induction, and no induction decides it at {nx}x{ny}"]
+        status, why = carried_status(carried[n])
+        if (v, doc["induction"][n]) != (status, why):
+            return [f"{n} is called {v} ({doc['induction'][n]}); what is known today gives {status} ({why})"]
+    return []
+
+
+def _case_entries(doc: dict, memo: Optional[dict] = None) -> tuple[list, list]:
+    """``(problems, [(case, weight, log)])`` of the certificate's case entries, against the
+    enumeration and reduction of its size (redone here)."""
+    nx, ny = doc["size"]
+    entries = []
+    for i, e in enumerate(doc["cases"]):
+        try:
+            key, weight, log = e
+            nx_, ny_, lethal, start, goal, astar = key
+            ok = (nx_, ny_) == (nx, ny) and isinstance(astar, bool) and _is_int(weight) and all(
+                _is_int(c) for c in [*lethal, *start, *goal]) and len(start) == len(goal) == 2
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            return [f"case entry {i} is not [[W, H, lethal, start, goal, astar], weight, paths] of this size"], []
+        entries.append((case_of(key), weight, log))
+    how = (nx, ny, tuple(doc["modes"]), doc.get("ends", "any"))
+    red = None if memo is None else memo.setdefault("reductions", {}).get(how)
+    if red is None:
+        red = B.reduce_cases(B.cases(nx, ny, [m == "astar" for m in doc["modes"]], None, None, how[3]))
+        if memo is not None:
+            memo["reductions"][how] = red
+    if red.total != doc["total"] or red.outside != doc["outside"]:
+        return [f"the size has {red.total} cases, {red.outside} with the start outside the goal's component; the "
+                f"certificate says {doc['total']} and {doc['outside']}"], []
+    seen = set()
+    for case, weight, _ in entries:
+        if case in seen:
+            return [f"case {json.dumps(case_key(case))} is listed twice"], []
+        seen.add(case)
+        want = red.representatives.get(case)
+        if want is None:
+            return [f"case {json.dumps(case_key(case))} is not a case the reduction explores"], []
+        if want != weight:
+            return [f"case {json.dumps(case_key(case))} stands for {want} cases; the certificate says {weight}"], []
+    missing = [c for c in red.representatives if c not in seen]
+    if missing:
+        return [f"case {json.dumps(case_key(missing[0]))} of the size has no entry "
+                f"({len(missing)} cases missing)"], []
+    return [], entries
 
 
 def _replay_job(args):
-    entries, names, lo, hi, timeout, variant = args
-    return [(key, recheck_case(case_of(key), names, lo, hi, log, timeout, variant)) for key, _, log in entries]
+    entries, names, verdicts, lo, hi, timeout, variant, order, check_intervals = args
+    return [check_case(case_of(key), names, lo, hi, log, timeout, variant, verdicts, order, check_intervals)
+            for key, _, log in entries]
 
 
-def replay(path, jobs=1, timeout: float = 60.0, progress=None) -> dict:
-    """Re-check a certificate (see the module docstring): ``{"status": "replayed" | "refused",
-    "problems": [...], ...}``."""
+def _witness_problems(doc: dict, witnessed: set) -> list[str]:
+    """A refuted property needs a witness: a path's seed that refutes it on the concrete spec
+    (found while the cases are re-checked), or the header's ``witnesses`` entry, replayed here."""
+    from .properties import judge, run as run_spec
+    import numpy as np
+
+    out = []
+    for n in doc["properties"]:
+        if doc["verdicts"][n] != "refuted" or n in witnessed:
+            continue
+        w = (doc.get("witnesses") or {}).get(n)
+        try:
+            r = run_spec(np.array(w["costs"], np.uint8), tuple(w["start"]), tuple(w["goal"]), w["mode"] == "astar",
+                         variant=doc["variant"])
+            ok = np.array(w["costs"]).shape == (doc["size"][1], doc["size"][0]) and judge(n, r) is not None
+        except (TypeError, KeyError, ValueError, IndexError):
+            ok = False
+        if not ok:
+            out.append(f"{n} is called refuted, and no recorded map refutes it on the concrete spec")
+        else:
+            witnessed.add(n)
+    return out
+
+
+def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DEFAULT_SOLVERS,
+           check_intervals: bool = False, memo: Optional[dict] = None, doc: Optional[dict] = None) -> dict:
+    """Re-check a certificate (the module docstring): ``{"status": "replayed" | "refused",
+    "problems": [...], "evidence": {...}, "trusted": {...}, ...}``; the first problem refuses it.
+    ``order``: the solvers asked, in turn; ``check_intervals``: the properties held on the box are
+    asked of them too; ``memo`` (one process): answers kept across replays; ``doc``: the
+    certificate already read."""
     from ..engine import as_engine, in_order, stream
     from .runner import BATCH, PARALLEL_FROM
 
-    doc = read(path)
+    doc = read(path) if doc is None else doc
     head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "verdicts", "induction")
             if k in doc}
-    now = code_hash(doc["properties"])
-    if doc["code_hash"] != now:
-        return {**head, "status": "refused", "problems": [
-            "the kernels or the encoding changed since the certificate was written (code hash "
-            f"{doc['code_hash'][:12]}, now {now[:12]}): run the check again"]}
-    nx, ny = doc["size"]
-    red = B.reduce_cases(B.cases(nx, ny, [m == "astar" for m in doc["modes"]], None, None, doc.get("ends", "any")))
-    want = {json.dumps(case_key(c)): w for c, w in red.representatives.items()}
-    got = {json.dumps(k): w for k, w, _ in doc["cases"]}
-    problems = []
-    if want != got or red.outside != doc["outside"] or red.total != doc["total"]:
-        problems.append("the enumeration and reduction of this size do not give the certificate's cases")
+    order = check_solvers(order)
+
+    def refused(problems):
+        return {**head, "status": "refused", "problems": problems, "solvers": list(order)}
+
+    props = doc.get("properties")
+    now = code_hash(props if isinstance(props, list) and all(isinstance(n, str) for n in props) else None)
+    if doc.get("code_hash") != now:
+        return refused(["the kernels or the encoding changed since the certificate was written (code hash "
+                        f"{str(doc.get('code_hash'))[:12]}, now {now[:12]}): run the check again"])
+    problems = header_problems(doc) or induction_problems(doc)
+    if problems:
+        return refused(problems)
+    problems, entries = _case_entries(doc, memo)
+    if problems:
+        return refused(problems)
     lo, hi = doc["costs"]
-    names = doc["properties"]
-    work = [(tuple(doc["cases"][k:k + BATCH]), names, lo, hi, timeout, doc["variant"])
-            for k in range(0, len(doc["cases"]), BATCH)]
+    names, verdicts = doc["properties"], doc["verdicts"]
+    args = (names, verdicts, lo, hi, timeout, doc["variant"], order, check_intervals)
+    evidence = new_evidence()
+    witnessed: set = set()
+    problems = []
     done = 0
-    for _, results in in_order(stream(_replay_job, work, as_engine(jobs).for_work(len(doc["cases"]), PARALLEL_FROM))):
-        for _, p in results:
-            problems += p
+    if memo is not None:  # in this process, each case's result kept by its entry; stops at a problem
+        results = []
+        known, unsat = memo.setdefault("cases", {}), memo.setdefault("unsat", {})
+        for case, w, log in entries:
+            k = json.dumps([case_key(case), log, names, verdicts, lo, hi, doc["variant"], order, check_intervals])
+            if k not in known:
+                known[k] = check_case(case, names, lo, hi, log, timeout, doc["variant"], verdicts, order,
+                                      check_intervals, unsat)
+            results.append(known[k])
+            if known[k]["problems"]:
+                break
+        batches = [(0, results)]
+    else:
+        work = [(tuple([case_key(c), w, log] for c, w, log in entries[k:k + BATCH]), *args)
+                for k in range(0, len(entries), BATCH)]
+        batches = in_order(stream(_replay_job, work, as_engine(jobs).for_work(len(entries), PARALLEL_FROM)))
+    for _, results in batches:
+        for got in results:
+            problems += got["problems"]
+            _add(evidence, got["evidence"])
+            witnessed.update(got["witnesses"])
             done += 1
             if progress:
-                progress(done, len(doc["cases"]), None)
-    return {**head, "status": "refused" if problems else "replayed", "problems": problems,
-            "cases": len(doc["cases"]), "paths": sum(len(log) for _, _, log in doc["cases"])}
-
+                progress(done, len(entries), None)
+    problems += _witness_problems(doc, witnessed)
+    explored = len(entries)
+    trusted = {
+        "held_on_box_by_intervals": evidence["held_on_box_by_intervals"] - evidence["held_on_box_checked"],
+        "paths_cut_by_queued_start": evidence["paths_cut_by_queued_start"],
+        "cases_by_reduction": doc["total"] - explored,
+        "by_induction": sorted(n for n in verdicts if n not in names)}
+    trusted["count"] = sum(v for v in trusted.values() if isinstance(v, int))
+    return {**head, "status": "refused" if problems else "replayed", "problems": problems, "solvers": list(order),
+            "cases": explored, "paths": sum(len(log) for _, _, log in entries), "evidence": evidence,
+            "trusted": trusted}

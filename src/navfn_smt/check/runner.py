@@ -23,7 +23,7 @@ from ..engine import Engine, as_engine, in_order, stream  # noqa: F401  (Engine:
 from ..errors import NavfnInputError
 from ..spec.constants import COST_NEUTRAL, COST_OBS
 from . import properties as P
-from .bounded import CHECKABLE, Case, cases, explore, reduce_cases  # noqa: F401  (CHECKABLE: re-exported)
+from .bounded import CHECKABLE, Case, cases, check_cost_box, explore, reduce_cases  # noqa: F401  (CHECKABLE: re-exported)
 
 # Properties that hold by induction over the run, and the predicate whose obligations carry it.
 INDUCTION = {
@@ -166,6 +166,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         if cell is not None and not (1 <= cell[0] <= nx - 2 and 1 <= cell[1] <= ny - 2):
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
                                   f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
+    check_cost_box(lo, hi)
     red = reduce_cases(cases(nx, ny, modes, start, goal, ends))
     carried = carried_at(nx, ny, variant, lo, hi)
     t0 = time.perf_counter()

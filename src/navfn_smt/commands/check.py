@@ -113,6 +113,7 @@ def _certify(args, lo: int, hi: int, modes):
                                                                                   for m in modes],
             "variant": args.variant, "ends": args.ends, "total": r.cases, "outside": r.outside,
             "verdicts": {n: g.status for n, g in got.items()},
+            "witnesses": {n: g.counterexample for n, g in got.items() if g.status == "refuted"},
             "induction": {n: g.method for n, g in got.items() if g.method != "exploration"}}, entries)
         print(f"{nx}x{ny}: certificate written to {path}")
 
@@ -127,15 +128,21 @@ def _replay(args) -> int:
     from ..engine import engine
     from ..report import check as report
 
+    order = certificate.check_solvers(args.solver.split(",")) if args.solver else certificate.DEFAULT_SOLVERS
+    check_positive("--timeout", args.timeout)
+    eng = engine(args.jobs, args.scheduler)
+    check_files(args.json)
+    doc = certificate.read(args.replay)
     t0 = time.perf_counter()
     try:
-        got = certificate.replay(args.replay, engine(args.jobs, args.scheduler), args.timeout,
-                                 progress=report.progress(f"replay {args.replay}"))
+        got = certificate.replay(args.replay, eng, args.timeout, progress=report.progress(f"replay {args.replay}"),
+                                 order=order, check_intervals=args.check_intervals, doc=doc)
     finally:
         report.stop_progress()
     got["seconds"] = round(time.perf_counter() - t0, 1)
     if args.json:
-        report.write_json(args.json, {"command": "check --replay", "certificate": args.replay, **got})
+        report.write_json(args.json, {"command": "check --replay", "certificate": args.replay,
+                                      "check_intervals": args.check_intervals, **got})
     size = "x".join(map(str, got.get("size", [])))
     if got["status"] == "replayed":
         ind = got.get("induction", {})  # decided by an induction, not by the certificate's paths
@@ -144,10 +151,12 @@ def _replay(args) -> int:
         print(f"{args.replay}: replayed: {verdicts} on every "
               f"{size} map ({got['cases']} cases explored, {got['paths']} control paths re-checked, "
               f"{got['seconds']} s)")
+        for line in report.replay_evidence(got):
+            print(f"  {line}")
         return 0
     for p in got["problems"][:20]:
         print(f"problem: {p}")
-    print(f"{args.replay}: refused ({len(got['problems'])} problems)")
+    print(f"{args.replay}: refused ({len(got['problems'])} problems; the first: {got['problems'][0]})")
     return 1
 
 
@@ -198,6 +207,11 @@ def register(sub) -> None:
     ck.add_argument("--journal", metavar="FILE", help="with --size: record each explored case in FILE as it is "
                     "decided; a rerun with the same FILE explores only the cases it does not hold (refused when "
                     "the arguments or the code differ), so a long check can be stopped and resumed")
-    ck.add_argument("--replay", metavar="CERT", help="re-check a certificate without searching: every unsat asked "
+    ck.add_argument("--replay", metavar="CERT", help="re-check a certificate without searching: its coverage (every "
+                    "case, a root path each, every flip closed), its marks against its verdicts, every unsat asked "
                     "again, every sat flip witnessed; refused when the kernels or the encoding changed")
+    ck.add_argument("--solver", metavar="S[,S...]", help="with --replay: the solvers asked, in turn, each only what "
+                    "the ones before leave undecided (default: cvc5,bitwuzla; the search asked bitwuzla)")
+    ck.add_argument("--check-intervals", action="store_true", help="with --replay: ask the solvers too where a "
+                    "property held on the whole box by interval evaluation (default: counted as trusted)")
     ck.set_defaults(func=cmd_check)

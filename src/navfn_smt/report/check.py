@@ -56,6 +56,20 @@ def verdict_text(status: str, method: str = "exploration") -> str:
     return status if method == "exploration" else f"{status} ({method})"
 
 
+def replay_evidence(got: dict) -> list[str]:
+    """A replay's evidence as lines: what was re-checked, by what, and what was trusted."""
+    ev, tr = got["evidence"], got["trusted"]
+    asked = ", ".join(f"{n} by {s}" for s, n in sorted(ev["unsat_reasked"].items())) or "none"
+    lines = [f"re-checked: unsats asked again: {asked}; sat flips witnessed by their child's run: "
+             f"{ev['sat_flips_witnessed']}; held on the box, asked of a solver too: {ev['held_on_box_checked']}; "
+             f"refutations replayed on the concrete spec: {ev['refutations_witnessed']}",
+             f"trusted ({tr['count']}): held on the box by interval evaluation: {tr['held_on_box_by_intervals']}; "
+             f"paths cut by QueuedStartReached: {tr['paths_cut_by_queued_start']}; cases decided by the reduction "
+             f"(ReachedWithinComponent): {tr['cases_by_reduction']}"
+             + (f"; by induction: {', '.join(tr['by_induction'])}" if tr["by_induction"] else "")]
+    return lines
+
+
 def row(r) -> dict:
     return {
         "property": r.property, "size": list(r.size), "status": r.status, "method": r.method,
