@@ -168,11 +168,12 @@ def test_a_child_without_its_parent_and_a_flip_without_its_child_are_refused():
     parent = next(p for p in log if "s" in p[3])
     j = parent[1] + parent[3].index("s")
     child = next(p for p in log if p[1] == j + 1)
+    memo: dict = {}  # the cases before the corrupted one are re-checked once; a replay stops at a problem
     child[1] += 1  # the child claims another flip
-    _refused(doc, "has no parent")
+    _refused(doc, "has no parent", memo)
     child[1] -= 1
     log.remove(child)  # the flip is recorded sat, its path is gone
-    got = C.replay(None, doc=doc, order=FAST)
+    got = C.replay(None, doc=doc, order=FAST, memo=memo)
     assert got["status"] == "refused" and ("no recorded path takes it" in got["problems"][0]
                                            or "has no parent" in got["problems"][0])
 
@@ -381,3 +382,26 @@ def test_the_checker_refuses_every_harmful_corruption_of_a_committed_certificate
     with capsys.disabled():
         print(f"\ncertificate mutations: {tried} tried, {refused} refused, {harmless} harmless")
     assert tried >= 200 and refused + harmless == tried and refused > harmless
+
+
+@pytest.mark.parametrize("path", sorted((REPORTS / "certificates").glob("check-*.replay.json")), ids=lambda p: p.name)
+def test_a_committed_replay_report_is_of_its_committed_certificate(path):
+    """The invariants page shows each certified size's trusted count from its replay report: the
+    report re-checked the certificate committed beside it (the same bytes), and it replayed."""
+    doc = json.loads(path.read_text())
+    cert = path.with_name(path.name.replace(".replay.json", ".cert.json.gz"))
+    assert doc["certificate_sha256"] == C.digest(cert) and doc["status"] == "replayed"
+    t = doc["trusted"]
+    assert t["count"] == t["held_on_box_by_intervals"] + t["paths_cut_by_queued_start"] + t["cases_by_reduction"]
+
+
+def test_the_invariants_page_shows_a_replays_trusted_count(tmp_path):
+    from navfn_smt.report.invariants_page import _replayed
+
+    assert _replayed(tmp_path / "none.replay.json") == "; not replayed"
+    report = tmp_path / "check-3x3.replay.json"
+    report.write_text(json.dumps({"status": "replayed", "evidence": {"unsat_reasked": {"cvc5": 3}},
+                                  "trusted": {"count": 7, "held_on_box_by_intervals": 4,
+                                              "paths_cut_by_queued_start": 1, "cases_by_reduction": 2}}))
+    text = _replayed(report)
+    assert "3 by cvc5" in text and "trusted 7: 4 held on the box" in text

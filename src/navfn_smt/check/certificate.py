@@ -108,6 +108,11 @@ def read(path) -> dict:
 
 
 
+def digest(path) -> str:
+    """The SHA-256 of a certificate's file: a replay report names the certificate it re-checked."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
 def _holds_at(assertions: list, variables: dict, seed: dict) -> bool:
     """Whether the costs ``seed`` satisfy every assertion (evaluated by Z3, no solving)."""
     sub = [(v, z3.BitVecVal(seed[k], v.size())) for k, v in variables.items()]

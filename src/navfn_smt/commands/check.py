@@ -142,6 +142,7 @@ def _replay(args) -> int:
     got["seconds"] = round(time.perf_counter() - t0, 1)
     if args.json:
         report.write_json(args.json, {"command": "check --replay", "certificate": args.replay,
+                                      "certificate_sha256": certificate.digest(args.replay),
                                       "check_intervals": args.check_intervals, **got})
     size = "x".join(map(str, got.get("size", [])))
     if got["status"] == "replayed":

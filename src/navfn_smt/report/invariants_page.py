@@ -327,13 +327,33 @@ def _open_sizes(by_size: dict) -> list:
     return [s for s in _sorted_sizes(dict.fromkeys(sizes)) if s not in decided]
 
 
+REPLAY_LINK = "reports/certificates/"
+
+
 def _certificate(certs: Optional[Path], s, prop: str) -> str:
     """The size's committed certificate, as a link from docs/, when it certifies ``prop`` (its
     header's verdicts name the properties it covers); else a dash."""
     name = f"check-{s[0]}x{s[1]}.cert.json.gz"
     if certs is None or not (certs / name).is_file():
         return "-"
-    return f"[{name}](reports/certificates/{name})" if prop in _certified(certs / name) else "-"
+    if prop not in _certified(certs / name):
+        return "-"
+    return f"[{name}](reports/certificates/{name}){_replayed(certs / f'check-{s[0]}x{s[1]}.replay.json')}"
+
+
+def _replayed(path: Path) -> str:
+    """What the certificate's committed replay report says: the solvers that re-asked its unsats
+    and what it trusted (``check --replay``; docs/check.md has the table), or that it has none."""
+    if not path.is_file():
+        return "; not replayed"
+    doc = _read_json(path, "replay")
+    if doc.get("status") != "replayed":
+        return f"; [replay]({REPLAY_LINK}{path.name}): {doc.get('status')}"
+    asked = ", ".join(f"{n:,} by {who}" for who, n in sorted(doc["evidence"]["unsat_reasked"].items())) or "none"
+    t = doc["trusted"]
+    return (f"; [replayed]({REPLAY_LINK}{path.name}) (unsats asked again: {asked}); trusted {t['count']:,}: "
+            f"{t['held_on_box_by_intervals']:,} held on the box by intervals, {t['paths_cut_by_queued_start']:,} "
+            f"paths cut by QueuedStartReached, {t['cases_by_reduction']:,} cases by the reduction")
 
 
 @functools.lru_cache(maxsize=None)
