@@ -36,10 +36,10 @@ def test_check_complete_on_a_narrow_size_is_decided_by_fallback_path(tmp_path, c
 
 def test_a_cost_box_below_cost_neutral_is_explored(tmp_path):
     """FallbackPath's obligations assume the costs setCostmap produces (50..253): with NavFn's
-    raw range (a cost of 0 adds nothing to a potential) the size is explored, not decided by it."""
+    raw range (down to 1: a box reaching 0 is refused, a NaN) the size is explored, not decided by it."""
     assert not CR.carried_at(3, 4, lo=0) and CR.carried_at(3, 4, lo=50, hi=253)
     js = tmp_path / "c.json"
-    assert main(["check", "complete", "--size", "3", "4", "--costs", "0..253", "--json", str(js)]) == 0
+    assert main(["check", "complete", "--size", "3", "4", "--costs", "1..253", "--json", str(js)]) == 0
     row = json.loads(js.read_text())["results"][0]
     assert row["method"] == "exploration" and row["solved"]["control_paths"] > 0
 

@@ -182,8 +182,8 @@ def register(sub) -> None:
     ck.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
     ck.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
     ck.add_argument("--costs", default="50..253", metavar="LO..HI",
-                    help="range of every passable cell's cost (50..253: what setCostmap produces; 0..253 for "
-                    "NavFn's raw API); lethal cells are enumerated")
+                    help="range of every passable cell's cost (50..253: what setCostmap produces; at least 1: a cost "
+                    "of 0 makes a NaN possible, where the intervals are unsound); lethal cells are enumerated")
     ck.add_argument("--semantics", choices=("fp32", "real"), default="fp32",
                     help="fp32: bit-precise float32 and float64, as the C++ computes (real: not available for check)")
     ck.add_argument("--timeout", type=float, default=60.0, metavar="S",
