@@ -129,7 +129,9 @@ def _doc(name):
 
 
 def _refused(doc, first: str, memo=None):
-    got = C.replay(None, doc=doc, order=FAST, memo=memo)
+    """The replay of ``doc`` refuses it, naming ``first`` in its first problem (with a memo the
+    replay stops at that problem)."""
+    got = C.replay(None, doc=doc, order=FAST, memo={} if memo is None else memo)
     assert got["status"] == "refused" and first in got["problems"][0], got["problems"][:1]
     return got
 
@@ -138,14 +140,14 @@ def _every_path(doc):
     return [p for _, _, log in doc["cases"] for p in log]
 
 
-@pytest.mark.parametrize("edit, first", [
-    ("empty", "no control path is recorded"),
-    ("no-root", "root"),
-    ("unknown", "marks start-reached unknown; the certificate calls it proved"),
-    ("refuted", "marks start-reached refuted; the certificate calls it proved")])
-def test_a_certificate_that_proves_nothing_is_refused(edit, first, tmp_path):
-    """Issue 35's four edits of 3x7's committed certificate: each replayed as a proof before;
-    each is refused now, with the first problem named (non-zero exit, no traceback)."""
+EDITS = {"empty": "no control path is recorded", "no-root": "root",
+         "unknown": "marks start-reached unknown; the certificate calls it proved",
+         "refuted": "marks start-reached refuted; the certificate calls it proved"}
+
+
+def _edited(edit):
+    """Issue 35's edits of 3x7's committed certificate: every path log emptied, every root
+    path dropped, every property mark set to unknown, every one set to refuted."""
     doc = _doc("check-3x7.cert.json.gz")
     for _, _, log in doc["cases"]:
         if edit == "empty":
@@ -155,11 +157,18 @@ def test_a_certificate_that_proves_nothing_is_refused(edit, first, tmp_path):
         else:
             for p in log:
                 p[2] = {"unknown": "?", "refuted": "r"}[edit] * len(p[2])
-    _refused(doc, first)
+    return doc
+
+
+def test_a_certificate_that_proves_nothing_is_refused(tmp_path):
+    """Issue 35's four edits each replayed as a proof before; each is refused now, with the first
+    problem named, by the checker and by the command (non-zero exit, no traceback)."""
+    for edit, first in EDITS.items():
+        _refused(_edited(edit), first)
     bad = tmp_path / "c.gz"
-    bad.write_bytes(gzip.compress(json.dumps(doc).encode()))
+    bad.write_bytes(gzip.compress(json.dumps(_edited("refuted")).encode()))
     r = _cli("check", "--replay", str(bad), "--solver", "bitwuzla", "--jobs", "1")
-    assert r.returncode == 1 and "Traceback" not in r.stderr and first in r.stdout
+    assert r.returncode == 1 and "Traceback" not in r.stderr and EDITS["refuted"] in r.stdout
 
 
 def test_a_child_without_its_parent_and_a_flip_without_its_child_are_refused():

@@ -106,8 +106,6 @@ def read(path) -> dict:
     return doc
 
 
-
-
 def digest(path) -> str:
     """The SHA-256 of a certificate's file: a replay report names the certificate it re-checked."""
     return hashlib.sha256(Path(path).read_bytes()).hexdigest()
