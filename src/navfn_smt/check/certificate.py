@@ -225,7 +225,9 @@ def _log_problem(log, cells: int, properties: int, lo: int, hi: int) -> Optional
     """What is wrong with the shape of a case's path log, if anything: each path ``[seed, bound,
     marks, flips]`` (a cost in ``lo..hi`` per passable cell, a branch index, a mark per property,
     a mark per flip), one root (bound 0), first."""
-    if not isinstance(log, list) or not log:
+    if not isinstance(log, list):
+        return f"its path log {type(log).__name__} is not a list of paths"
+    if not log:
         return "no control path is recorded (the case has no root path)"
     for i, p in enumerate(log):
         if not (isinstance(p, list) and len(p) == 4):
@@ -504,12 +506,14 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
     def refused(problems):
         return {**head, "status": "refused", "problems": problems, "solvers": list(order)}
 
-    props = doc.get("properties")
-    now = code_hash(props if isinstance(props, list) and all(isinstance(n, str) for n in props) else None)
+    problems = header_problems(doc)
+    if problems:
+        return refused(problems)
+    now = code_hash(doc["properties"])
     if doc.get("code_hash") != now:
         return refused(["the kernels or the encoding changed since the certificate was written (code hash "
                         f"{str(doc.get('code_hash'))[:12]}, now {now[:12]}): run the check again"])
-    problems = header_problems(doc) or induction_problems(doc)
+    problems = induction_problems(doc)
     if problems:
         return refused(problems)
     problems, entries = _case_entries(doc, memo)
