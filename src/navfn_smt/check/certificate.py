@@ -45,7 +45,7 @@ from typing import Optional
 import z3
 
 from ..errors import NavfnInputError
-from ..smt import smtlib, solvers
+from ..smt import portfolio, smtlib, solvers
 from . import bounded as B
 
 FORMAT = "navfn-smt check certificate 1"
@@ -148,15 +148,10 @@ def ask(assertions: list, order: tuple, timeout: float, memo: Optional[dict] = N
     key = hashlib.sha256(q.smt2.encode()).hexdigest()
     if memo is not None and key in memo:
         return "unsat", memo[key]
-    names = {n: n for n in q.consts}
     reasons = []
-    for who in order:
-        if who == "z3":
-            r = solvers.run_z3(q.z3_text, timeout, names, q.logic)
-        elif who == "cvc5":
-            r = solvers.run_cvc5(q.smt2, timeout, names, q.logic, q.cvc5_fp_exp)
-        else:
-            r = solvers.run_bitwuzla(q.smt2, timeout, names, q.logic)
+    for who in order:  # each solver its dialect and options, as the portfolio sends them
+        req = portfolio.request(q, who, timeout)
+        r = solvers.RUNNERS[who](req["text"], timeout, req["names"], req["logic"], **req["options"])
         if r["status"] in ("sat", "unsat"):
             if r["status"] == "unsat" and memo is not None:
                 memo[key] = who

@@ -233,13 +233,13 @@ def _start(query: Query, name: str, timeout: float, replies: queue.Queue, answer
         answers.append(SolverAnswer(name, "unknown", time.monotonic() - t0, detail="skipped: " + query.skip[name]))
         return None
     try:
-        return Worker(name, _request(query, name, timeout), replies)
+        return Worker(name, request(query, name, timeout), replies)
     except Exception as exc:
         answers.append(SolverAnswer(name, "error", time.monotonic() - t0, detail=f"could not start: {exc}"))
         return None
 
 
-def _request(query: Query, name: str, timeout: float) -> dict:
+def request(query: Query, name: str, timeout: float) -> dict:
     """What solver ``name`` is sent: Z3 its own dialect, the others the standard text, in
     which the NaN-pattern constants are reported too."""
     if name == "z3":
