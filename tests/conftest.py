@@ -58,7 +58,7 @@ def nav2_src() -> Path:
     return NAV2_SRC
 
 
-DISTROS = ("humble", "jazzy", "kilted", "rolling")
+DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
 
 
 @pytest.fixture(scope="session")

@@ -17,7 +17,7 @@ from navfn_smt.oracle.build import ANCHOR, build, distribution
 from navfn_smt.oracle.client import Oracle, PluginOracle
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "src" / "navfn_smt" / "examples" / "suite"
-DISTROS = ("humble", "jazzy", "kilted", "rolling")
+DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
 
 
 @pytest.mark.parametrize("distro", DISTROS)
@@ -148,7 +148,7 @@ def test_bench_times_the_cpp_and_the_jit_in_one_run(builds, tmp_path, capsys):
 # --------------------------------------------------------------------------- the plugin level
 def test_the_plugin_model_of_each_distribution_agrees_with_its_cpp(builds):
     """Generated costmaps x poses x parameters: exceptions, messages, every published double and
-    every WARN and ERROR line, for the four distributions; each outcome the version has occurs."""
+    every WARN and ERROR line, for the five distributions; each outcome the version has occurs."""
     from navfn_smt.difftest.plugin_live import generated_configs, run_plugin_live
 
     for distro in DISTROS:
@@ -286,9 +286,9 @@ def test_ci_fails_on_a_seeded_bug_and_says_where(nav2_src, tmp_path, capsys):
 
 # --------------------------------------------------------------------------- the distributions
 def distribution_table() -> dict:
-    """docs/distributions.md's case rows: key -> the humble, jazzy, kilted and rolling cells."""
+    """docs/distributions.md's case rows: key -> the humble, jazzy, kilted, lyrical and rolling cells."""
     page = (Path(__file__).resolve().parent.parent / "docs" / "distributions.md").read_text()
-    return {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[4:8]]
+    return {line.split("|")[1].strip().strip("`"): [c.strip() for c in line.split("|")[4:9]]
             for line in page.splitlines() if line.startswith("| `")}
 
 
@@ -334,7 +334,7 @@ def test_the_costmap_model_of_each_distribution_agrees_with_its_layers(builds):
         with LayersOracle(_layers(builds, distro)) as oracle:
             s = run_layers_live(generated_configs(distro, 150, seed=5), oracle).as_dict()
         assert s["failed"] == 0 and s["passed"] == 150, (distro, s["disagreements"][:1])
-        kinds = {"legacy"} if distro != "rolling" else {"legacy", "current"}
+        kinds = {"legacy"} if distro not in ("lyrical", "rolling") else {"legacy", "current"}
         assert kinds == {k for o in s["outcomes"] for k in o.split(" + ")[1:]}, (distro, s["outcomes"])
 
 
@@ -438,3 +438,93 @@ def test_a_ci_step_that_cannot_finish_fails(capsys):
     steps = _Steps()
     _summary_step(steps, "difftest navfn", crashed)
     assert steps.failed and "stopped answering" in steps.cases[0]["failure"] and not steps.cases[0]["skipped"]
+
+
+# --------------------------------------------------------------------------- other targets
+# (target, --cxxflags, the arithmetic the build must be found to have)
+TARGET_BUILDS = {
+    "aarch64": ("aarch64", None, "aarch64"),
+    "x86-64-v3": ("x86-64-v3", None, "x86-64-v3"),
+    "aarch64-no-contract": ("aarch64", "-ffp-contract=off", "fused[none]-saturating"),
+}
+
+
+@pytest.fixture(scope="module")
+def target_builds(nav2_src, tmp_path_factory) -> dict:
+    """Rolling's NavFn (plain and traced) built for each of :data:`TARGET_BUILDS`; skipped where
+    the cross compiler or qemu-user is missing (.ci/run installs them)."""
+    from navfn_smt.errors import NavfnInputError
+    from navfn_smt.oracle.targets import toolchain
+
+    root = tmp_path_factory.mktemp("targets")
+    out = {}
+    for name, (target, flags, _) in TARGET_BUILDS.items():
+        tc = toolchain(target, cxx=("aarch64-linux-gnu-g++" if flags else None), cxxflags=flags)
+        try:
+            tc.check()
+            tc.runner()
+        except NavfnInputError as e:
+            pytest.skip(str(e))
+        out[name] = (build(nav2_src / "rolling", root / name, programs=("navfn-plain", "navfn-traced"), tc=tc),
+                     root / name)
+    return out
+
+
+@pytest.mark.parametrize("name", TARGET_BUILDS)
+def test_each_target_records_its_toolchain_and_the_arithmetic_found_in_it(target_builds, name):
+    doc, _ = target_builds[name]
+    target, flags, arith = TARGET_BUILDS[name]
+    extra = [flags] if flags else ["-march=x86-64-v3"] if target == "x86-64-v3" else []
+    assert doc["target"] == target and doc["flags"] == ["-std=c++17", "-O2", *extra]
+    assert doc["machine"].split("-")[0] == ("aarch64" if target == "aarch64" else "x86_64")
+    assert (doc["runner"][:1] == ["qemu-aarch64"]) == (target == "aarch64")
+    found = doc["arithmetic"]
+    assert found["name"] == arith and found["unexpressible"] == []
+    # every site in both updateCells, the six bilinear lines, both path steps (14 instructions)
+    assert found["fused_instructions"] == (0 if flags else 14)
+    assert doc["git_commit"] is None and doc["git_commit_note"]  # ../shared is no checkout of Nav2
+
+
+def test_the_builds_differ_as_their_arithmetic_says(builds, target_builds):
+    """On the example suite: arm64 parts from x86-64 in potentials and paths; x86-64-v3 (fused,
+    x86 conversions) gives arm64's potentials bit for bit and its paths except where the
+    conversion of an unreached potential decides; arm64 without contraction keeps x86-64's
+    potentials and differs only there, and there arm64 returns a path where x86-64 returns none."""
+    from navfn_smt.difftest.builds import compare_builds
+
+    def compare(a, b):
+        with Oracle(a, variant="plain") as x, Oracle(b, variant="plain") as y:
+            return compare_builds(EXAMPLE, MODES, x, y)
+
+    x86, a64 = builds["rolling"][1], target_builds["aarch64"][1]
+    fused = compare(x86, a64)
+    assert fused["potential"] > 1000 and fused["path"] > 500 and fused["plan_a_only"] == 0
+    v3 = compare(target_builds["x86-64-v3"][1], a64)
+    loose = compare(x86, target_builds["aarch64-no-contract"][1])
+    assert v3["potential"] == 0 == loose["potential"]
+    assert v3["path"] == v3["plan_b_only"] == loose["path"] == loose["plan_b_only"] == fused["plan_b_only"] > 0
+
+
+def test_a_build_in_another_arithmetic_runs_under_qemu_and_is_not_compared_in_the_wrong_one(target_builds,
+                                                                                            capsys):
+    import numpy as np
+
+    from navfn_smt.spec.costs import add_border
+
+    folder = target_builds["aarch64"][1]
+    with Oracle(folder) as oracle:  # runs through the build's runner, unnoticed
+        (res,) = oracle.plan(add_border(np.full((6, 6), 50, np.uint8)), [(1, 1, 4, 4)], True)
+    assert res.start_reached and len(res.path) > 0
+    assert main(["difftest", "--oracle", str(folder)]) == 2
+    err = capsys.readouterr().err
+    assert "aarch64 arithmetic" in err and "not compared" in err and err.count("\n") == 1
+
+
+def test_the_conversion_probe_answers_as_the_spec_converts(target_builds):
+    from navfn_smt.oracle.arithmetic import EXPECTED
+
+    for name, (doc, _) in target_builds.items():
+        probe = doc["arithmetic"]["conversion_probe"]["outputs"]
+        assert probe == EXPECTED[doc["arithmetic"]["conversion"]], name
+    assert target_builds["aarch64"][0]["arithmetic"]["conversion"] == "saturating"
+    assert target_builds["x86-64-v3"][0]["arithmetic"]["conversion"] == "indefinite"

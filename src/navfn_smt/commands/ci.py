@@ -55,6 +55,7 @@ def _navfn(args, folder: Path, unbounded: bool):
     from .common import suite_or_example
 
     with Oracle(folder, variant="unbounded" if unbounded else "traced") as oracle:
+        oracle.require_arithmetic()
         return run_live(suite_or_example(args.suite), MODES, "jit", oracle, unbounded=unbounded).as_dict()
 
 
@@ -63,6 +64,7 @@ def _plugin(args, folder: Path):
     from ..oracle.client import PluginOracle
 
     with PluginOracle(folder) as oracle:
+        oracle.require_arithmetic()
         return run_plugin_live(generated_configs(oracle.build["distribution"], args.configs, args.seed),
                                oracle).as_dict()
 
@@ -73,6 +75,7 @@ def _costmap(args, folder: Path):
     from ..report.difftest import cpu_sqrt_line
 
     with LayersOracle(folder) as oracle:
+        oracle.require_arithmetic()
         s = run_layers_live(generated_configs(oracle.build["distribution"], args.configs, args.seed),
                             oracle).as_dict()
     if s["cpu_sqrt"]:

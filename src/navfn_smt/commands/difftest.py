@@ -53,6 +53,7 @@ def _live(args, suite, modes) -> int:
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
     program = "unbounded" if args.unbounded else "fixed" if args.variant == "fixed" else "traced"
     with Oracle(args.oracle, variant=program) as oracle:
+        oracle.require_arithmetic()
         label = (f"difftest {suite} ({args.backend}, {args.variant}, against the C++ of "
                  f"{oracle.build['distribution']})")
         with progress_bar(total, label, enabled=not args.quiet) as advance:
@@ -96,6 +97,7 @@ def _costmap_level(args) -> int:
     if args.params and not args.map:
         raise NavfnInputError("--params goes with --map")
     with LayersOracle(args.oracle) as oracle:
+        oracle.require_arithmetic()
         distro = oracle.build["distribution"]
         if args.map:
             cfg, notes = map_config(args.map, args.params, distro)
@@ -118,6 +120,7 @@ def _plugin_level(args) -> int:
     from dataclasses import replace
 
     with PluginOracle(args.oracle, args.variant) as oracle:
+        oracle.require_arithmetic()
         distro = oracle.build["distribution"]
         if args.map:
             configs = list(map_configs(args.map, args.params, distro, args.configs, args.seed, args.pairs, args.sweep))

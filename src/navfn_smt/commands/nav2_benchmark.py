@@ -132,6 +132,8 @@ def cmd_nav2_benchmark(args) -> int:
             from ..oracle.client import PluginOracle
 
             oracles = {v: stack.enter_context(PluginOracle(args.oracle, v)) for v in sorted({p.variant for p in planners})}
+            for oracle in oracles.values():
+                oracle.require_arithmetic()
             build = next(iter(oracles.values())).build
             distro = build["distribution"]
             timing = (f"the C++ NavfnPlanner::createPlan ({distro}, {build['compiler']} "

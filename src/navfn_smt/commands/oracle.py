@@ -10,13 +10,20 @@ DEFAULT_OUT = "build/nav2-oracle"
 
 
 def cmd_oracle_build(args) -> int:
-    from ..oracle.build import build
+    import os
 
-    doc = build(args.nav2_src, args.out)
+    from ..oracle.build import build
+    from ..oracle.targets import toolchain
+
+    tc = toolchain(args.target, args.cxx, args.cxxflags, env_cxx=os.environ.get("CXX"))
+    doc = build(args.nav2_src, args.out, tc=tc)
     commit = f", commit {doc['git_commit'][:12]}" if doc.get("git_commit") else ""
-    print(f"built the NavFn oracle of {doc['sources']} ({doc['distribution']}{commit}) into {args.out} "
-          f"with {doc['compiler_version'] or doc['compiler']} {' '.join(doc['flags'])}: "
-          f"{', '.join(doc['programs'])}")
+    runs = f", run under {' '.join(doc['runner'])}" if doc["runner"] else ""
+    print(f"built the NavFn oracle of {doc['sources']} ({doc['distribution']}{commit}) for {doc['target']} "
+          f"({doc['machine']}{runs}) into {args.out} with {doc['compiler_version'] or doc['compiler']} "
+          f"{' '.join(doc['flags'])}: {', '.join(doc['programs'])}")
+    for name, why in doc.get("skipped", {}).items():
+        print(f"  left out {name}: {why}")
     return 0
 
 
@@ -33,4 +40,10 @@ def register(sub) -> None:
     b.add_argument("nav2_src", metavar="NAV2_SRC",
                    help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
     b.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="the build folder (default: %(default)s)")
+    b.add_argument("--target", metavar="NAME", help="the machine to build for: x86-64 (default; $CXX or g++), "
+                   "x86-64-v3 (-march=x86-64-v3: FMA), aarch64 (Debian's aarch64-linux-gnu-g++, run under "
+                   "qemu-aarch64); a program for another machine runs under qemu-user")
+    b.add_argument("--cxx", metavar="CXX", help="your own C++ compiler (its target machine is what it says with "
+                   "-dumpmachine, unless --target names one)")
+    b.add_argument("--cxxflags", metavar="FLAGS", help="with --cxx: flags after -std=c++17 -O2")
     b.set_defaults(func=cmd_oracle_build)

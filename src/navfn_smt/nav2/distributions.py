@@ -1,11 +1,11 @@
-"""What the planner plugin does differently in Humble, Jazzy, Kilted and Rolling, each difference
+"""What the planner plugin does differently in Humble, Jazzy, Kilted, Lyrical and Rolling, each difference
 with the smallest case that shows it.
 
 Every row (plugin rows, then the costmap layers' :data:`LAYER_DIFFERENCES`) is checked
-against the C++ of all four distributions (built from their sources by
+against the C++ of all five distributions (built from their sources by
 ``navfn-smt oracle build``; ``tests/test_oracle.py``) and against the model of each
 (:data:`~navfn_smt.nav2.plugin.FLAVOURS`); ``docs/distributions.md`` shows the same table.
-NavFn itself (``navfn.cpp``'s arithmetic) is the same in all four: the live difftest of the
+NavFn itself (``navfn.cpp``'s arithmetic) is the same in all five: the live difftest of the
 shared suite agrees with each distribution's build on every case.
 """
 
@@ -20,7 +20,7 @@ from .costmap import INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, Inflati
 from .params import PlannerParams
 from .plugin import EMPTY_PATH, Costmap, Pose
 
-DISTROS = ("humble", "jazzy", "kilted", "rolling")
+DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
 
 
 @dataclass(frozen=True)
@@ -59,8 +59,9 @@ DIFFERENCES = (
                "(Jazzy on); Humble appends the goal after it, publishing the position twice",
                "8x6 free map, start (0.1, 0.1), goal (0.25, 0.1) on a cell corner",
                _grid(8, 6), PlannerParams(), Pose(0.1, 0.1), Pose(0.25, 0.1)),
-    Difference("max-cycles-factor", "max_cycles_factor (Rolling) sets calcPath's budget; the others always "
-               "give it 4 * max(size_x, size_y) cycles, and Rolling's calcPath warns when it runs out",
+    Difference("max-cycles-factor", "max_cycles_factor (Lyrical, Rolling) sets calcPath's budget; the others always "
+               "give it 4 * max(size_x, size_y) cycles, and Lyrical's and Rolling's calcPath warns when it "
+               "runs out",
                "12x12 U-shaped wall, start (0.175, 0.175), goal (0.425, 0.175), max_cycles_factor 1",
                tuple(map(tuple, _U.tolist())), PlannerParams(max_cycles_factor=1), Pose(0.175, 0.175),
                Pose(0.425, 0.175)),
@@ -90,10 +91,10 @@ class LayerDifference:
 
 LAYER_DIFFERENCES = (
     LayerDifference("inscribed-obstacle-cost", "the static layer turns occupancy 99 into INSCRIBED_INFLATED_OBSTACLE "
-                    "(253) in Rolling; before, 99 is below the lethal threshold and trinary makes it free",
+                    "(253) in Lyrical and Rolling; before, 99 is below the lethal threshold and trinary makes it free",
                     "3x1 grid of occupancy 0, 99, 100, the static layer alone", ((0, 99, 100),), None),
     LayerDifference("inflation-layer", "nav2_costmap_2d::InflationLayer is the breadth-first layer up to Kilted and "
-                    "the distance-transform layer in Rolling (its cost table is sampled every 1/100 cell)",
+                    "the distance-transform layer in Lyrical and Rolling (its cost table is sampled every 1/100 cell)",
                     "7x7 grid, one occupied cell in the middle, InflationLayer with inflation_radius 0.1, "
                     "cost_scaling_factor 5.0, robot_radius 0; the cell diagonal to the obstacle",
                     tuple(tuple(100 if (x, y) == (3, 3) else 0 for x in range(7)) for y in range(7)), INFLATION,

@@ -20,9 +20,9 @@ from .params import PlannerParams, load_params_yaml, planner_params
 from .plugin import Costmap, costmap_from_map
 
 
-# The plugin is Rolling's navfn_planner.cpp; its max_cycles_factor parameter exists only there
-# (earlier distributions give calcPath 4 * max(size_x, size_y) cycles, the factor's default).
-CYCLES_FACTOR_DISTROS = ("rolling",)
+# The plugin is Rolling's navfn_planner.cpp; its max_cycles_factor parameter exists there and in
+# Lyrical, released from it (earlier distributions give calcPath 4 * max(size_x, size_y) cycles, the factor's default).
+CYCLES_FACTOR_DISTROS = ("lyrical", "rolling")
 
 
 @dataclass

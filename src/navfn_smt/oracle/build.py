@@ -46,16 +46,18 @@ import shutil
 import subprocess
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import replace
 from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
+from .arithmetic import find as find_arithmetic
+from .targets import Toolchain, toolchain
 
 HERE = Path(__file__).resolve().parent
 ANCHOR = "// reset pending flags on current priority buffer"  # once in each propagation loop
 ANCHORS_EXPECTED = 2
 HOOK = "NAVFN_SMT_CYCLE(curP, curPe);"
-FLAGS = ("-std=c++17", "-O2")
 PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers", "eigen-sqrt",
             "navfn-fixed", "navfn-plugin-fixed")
 FIXED_PROGRAMS = ("navfn-fixed", "navfn-plugin-fixed")  # left out, and named, without a patch for the version
@@ -67,8 +69,11 @@ LAYER_SOURCES = ("src/costmap_2d.cpp", "src/layer.cpp", "src/layered_costmap.cpp
                  "src/footprint.cpp", "src/costmap_math.cpp", "src/array_parser.cpp", "plugins/static_layer.cpp",
                  "plugins/inflation_layer.cpp", "plugins/legacy_inflation_layer.cpp")
 BUFFER_DEFINE = "#define PRIORITYBUFSIZE"  # once in navfn.hpp; the unbounded build replaces its line
-# package.xml's major.minor version -> the distribution it is released in
-DISTRIBUTIONS = {(1, 1): "humble", (1, 2): "iron", (1, 3): "jazzy", (1, 4): "kilted"}
+# package.xml's major.minor version -> the distribution it is released in.  The newest one
+# shares its minor version with Rolling (the main branch) until main moves on: main carries
+# x.y.0, the distribution's branch releases x.y.1 and later (Lyrical 1.5.1 beside Rolling's 1.5.0)
+DISTRIBUTIONS = {(1, 1): "humble", (1, 2): "iron", (1, 3): "jazzy", (1, 4): "kilted", (1, 5): "lyrical"}
+SHARED_WITH_MAIN = (1, 5)
 NEWEST = "rolling"
 
 
@@ -90,11 +95,22 @@ def find_sources(root) -> Path:
 def distribution(src: Path) -> str:
     """The distribution the sources are released in, from ``package.xml``'s version."""
     xml = src / "nav2_navfn_planner" / "package.xml"
-    m = re.search(r"<version>\s*(\d+)\.(\d+)\.", xml.read_text(encoding="utf-8")) if xml.is_file() else None
+    m = re.search(r"<version>\s*(\d+)\.(\d+)\.(\d+)", xml.read_text(encoding="utf-8")) if xml.is_file() else None
     if m is None:
         raise NavfnInputError(f"{xml}: no <version> to tell the distribution by")
-    major, minor = int(m.group(1)), int(m.group(2))
+    major, minor, patch = int(m.group(1)), int(m.group(2)), int(m.group(3))
+    if (major, minor) == SHARED_WITH_MAIN and patch == 0:
+        return NEWEST
     return DISTRIBUTIONS.get((major, minor), NEWEST if (major, minor) > max(DISTRIBUTIONS) else "unknown")
+
+
+def cxx_standard(src: Path) -> str:
+    """The C++ standard the sources need: C++20 where the costmap holds a
+    ``std::atomic<std::shared_ptr<...>>`` without Rolling's C++17 fallback (Lyrical's
+    ``layered_costmap.hpp``), else C++17."""
+    hpp = src / "nav2_costmap_2d" / "include" / "nav2_costmap_2d" / "layered_costmap.hpp"
+    text = hpp.read_text(encoding="utf-8") if hpp.is_file() else ""
+    return "c++20" if "std::atomic<std::shared_ptr" in text and "__cpp_lib_atomic_shared_ptr" not in text else "c++17"
 
 
 def takes_cancel_checker(src: Path) -> bool:
@@ -167,29 +183,33 @@ def patched_copy(src: Path, root: Path) -> Path:
     return root
 
 
-def compiler() -> str:
-    """The C++ compiler: ``$CXX``, else g++ (a clear error when there is none)."""
-    cxx = os.environ.get("CXX") or "g++"
-    if shutil.which(cxx) is None:
-        raise NavfnInputError(f"no C++ compiler: {cxx!r} is not on PATH (install g++ or set CXX)")
-    return cxx
-
-
 def _sha256(p: Path) -> str:
     return hashlib.sha256(p.read_bytes()).hexdigest()
 
 
-def _git_commit(src: Path) -> Optional[str]:
+def _git(src: Path, *args) -> Optional[str]:
     try:
-        r = subprocess.run(["git", "-C", str(src), "rev-parse", "HEAD"], capture_output=True, text=True, timeout=10)
+        r = subprocess.run(["git", "-C", str(src), *args], capture_output=True, text=True, timeout=10)
     except (OSError, subprocess.TimeoutExpired):
         return None
     return r.stdout.strip() if r.returncode == 0 else None
 
 
-def _compile(cxx: str, sources, includes, defines, out: Path, extra=()) -> None:
-    cmd = [cxx, *FLAGS, *extra, *(f"-I{i}" for i in includes), *(f"-D{d}" for d in defines), *map(str, sources),
-           "-o", str(out)]
+def git_commit(src: Path) -> tuple:
+    """``(commit, note)``: the commit of the sources' own git checkout, or None with why: a
+    folder inside another repository (as ``../shared/nav2-src/<distribution>`` is) has no
+    commit of its own, and that repository's commit would say nothing about these sources."""
+    top = _git(src, "rev-parse", "--show-toplevel")
+    if top is None:
+        return None, "not a git checkout"
+    if Path(top).resolve() != src.resolve():
+        return None, f"a folder inside the git repository {top}, not a checkout of its own"
+    return _git(src, "rev-parse", "HEAD"), None
+
+
+def _compile(tc: Toolchain, sources, includes, defines, out: Path, extra=()) -> None:
+    cmd = [tc.cxx, *tc.all_flags, *extra, *(f"-I{i}" for i in includes), *(f"-D{d}" for d in defines),
+           *map(str, sources), "-o", str(out)]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         first = next((line for line in r.stderr.splitlines() if "error" in line), r.stderr.strip()[:300])
@@ -238,6 +258,11 @@ def _jobs(src: Path, tmp: Path) -> dict:
         "navfn-plugin": (plugin, plugin_includes, plugin_defines),
         **fixed,
     }
+
+
+def _plain_job(src: Path, jobs: dict) -> tuple:
+    """``(navfn.cpp, include folders, defines)`` as the plain program compiles them."""
+    return src / "nav2_navfn_planner" / "src" / "navfn.cpp", jobs["navfn-plain"][1], jobs["navfn-plain"][2]
 
 
 def eigen_include() -> list[Path]:
@@ -290,9 +315,10 @@ def _skipped(src: Path, name: str) -> Optional[str]:
     return None
 
 
-def build(nav2_src, out, programs=PROGRAMS) -> dict:
-    """Build the oracle ``programs`` (all by default) from ``nav2_src`` into the folder ``out``,
-    compiling them side by side, one per core; returns build.json."""
+def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None) -> dict:
+    """Build the oracle ``programs`` (all by default) from ``nav2_src`` into the folder ``out``
+    with the toolchain ``tc`` (default: x86-64 with ``$CXX`` or g++), compiling them side by
+    side, one per core; returns build.json."""
     src = find_sources(nav2_src)
     out = Path(out)
     if out.exists() and not (out / "build.json").is_file():
@@ -300,8 +326,9 @@ def build(nav2_src, out, programs=PROGRAMS) -> dict:
     unknown = [p for p in programs if p not in PROGRAMS]
     if unknown:
         raise NavfnInputError(f"no oracle program {unknown[0]!r} (there are: {', '.join(PROGRAMS)})")
-    cxx = compiler()
-    version = subprocess.run([cxx, "--version"], capture_output=True, text=True).stdout.splitlines()[:1]
+    tc = replace(tc or toolchain(env_cxx=os.environ.get("CXX")), std=cxx_standard(src))
+    tc.check()
+    runner = tc.runner()
     skipped = {name: why for name in programs if (why := _skipped(src, name))}
     programs = tuple(p for p in programs if p not in skipped)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -309,12 +336,20 @@ def build(nav2_src, out, programs=PROGRAMS) -> dict:
     try:
         jobs = _jobs(src, tmp)
         with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-            running = [pool.submit(_compile, cxx, *jobs[name][:3], tmp / name, *jobs[name][3:]) for name in programs]
+            running = [pool.submit(_compile, tc, *jobs[name][:3], tmp / name, *jobs[name][3:]) for name in programs]
             for job in running:
                 job.result()
+        try:
+            (tmp / "arithmetic").mkdir()
+            arith = find_arithmetic(tc, runner, *_plain_job(src, jobs), tmp / "arithmetic")
+        except RuntimeError as e:
+            raise NavfnInputError(f"the arithmetic of the {tc.target} build could not be found: {e}") from None
+        commit, why = git_commit(src)
         doc = {
-            "sources": str(src.resolve()), "distribution": distribution(src), "git_commit": _git_commit(src),
-            "compiler": cxx, "compiler_version": version[0] if version else "", "flags": list(FLAGS),
+            "sources": str(src.resolve()), "distribution": distribution(src), "git_commit": commit,
+            **({"git_commit_note": why} if why else {}),
+            "target": tc.target, "machine": tc.machine(), "compiler": tc.cxx, "compiler_version": tc.version(),
+            "flags": tc.all_flags, "runner": runner, "arithmetic": arith,
             "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs), "skipped": skipped,
             "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src, jobs)},
             "anchor": ANCHOR,

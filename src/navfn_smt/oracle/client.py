@@ -21,6 +21,8 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from ..spec.planner import PlanResult
+from ..spec.arithmetic import X86_64
+from .arithmetic import of_build
 from .build import load_build
 
 
@@ -38,8 +40,24 @@ class _Program:
             raise NavfnInputError(f"{self.folder}: this build has no {self.program} (it has "
                                   f"{', '.join(self.build['programs'])}); build it again with `navfn-smt oracle build`")
         env = {**os.environ, **self.ENV} if self.ENV else None
-        self.proc = subprocess.Popen([str(self.folder / self.program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+        # a program built for another machine runs under qemu-user (the build's runner)
+        command = [*self.build.get("runner", []), str(self.folder / self.program)]
+        self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      env=env)
+
+    def require_arithmetic(self, spec=X86_64) -> None:
+        """A clear error unless the build computes in the arithmetic ``spec`` the spec runs:
+        a build is never compared in an arithmetic it does not have."""
+        arith, why = of_build(self.build)
+        if arith is None:
+            raise NavfnInputError(f"{self.folder}: {why}")
+        if arith != spec:
+            fused = ", ".join(sorted(arith.fused)) or "none"
+            raise NavfnInputError(
+                f"{self.folder} was built for {self.build.get('target', '?')} and computes in the {arith.name} "
+                f"arithmetic (fused multiply-adds: {fused}; float-to-int conversion {arith.conversion}); the spec "
+                f"computes in {spec.name} arithmetic only, so this build is not compared (its answers can be "
+                f"recorded with `navfn-smt suite record --oracle`)")
 
     def close(self) -> None:
         if self.proc.poll() is None:

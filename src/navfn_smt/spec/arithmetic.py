@@ -1,0 +1,105 @@
+"""The arithmetic of a build: which multiply-adds the compiler fused, and how ``(int)`` converts.
+
+The C++ standard lets a compiler contract ``a * b + c`` into one fused multiply-add (one
+rounding instead of two), and leaves ``(int)`` of a float outside the int range undefined.
+Compilers use both freedoms differently by target: GCC on x86-64 (SSE2) fuses nothing and its
+``cvttss2si`` gives INT_MIN; GCC with ``-march=x86-64-v3`` and GCC on arm64 fuse every site
+below, and arm64's ``fcvtzs`` saturates.  An :class:`Arithmetic` is that data, found from a
+build (:mod:`navfn_smt.oracle.arithmetic`), never typed in; the kernels ask the numeric domain
+``D.fuses(site)`` and ``D.to_int32`` converts as the domain's arithmetic says, so each kernel is
+still stated once.
+
+:data:`SITES` are the contractible expressions of NavFn's arithmetic, each with the source text
+that names it in ``navfn.cpp`` (how the object code's fused lines are told apart).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from .constants import INT_MAX, INT_MIN
+from .numeric import cvt_to_int32
+
+# site -> (the C++, float or double, a pattern of its navfn.cpp line, lines expected in navfn.cpp)
+SITES = {
+    "cost_translation": ("setCostmap: COST_NEUTRAL + COST_FACTOR * v (double, truncated to int)",
+                         r"COST_NEUTRAL\s*\+\s*COST_FACTOR\s*\*", 2),
+    "quadratic": ("updateCell: -0.2301 * div * div + 0.5307 * div (double; the first product's "
+                  "last multiplication fused with the sum)", r"-0\.2301\s*\*\s*div", 2),
+    "planar": ("updateCell: ta + hf * v (float)", r"ta\s*\+\s*hf\s*\*\s*v", 2),
+    "bilinear": ("calcPath: (1.0 - t) * a + t * b (double; the left product fused, the float t * b added)",
+                 r"\(1\.0\s*-\s*d[xy]\)\s*\*", 6),
+    "path_step": ("calcPath: dx += x * ss, dy += y * ss (float)", r"d[xy]\s*\+=\s*[xy]\s*\*\s*ss", 2),
+}
+# how (int) of a float converts a NaN or a value outside the int range
+CONVERSIONS = {
+    "indefinite": "NaN and values out of range give INT_MIN (x86-64's cvttss2si, the 'integer indefinite')",
+    "saturating": "values out of range clamp to INT_MIN or INT_MAX, NaN gives 0 (arm64's fcvtzs)",
+}
+
+
+def cvt_to_int32_saturating(a: float) -> int:
+    """C ``static_cast<int>`` of a float or double on arm64 (``fcvtzs``): truncates toward zero,
+    values out of range clamp to INT_MIN or INT_MAX, NaN gives 0."""
+    if a != a:
+        return 0
+    if a >= 2147483648.0:
+        return INT_MAX
+    if a <= -2147483649.0:
+        return INT_MIN
+    return int(a)
+
+
+# each conversion as the concrete spec computes it (x86-64's is numeric.cvt_to_int32)
+CONVERTERS = {"indefinite": cvt_to_int32, "saturating": cvt_to_int32_saturating}
+
+
+@dataclass(frozen=True)
+class Arithmetic:
+    """The sites the build fused (a subset of :data:`SITES`) and its float-to-int conversion."""
+
+    fused: frozenset = frozenset()
+    conversion: str = "indefinite"
+
+    def __post_init__(self):
+        unknown = sorted(set(self.fused) - set(SITES))
+        if unknown or self.conversion not in CONVERSIONS:
+            raise ValueError(f"no such arithmetic: fused {sorted(self.fused)}, conversion {self.conversion!r}")
+
+    def fuses(self, site: str) -> bool:
+        return site in self.fused
+
+    @property
+    def name(self) -> str:
+        """The known arithmetic's name (``x86-64``, ``x86-64-v3``, ``aarch64``), else a
+        description of the data."""
+        for name, a in KNOWN.items():
+            if a == self:
+                return name
+        return f"fused[{'+'.join(sorted(self.fused)) or 'none'}]-{self.conversion}"
+
+    @property
+    def key(self) -> str:
+        """A short identifier that differs for every distinct arithmetic (for compiled types)."""
+        return "".join("1" if s in self.fused else "0" for s in SITES) + self.conversion[0]
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "fused": sorted(self.fused), "conversion": self.conversion}
+
+    @staticmethod
+    def from_dict(doc: dict) -> "Arithmetic":
+        return Arithmetic(frozenset(doc.get("fused", ())), doc.get("conversion", "indefinite"))
+
+
+X86_64 = Arithmetic()
+KNOWN = {
+    "x86-64": X86_64,
+    "x86-64-v3": Arithmetic(frozenset(SITES), "indefinite"),
+    "aarch64": Arithmetic(frozenset(SITES), "saturating"),
+}
+
+
+def site_of_line(text: str):
+    """The site whose pattern a line of navfn.cpp matches, or None."""
+    return next((s for s, (_, pattern, _) in SITES.items() if re.search(pattern, text)), None)

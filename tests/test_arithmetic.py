@@ -1,0 +1,141 @@
+"""The arithmetic of a build as the oracle finds it: the object code's fused multiply-adds traced
+to the spec's sites, the conversion probe's answers matched to the spec's converters, and the
+checkers of both fed evidence that is wrong."""
+
+from __future__ import annotations
+
+import subprocess
+from fractions import Fraction
+
+import pytest
+
+from navfn_smt.cli import main
+from navfn_smt.errors import NavfnInputError
+from navfn_smt.oracle.arithmetic import EXPECTED, PROBE_INPUTS, conversion, fused_lines, fused_sites, of_build
+from navfn_smt.oracle.build import distribution, git_commit
+from navfn_smt.oracle.targets import toolchain
+from navfn_smt.spec.arithmetic import KNOWN, SITES, X86_64, Arithmetic, site_of_line
+from navfn_smt.spec.constants import COST_FACTOR, COST_NEUTRAL
+
+# a navfn.cpp stand-in: one line per site as Nav2 writes it (the patterns of SITES), twice
+SOURCE = """\
+v = COST_NEUTRAL + COST_FACTOR * v;
+v = COST_NEUTRAL + COST_FACTOR * v;
+const float v = -0.2301 * div * div + 0.5307 * div + 0.7040;
+pot = ta + hf * v;
+const float v = -0.2301 * div * div + 0.5307 * div + 0.7040;
+pot = ta + hf * v;
+float x1 = (1.0 - dx) * gradx[stc] + dx * gradx[stc + 1];
+float x = (1.0 - dy) * x1 + dy * x2;
+dx += x * ss;
+dy += y * ss;
+float other = a * b + c;
+"""
+
+
+def _asm(lines, file="navfn.cpp", insn="fmadd\td0, d1, d2, d3"):
+    body = [f'\t.file 1 "{file}"', '\t.file 2 "/usr/include/c++/12/cmath"']
+    for n in lines:
+        body += [f"\t.loc 1 {n} 7 view .LVU1", "\tfmul\td0, d1, d2", f"\t{insn}"]
+    body += ["\t.loc 2 40 3", "\tfmadd\ts0, s1, s2, s3"]  # a library header's line is not navfn.cpp's
+    return "\n".join(body) + "\n"
+
+
+def test_fused_lines_are_traced_to_their_source_lines_in_either_instruction_set():
+    assert fused_lines(_asm([3, 9]), "navfn.cpp") == [3, 9]
+    assert fused_lines(_asm([4], insn="vfmadd132ss\t%xmm1, %xmm2, %xmm0"), "navfn.cpp") == [4]
+    assert fused_lines(_asm([4], insn="fmla\tv0.4s, v1.4s, v2.4s"), "navfn.cpp") == [4]
+    assert fused_lines(_asm([4], insn="fmul\td0, d1, d2"), "navfn.cpp") == []  # not a multiply-add
+    assert fused_lines(_asm([4]), "other.cpp") == []
+
+
+def test_sites_fused_on_every_line_are_the_arithmetic(tmp_path):
+    src = tmp_path / "navfn.cpp"
+    src.write_text(SOURCE)
+    fused, at, problems = fused_sites(src, [1, 2, 3, 5, 4, 6, 7, 8, 9, 10])
+    assert problems == [] and fused == set(SITES)
+    assert at["planar"] == [4, 6] and at["path_step"] == [9, 10]
+    assert fused_sites(src, []) == (set(), {}, [])
+
+
+def test_a_fused_line_the_spec_has_no_site_for_or_a_site_fused_in_part_is_unexpressible(tmp_path):
+    src = tmp_path / "navfn.cpp"
+    src.write_text(SOURCE)
+    fused, _, problems = fused_sites(src, [11])
+    assert fused == set() and problems and "navfn.cpp:11" in problems[0] and "a * b + c" in problems[0]
+    fused, _, problems = fused_sites(src, [4])  # the planar site of one updateCell only
+    assert "planar" not in fused and "planar fused on navfn.cpp lines [4] but not on [6]" in problems[0]
+
+
+def test_the_probe_names_a_conversion_only_when_the_spec_computes_the_same_ints():
+    assert conversion(EXPECTED["indefinite"]) == "indefinite"
+    assert conversion(EXPECTED["saturating"]) == "saturating"
+    wrong = list(EXPECTED["saturating"])
+    wrong[0] = -2147483648  # NaN gives INT_MIN but the rest saturates: neither
+    assert conversion(wrong) is None
+    assert len(PROBE_INPUTS) == len(EXPECTED["indefinite"])
+
+
+def test_a_build_whose_arithmetic_is_unknown_or_unexpressible_is_never_compared():
+    assert of_build({})[0] is None and "build it again" in of_build({})[1]
+    bad = {"arithmetic": {**KNOWN["aarch64"].as_dict(), "unexpressible": ["navfn.cpp:11 fused ..."]}}
+    assert of_build(bad)[0] is None and "cannot express" in of_build(bad)[1]
+    assert of_build({"arithmetic": KNOWN["aarch64"].as_dict()}) == (KNOWN["aarch64"], None)
+
+
+def test_arithmetics_are_data_named_when_known():
+    for name, a in KNOWN.items():
+        assert a.name == name and Arithmetic.from_dict(a.as_dict()) == a
+    assert Arithmetic(frozenset(), "saturating").name == "fused[none]-saturating"
+    assert len({a.key for a in KNOWN.values()}) == len(KNOWN) and X86_64 == KNOWN["x86-64"]
+    with pytest.raises(ValueError):
+        Arithmetic(frozenset({"nowhere"}))
+    with pytest.raises(ValueError):
+        Arithmetic(conversion="rounding")
+    assert site_of_line("pot = ta + hf * v;") == "planar" and site_of_line("pot = ta + hf;") is None
+
+
+def test_the_cost_translation_gives_the_same_ints_fused_or_not():
+    """setCostmap's ``COST_NEUTRAL + COST_FACTOR * v`` (double, then int) for every cost below
+    253: the fused value (the exact sum rounded once) truncates as the twice-rounded one does,
+    so the site is recorded but the spec's translation needs no fused form."""
+    for v in range(253):
+        fused = float(Fraction(COST_FACTOR) * v + COST_NEUTRAL)
+        assert int(fused) == int(COST_NEUTRAL + COST_FACTOR * v), v
+
+
+@pytest.mark.parametrize("version, distro", [("1.1.20", "humble"), ("1.3.13", "jazzy"), ("1.4.2", "kilted"),
+                                              ("1.5.1", "lyrical"), ("1.5.0", "rolling"), ("1.6.0", "rolling")])
+def test_the_distribution_is_read_from_the_version(tmp_path, version, distro):
+    pkg = tmp_path / "nav2_navfn_planner"
+    pkg.mkdir()
+    (pkg / "package.xml").write_text(f"<package><version>{version}</version></package>")
+    assert distribution(tmp_path) == distro
+
+
+def test_the_git_commit_is_the_sources_own(tmp_path):
+    repo = tmp_path / "repo"
+    (repo / "inner").mkdir(parents=True)
+    (repo / "inner" / "f").write_text("x")
+    git = ["git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t"]
+    subprocess.run([*git, "init", "-q"], check=True)
+    subprocess.run([*git, "add", "."], check=True)
+    subprocess.run([*git, "commit", "-qm", "x"], check=True)
+    head = subprocess.run([*git, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
+    assert git_commit(repo) == (head, None)
+    commit, why = git_commit(repo / "inner")
+    assert commit is None and "inside the git repository" in why
+    assert git_commit(tmp_path) == (None, "not a git checkout")
+
+
+def test_toolchains_are_checked_before_anything_is_built(tmp_path, capsys):
+    with pytest.raises(NavfnInputError, match="no such target"):
+        toolchain("sparc")
+    with pytest.raises(NavfnInputError, match="goes with --cxx"):
+        toolchain(cxxflags="-O3")
+    assert toolchain("x86-64-v3").all_flags == ["-std=c++17", "-O2", "-march=x86-64-v3"]
+    with pytest.raises(NavfnInputError, match="not on PATH"):
+        toolchain(cxx="no-such-g++").check()
+    assert main(["oracle", "build", str(tmp_path), "--target", "sparc", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "no such target" in err and err.count("\n") == 1 and not (tmp_path / "o").exists()
