@@ -393,12 +393,16 @@ def test_the_checker_refuses_every_harmful_corruption_of_a_committed_certificate
     assert tried >= 200 and refused + harmless == tried and refused > harmless
 
 
-@pytest.mark.parametrize("path", sorted((REPORTS / "certificates").glob("check-*.replay.json")), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", sorted((REPORTS / "certificates").glob("check-*.replay.json"))
+                         + sorted((REPORTS / "certificates" / "parts").glob("check-*.replay-*of*.json")),
+                         ids=lambda p: p.name)
 def test_a_committed_replay_report_is_of_its_committed_certificate(path):
-    """The invariants page shows each certified size's trusted count from its replay report: the
-    report re-checked the certificate committed beside it (the same bytes), and it replayed."""
+    """The invariants page shows each certified size's trusted count from its replay report (or
+    the parts replayed so far): the report re-checked the certificate committed beside it (the
+    same bytes), and it replayed."""
     doc = json.loads(path.read_text())
-    cert = path.with_name(path.name.replace(".replay.json", ".cert.json.gz"))
+    name = path.name.split(".replay")[0] + ".cert.json.gz"
+    cert = REPORTS / "certificates" / name
     assert doc["certificate_sha256"] == C.digest(cert) and doc["status"] == "replayed"
     t = doc["trusted"]
     assert t["count"] == t["held_on_box_by_intervals"] + t["paths_cut_by_queued_start"] + t["cases_by_reduction"]
@@ -414,3 +418,70 @@ def test_the_invariants_page_shows_a_replays_trusted_count(tmp_path):
                                               "paths_cut_by_queued_start": 1, "cases_by_reduction": 2}}))
     text = _replayed(report)
     assert "3 by cvc5" in text and "trusted 7: 4 held on the box" in text
+
+
+def _parts(doc, n, sha="x"):
+    """The reports of the n parts of ``doc``'s replay, as ``check --replay --part --json`` writes them."""
+    out = []
+    for k in range(1, n + 1):
+        got = C.replay(None, doc=doc, order=FAST, part=(k, n))
+        out.append({"command": "check --replay", "certificate_sha256": sha, "check_intervals": False, **got})
+    return out
+
+
+def test_a_replay_in_parts_is_the_whole_replay_once_every_part_is(refuting):
+    """3x3 (a refuted property, witnessed by some part's seeds): three parts tile the cases, and
+    combined they give the whole replay's counts; a part refused, missing, twice, of another
+    certificate or asked of other solvers refuses the whole."""
+    doc = C.read(refuting)
+    whole = C.replay(None, doc=doc, order=FAST)
+    parts = _parts(doc, 3)
+    assert [p["case_range"] for p in parts] == [list(C.part_range(len(doc["cases"]), (k, 3))) for k in (1, 2, 3)]
+    assert parts[0]["case_range"][0] == 0 and parts[-1]["case_range"][1] == len(doc["cases"])
+    got = C.combine(doc, "x", parts)
+    assert got["status"] == "replayed" and got["parts"] == 3, got["problems"]
+    for key in ("cases", "paths", "evidence", "trusted", "verdicts"):
+        assert got[key] == whole[key], key
+    for parts_now, says in [
+        (parts[:2], "not each of 1/3 to 3/3 once"),
+        (parts + parts[:1], "not each of 1/3 to 3/3 once"),
+        ([parts[0], {**parts[1], "certificate_sha256": "y"}, parts[2]], "part 2/3 is the replay of another"),
+        ([parts[0], {**parts[1], "status": "refused", "problems": ["p"]}, parts[2]], "part 2/3 did not replay: p"),
+        ([parts[0], {**parts[1], "solvers": ["cvc5"]}, parts[2]], "part 2/3 was replayed with solvers"),
+        ([parts[0], {**parts[1], "case_range": [0, 1]}, parts[2]], "part 2/3 covers cases [0, 1]"),
+        (parts[:1] + _parts(doc, 2)[1:], "different splits"),
+    ]:
+        bad = C.combine(doc, "x", parts_now)
+        assert bad["status"] == "refused" and any(says in p for p in bad["problems"]), (says, bad["problems"])
+    # the witness of the refuted property is judged over all parts: with it gone, refused
+    no_witness = {k: v for k, v in doc.items() if k != "witnesses"}
+    forged = [{**p, "witnessed": []} for p in parts]
+    assert "no recorded map refutes it" in C.combine(no_witness, "x", forged)["problems"][0]
+
+
+def test_parts_on_the_command_line(cert, tmp_path):
+    reports = []
+    for k in (1, 2):
+        out = tmp_path / f"p{k}.json"
+        r = _cli("check", "--replay", str(cert), "--part", f"{k}/2", "--solver", "bitwuzla", "--json", str(out))
+        assert r.returncode == 0 and f"part {k}/2 replayed" in r.stdout, r.stdout + r.stderr
+        reports.append(str(out))
+    r = _cli("check", "--replay", str(cert), "--combine", *reports, "--json", str(tmp_path / "whole.json"))
+    assert r.returncode == 0 and "replayed: complete proved" in r.stdout, r.stdout + r.stderr
+    assert json.loads((tmp_path / "whole.json").read_text())["parts"] == 2
+    r = _cli("check", "--replay", str(cert), "--combine", reports[0])
+    assert r.returncode == 1 and "not each of 1/2 to 2/2 once" in r.stdout
+    for bad, says in [("3/2", "K must be 1 to N"), ("x", "give K/N")]:
+        r = _cli("check", "--replay", str(cert), "--part", bad)
+        assert r.returncode == 2 and says in r.stderr and "Traceback" not in r.stderr
+
+
+def test_the_invariants_page_shows_a_replay_done_in_parts_so_far(tmp_path):
+    from navfn_smt.report.invariants_page import _replayed
+
+    (tmp_path / "parts").mkdir()
+    for k, status in ((1, "replayed"), (2, "refused")):
+        (tmp_path / "parts" / f"check-4x6.replay-{k}of12.json").write_text(json.dumps(
+            {"status": status, "part": [k, 12], "paths": 1234}))
+    text = _replayed(tmp_path / "check-4x6.replay.json")
+    assert "in parts so far: 1 of 12" in text and "1,234 control paths" in text

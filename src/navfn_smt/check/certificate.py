@@ -483,13 +483,23 @@ def _witness_problems(doc: dict, witnessed: set) -> list[str]:
     return out
 
 
+def part_range(explored: int, part: tuple) -> tuple:
+    """The cases ``[lo, hi)`` (positions among the explored cases, in the certificate's order)
+    that part ``k`` of ``n`` re-checks: the n parts tile them, in order."""
+    k, n = part
+    return (k - 1) * explored // n, k * explored // n
+
+
 def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DEFAULT_SOLVERS,
-           check_intervals: bool = False, memo: Optional[dict] = None, doc: Optional[dict] = None) -> dict:
+           check_intervals: bool = False, memo: Optional[dict] = None, doc: Optional[dict] = None,
+           part: tuple = (1, 1)) -> dict:
     """Re-check a certificate (the module docstring): ``{"status": "replayed" | "refused",
     "problems": [...], "evidence": {...}, "trusted": {...}, ...}``; the first problem refuses it.
     ``order``: the solvers asked, in turn; ``check_intervals``: the properties held on the box are
     asked of them too; ``memo`` (one process): answers kept across replays; ``doc``: the
-    certificate already read."""
+    certificate already read.  ``part=(k, n)``: every check of the whole certificate (header,
+    hash, inductions, coverage of the cases) but the paths of the k-th n-th of its cases only
+    (:func:`part_range`); the n part reports together are a whole replay (:func:`combine`)."""
     from ..engine import as_engine, in_order, stream
     from .runner import BATCH, PARALLEL_FROM
 
@@ -514,6 +524,9 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
     problems, entries = _case_entries(doc, memo)
     if problems:
         return refused(problems)
+    whole = len(entries)
+    first, last = part_range(whole, part)
+    entries = entries[first:last]
     lo, hi = doc["costs"]
     names, verdicts = doc["properties"], doc["verdicts"]
     args = (names, verdicts, lo, hi, timeout, doc["variant"], order, check_intervals)
@@ -545,14 +558,66 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
             done += 1
             if progress:
                 progress(done, len(entries), None)
-    problems += _witness_problems(doc, witnessed)
-    explored = len(entries)
+    if part == (1, 1):
+        problems += _witness_problems(doc, witnessed)
+    got = {**head, "status": "refused" if problems else "replayed", "problems": problems, "solvers": list(order),
+           "cases": len(entries), "paths": sum(len(log) for _, _, log in entries), "evidence": evidence,
+           "trusted": _trusted(doc, evidence, whole)}
+    if part != (1, 1):  # the witnesses are judged when the parts are combined
+        got.update(part=list(part), case_range=[first, last], witnessed=sorted(witnessed))
+    return got
+
+
+def _trusted(doc: dict, evidence: dict, explored: int) -> dict:
     trusted = {
         "held_on_box_by_intervals": evidence["held_on_box_by_intervals"] - evidence["held_on_box_checked"],
         "paths_cut_by_queued_start": evidence["paths_cut_by_queued_start"],
         "cases_by_reduction": doc["total"] - explored,
-        "by_induction": sorted(n for n in verdicts if n not in names)}
+        "by_induction": sorted(n for n in doc["verdicts"] if n not in doc["properties"])}
     trusted["count"] = sum(v for v in trusted.values() if isinstance(v, int))
-    return {**head, "status": "refused" if problems else "replayed", "problems": problems, "solvers": list(order),
-            "cases": explored, "paths": sum(len(log) for _, _, log in entries), "evidence": evidence,
-            "trusted": trusted}
+    return trusted
+
+
+def combine(doc: dict, sha256: str, reports: list) -> dict:
+    """The whole replay of the certificate ``doc`` (whose file has the SHA-256 ``sha256``) from
+    the reports of its parts (``check --replay --part K/N --json``): refused unless every report
+    is of this certificate, replayed, with the same solvers and options, and the parts are
+    1..n of one n, each once, tiling the explored cases; the refuted verdicts' witnesses are
+    judged over all parts."""
+    head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "verdicts", "induction")
+            if k in doc}
+    problems = []
+    n = {tuple(r.get("part", (1, 1)))[1] for r in reports}
+    if len(n) != 1:
+        problems.append(f"the parts are of different splits: {sorted(n)}")
+    n = max(n) if n else 0
+    explored = len(doc.get("cases", []))
+    seen = sorted(tuple(r.get("part", (1, 1))) for r in reports)
+    if seen != [(k, n) for k in range(1, n + 1)]:
+        problems.append(f"the parts are {['%d/%d' % p for p in seen]}, not each of 1/{n} to {n}/{n} once")
+    for r in reports:
+        k = tuple(r.get("part", (1, 1)))
+        name = "part %d/%d" % k
+        if r.get("certificate_sha256") != sha256:
+            problems.append(f"{name} is the replay of another certificate (SHA-256 "
+                            f"{str(r.get('certificate_sha256'))[:12]}, this one {sha256[:12]})")
+        if r.get("status") != "replayed":
+            problems.append(f"{name} did not replay: {(r.get('problems') or [r.get('status')])[0]}")
+        if list(r.get("case_range", part_range(explored, k))) != list(part_range(explored, k)):
+            problems.append(f"{name} covers cases {r.get('case_range')}, not {list(part_range(explored, k))}")
+        for key in ("solvers", "check_intervals"):
+            if r.get(key) != reports[0].get(key):
+                problems.append(f"{name} was replayed with {key} {r.get(key)}, part "
+                                f"{'%d/%d' % tuple(reports[0].get('part', (1, 1)))} with {reports[0].get(key)}")
+    if problems:
+        return {**head, "status": "refused", "problems": problems}
+    evidence, witnessed = new_evidence(), set()
+    for r in reports:
+        _add(evidence, r["evidence"])
+        witnessed.update(r.get("witnessed", ()))
+    problems = _witness_problems(doc, witnessed)
+    return {**head, "status": "refused" if problems else "replayed", "problems": problems,
+            "solvers": reports[0]["solvers"], "check_intervals": reports[0].get("check_intervals", False),
+            "cases": sum(r["cases"] for r in reports), "paths": sum(r["paths"] for r in reports),
+            "evidence": evidence, "trusted": _trusted(doc, evidence, explored), "parts": n,
+            "seconds": round(sum(r.get("seconds", 0.0) for r in reports), 1)}

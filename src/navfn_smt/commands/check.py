@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from ..errors import NavfnInputError
 from ..fileio import check_writable_dir
 from .common import MODE_HELP, check_files, check_positive, vars_of
@@ -132,19 +134,34 @@ def _replay(args) -> int:
     check_positive("--timeout", args.timeout)
     eng = engine(args.jobs, args.scheduler)
     check_files(args.json)
+    part = _part(args.part)
+    if args.combine and args.part:
+        raise NavfnInputError("--combine joins the reports of parts already replayed: no --part with it")
     doc = certificate.read(args.replay)
+    sha = certificate.digest(args.replay)
     t0 = time.perf_counter()
-    try:
-        got = certificate.replay(args.replay, eng, args.timeout, progress=report.progress(f"replay {args.replay}"),
-                                 order=order, check_intervals=args.check_intervals, doc=doc)
-    finally:
-        report.stop_progress()
-    got["seconds"] = round(time.perf_counter() - t0, 1)
+    if args.combine:
+        got = certificate.combine(doc, sha, [_part_report(f) for f in args.combine])
+    else:
+        try:
+            got = certificate.replay(args.replay, eng, args.timeout, progress=report.progress(f"replay {args.replay}"),
+                                     order=order, check_intervals=args.check_intervals, doc=doc, part=part)
+        finally:
+            report.stop_progress()
+        got["seconds"] = round(time.perf_counter() - t0, 1)
     if args.json:
         report.write_json(args.json, {"command": "check --replay", "certificate": args.replay,
-                                      "certificate_sha256": certificate.digest(args.replay),
-                                      "check_intervals": args.check_intervals, **got})
+                                      "certificate_sha256": sha,
+                                      "check_intervals": got.get("check_intervals", args.check_intervals), **got})
     size = "x".join(map(str, got.get("size", [])))
+    if got["status"] == "replayed" and part != (1, 1):
+        lo, hi = got["case_range"]
+        print(f"{args.replay}: part {part[0]}/{part[1]} replayed: cases {lo} to {hi - 1} of the explored, "
+              f"{got['paths']} control paths re-checked, {got['seconds']} s (the whole certificate once every "
+              f"part is: --combine)")
+        for line in report.replay_evidence(got):
+            print(f"  {line}")
+        return 0
     if got["status"] == "replayed":
         ind = got.get("induction", {})  # decided by an induction, not by the certificate's paths
         verdicts = ", ".join(f"{n} {report.verdict_text(v, ind.get(n, 'exploration'))}"
@@ -159,6 +176,32 @@ def _replay(args) -> int:
         print(f"problem: {p}")
     print(f"{args.replay}: refused ({len(got['problems'])} problems; the first: {got['problems'][0]})")
     return 1
+
+
+def _part(text):
+    """``--part K/N`` as ``(k, n)`` (default ``(1, 1)``: the whole certificate)."""
+    if not text:
+        return (1, 1)
+    try:
+        k, n = (int(x) for x in text.split("/"))
+    except ValueError:
+        raise NavfnInputError(f"--part {text!r}: give K/N, the K-th of N parts (e.g. 3/8)") from None
+    if not 1 <= k <= n:
+        raise NavfnInputError(f"--part {text}: K must be 1 to N")
+    return (k, n)
+
+
+def _part_report(path) -> dict:
+    """A part's replay report (``check --replay --part K/N --json``), read whole."""
+    import json
+
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as e:
+        raise NavfnInputError(f"{path}: not a replay report ({getattr(e, 'strerror', None) or e})") from None
+    if not isinstance(doc, dict) or doc.get("command") != "check --replay":
+        raise NavfnInputError(f"{path}: not a replay report (no \"command\": \"check --replay\")")
+    return doc
 
 
 def register(sub) -> None:
@@ -213,6 +256,12 @@ def register(sub) -> None:
                     "again, every sat flip witnessed; refused when the kernels or the encoding changed")
     ck.add_argument("--solver", metavar="S[,S...]", help="with --replay: the solvers asked, in turn, each only what "
                     "the ones before leave undecided (default: cvc5,bitwuzla; the search asked bitwuzla)")
+    ck.add_argument("--part", metavar="K/N", help="with --replay: every check of the whole certificate but the "
+                    "control paths of the K-th of N equal runs of its cases only, so a long replay can be done in "
+                    "parts (the whole when every part is, by --combine)")
+    ck.add_argument("--combine", metavar="REPORT", nargs="+", help="with --replay CERT: the whole replay from the "
+                    "--json reports of its parts 1/N to N/N (refused unless each is of CERT, replayed, and they "
+                    "tile its cases)")
     ck.add_argument("--check-intervals", action="store_true", help="with --replay: ask the solvers too where a "
                     "property held on the whole box by interval evaluation (default: counted as trusted)")
     ck.set_defaults(func=cmd_check)

@@ -345,7 +345,7 @@ def _replayed(path: Path) -> str:
     """What the certificate's committed replay report says: the solvers that re-asked its unsats
     and what it trusted (``check --replay``; docs/check.md has the table), or that it has none."""
     if not path.is_file():
-        return "; not replayed"
+        return _replayed_parts(path)
     doc = _read_json(path, "replay")
     if doc.get("status") != "replayed":
         return f"; [replay]({REPLAY_LINK}{path.name}): {doc.get('status')}"
@@ -354,6 +354,20 @@ def _replayed(path: Path) -> str:
     return (f"; [replayed]({REPLAY_LINK}{path.name}) (unsats asked again: {asked}); trusted {t['count']:,}: "
             f"{t['held_on_box_by_intervals']:,} held on the box by intervals, {t['paths_cut_by_queued_start']:,} "
             f"paths cut by QueuedStartReached, {t['cases_by_reduction']:,} cases by the reduction")
+
+
+def _replayed_parts(path: Path) -> str:
+    """A replay done in parts so far (``check --replay --part K/N``, reports in ``parts/``): how
+    many of the N parts replayed, or that none has."""
+    stem = path.name.replace(".replay.json", "")
+    reports = [_read_json(f, "replay") for f in sorted((path.parent / "parts").glob(f"{stem}.replay-*of*.json"))]
+    done = [r for r in reports if r.get("status") == "replayed"]
+    if not done:
+        return "; not replayed"
+    n = done[0]["part"][1]
+    paths = sum(r["paths"] for r in done)
+    return (f"; replayed in parts so far: {len(done)} of {n} ([reports]({REPLAY_LINK}parts/), {paths:,} control "
+            f"paths re-checked); the whole replay once every part is (`check --replay --combine`)")
 
 
 @functools.lru_cache(maxsize=None)
