@@ -139,3 +139,22 @@ def test_toolchains_are_checked_before_anything_is_built(tmp_path, capsys):
     assert main(["oracle", "build", str(tmp_path), "--target", "sparc", "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
     assert "no such target" in err and err.count("\n") == 1 and not (tmp_path / "o").exists()
+
+
+def test_fused_instructions_of_a_library_are_traced_through_its_line_information():
+    from navfn_smt.oracle.library import fused_lines_of_binary
+
+    dump = """
+0000000000001a40 <_ZN18nav2_navfn_planner5NavFn10updateCellEi>:
+/src/nav2_navfn_planner/src/navfn.cpp:452
+    1a40:\tfmul\td16, d2, d16
+    1a44:\tfmadd\td2, d2, d16, d3
+/src/nav2_navfn_planner/src/navfn.cpp:453 (discriminator 2)
+    1a48:\tfmadd\ts0, s1, s2, s0
+/usr/include/c++/12/cmath:40
+    1a4c:\tfmadd\ts0, s1, s2, s0
+
+0000000000001b00 <other>:
+    1b00:\tvfmadd132ss %xmm1,%xmm2,%xmm0
+"""
+    assert fused_lines_of_binary(dump, "navfn.cpp") == ([452, 453], 1)

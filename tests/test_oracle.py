@@ -528,3 +528,65 @@ def test_the_conversion_probe_answers_as_the_spec_converts(target_builds):
         assert probe == EXPECTED[doc["arithmetic"]["conversion"]], name
     assert target_builds["aarch64"][0]["arithmetic"]["conversion"] == "saturating"
     assert target_builds["x86-64-v3"][0]["arithmetic"]["conversion"] == "indefinite"
+
+
+# --------------------------------------------------------------------------- the user's own binary
+def _navfn_library(nav2_src, out: Path, cxx: str, flags=("-g",)) -> Path:
+    """navfn.cpp of Rolling as a package build makes it: a shared library, -fPIC -O2 (-g)."""
+    import subprocess
+
+    from navfn_smt.oracle import build as B
+
+    pkg = nav2_src / "rolling" / "nav2_navfn_planner"
+    cmd = [cxx, "-std=c++17", "-fPIC", "-O2", *flags, "-shared", f"-I{B.HERE / 'stubs'}", f"-I{pkg / 'include'}",
+           f"-I{nav2_src / 'rolling' / 'nav2_core' / 'include'}", f"-I{B.HERE}", "-DNAVFN_SMT_CANCEL_CHECKER",
+           str(pkg / "src" / "navfn.cpp"), "-o", str(out)]
+    subprocess.run(cmd, check=True)
+    return out
+
+
+@pytest.fixture(scope="module")
+def library_builds(nav2_src, target_builds, tmp_path_factory) -> dict:
+    """Oracle builds linking a NavFn library built here for x86-64 and for aarch64."""
+    root = tmp_path_factory.mktemp("libraries")
+    out = {}
+    for target, cxx in (("x86-64", "g++"), ("aarch64", "aarch64-linux-gnu-g++")):
+        lib = _navfn_library(nav2_src, root / f"libnavfn_{target}.so", cxx)
+        out[target] = (build(nav2_src / "rolling", root / target, library=lib), root / target)
+    return out
+
+
+def test_a_library_build_links_the_users_binary_and_finds_its_arithmetic_in_its_machine_code(library_builds,
+                                                                                             target_builds, capsys):
+    from navfn_smt.difftest.builds import compare_builds
+
+    for target, (doc, folder) in library_builds.items():
+        assert doc["programs"] == ["navfn-plain"] and doc["library"]["target"] == doc["target"] == target
+        assert doc["arithmetic"]["name"] == target and doc["arithmetic"]["unexpressible"] == []
+    # the x86-64 library agrees with the spec (path, potential, start reached: no trace in a library)
+    assert main(["difftest", "--oracle", str(library_builds["x86-64"][1]), "--quiet"]) == 0
+    assert "4396 passed, 0 failed" in capsys.readouterr().out
+    # the arm64 library's code is the arm64 program's: the same answers bit for bit
+    assert library_builds["aarch64"][0]["arithmetic"]["fused_instructions"] == 14
+    with Oracle(library_builds["aarch64"][1], variant="plain") as a, \
+            Oracle(target_builds["aarch64"][1], variant="plain") as b:
+        same = compare_builds(EXAMPLE, MODES, a, b)
+    assert same["runs"] == 4396 and same["potential"] == same["path"] == 0
+
+
+def test_a_library_without_line_information_or_of_another_machine_is_named(nav2_src, target_builds, tmp_path,
+                                                                          capsys):
+    lib = _navfn_library(nav2_src, tmp_path / "libnavfn.so", "aarch64-linux-gnu-g++", flags=())
+    doc = build(nav2_src / "rolling", tmp_path / "nodebug", library=lib)
+    assert "no source line" in doc["arithmetic"]["unexpressible"][0]  # 14 fused, none traceable
+    assert main(["difftest", "--oracle", str(tmp_path / "nodebug")]) == 2
+    assert "cannot express" in capsys.readouterr().err
+    args = ["oracle", "build", str(nav2_src / "rolling"), "--library", str(lib), "--target", "x86-64",
+            "--out", str(tmp_path / "o")]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert "built for aarch64" in err and err.count("\n") == 1 and not (tmp_path / "o").exists()
+    (tmp_path / "not.so").write_text("text")
+    assert main(["oracle", "build", str(nav2_src / "rolling"), "--library", str(tmp_path / "not.so"),
+                 "--out", str(tmp_path / "o")]) == 2
+    assert "not an ELF shared library" in capsys.readouterr().err

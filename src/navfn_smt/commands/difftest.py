@@ -52,6 +52,10 @@ def _live(args, suite, modes) -> int:
 
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
     program = "unbounded" if args.unbounded else "fixed" if args.variant == "fixed" else "traced"
+    if program == "traced" and _library_build(args.oracle):
+        program = "plain"  # a library build: the library's own code, without the white-box trace
+        print(f"{args.oracle} links a NavFn library ({_library_build(args.oracle)}): compared without the "
+              f"white-box trace (path, potential, start reached)")
     with Oracle(args.oracle, variant=program) as oracle:
         oracle.require_arithmetic()
         label = (f"difftest {suite} ({args.backend}, {args.variant}, against the C++ of "
@@ -64,6 +68,13 @@ def _live(args, suite, modes) -> int:
         report.write_json(args.json, suite, args.backend, modes, summary)
     report.closing_line(summary)
     return 0 if summary["failed"] == 0 else 1
+
+
+def _library_build(folder) -> str:
+    """The library a build folder's navfn-plain links (``oracle build --library``), or ''."""
+    from ..oracle.build import load_build
+
+    return (load_build(folder).get("library") or {}).get("file", "")
 
 
 def _level(args) -> int:

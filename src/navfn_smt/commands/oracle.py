@@ -16,7 +16,8 @@ def cmd_oracle_build(args) -> int:
     from ..oracle.targets import toolchain
 
     tc = toolchain(args.target, args.cxx, args.cxxflags, env_cxx=os.environ.get("CXX"))
-    doc = build(args.nav2_src, args.out, tc=tc)
+    tc = None if args.library and not (args.target or args.cxx) else tc
+    doc = build(args.nav2_src, args.out, tc=tc, library=args.library)
     commit = f", commit {doc['git_commit'][:12]}" if doc.get("git_commit") else ""
     runs = f", run under {' '.join(doc['runner'])}" if doc["runner"] else ""
     print(f"built the NavFn oracle of {doc['sources']} ({doc['distribution']}{commit}) for {doc['target']} "
@@ -46,4 +47,7 @@ def register(sub) -> None:
     b.add_argument("--cxx", metavar="CXX", help="your own C++ compiler (its target machine is what it says with "
                    "-dumpmachine, unless --target names one)")
     b.add_argument("--cxxflags", metavar="FLAGS", help="with --cxx: flags after -std=c++17 -O2")
+    b.add_argument("--library", metavar="FILE.so", help="your own NavFn binary: link the driver against this shared "
+                   "library (as a package build makes it, -fPIC -O2 -g), built from NAV2_SRC; its target is read from "
+                   "the file and its arithmetic from its machine code; only navfn-plain is built")
     b.set_defaults(func=cmd_oracle_build)

@@ -55,7 +55,7 @@ def _compare_map(smap, rel: str, mode: str, planner, oracle) -> TaskOutcome:
     t0 = time.perf_counter()
     for i, (sx, sy, gx, gy) in enumerate(smap.cases.tolist()):
         try:
-            verdict = compare_case(planner.run((sx, sy), (gx, gy), astar), g, i, full_pos)
+            verdict = compare_case(planner.run((sx, sy), (gx, gy), astar), g, i, full_pos, white_box=oracle.traced)
         except UndefinedBehaviour as e:
             verdict = ("undefined_behaviour", {"message": str(e)})
         if verdict is None:

@@ -78,7 +78,7 @@ def fields_of_results(smap: SuiteMap, results, full_first: int = 50) -> dict:
     for i, res in enumerate(results):
         # a JIT result is a view into the planner's buffers: take what we keep before the next run
         pot = np.ascontiguousarray(res.potential, dtype="<f4")
-        trace = np.ascontiguousarray(res.trace, dtype="<i4")
+        trace = np.ascontiguousarray(res.trace if res.trace is not None else (), dtype="<i4")  # none: untraced
         path = np.array(res.path, dtype=np.float32).reshape(-1, 2)
         sp = np.float32(res.start_potential)
         start_reached[i] = 1 if res.start_reached else 0

@@ -56,8 +56,11 @@ def _f32_repr(v) -> dict:
     return {"value": float(v), "bits": f"0x{int(v.view(np.uint32)):08x}"}
 
 
-def compare_case(res: PlanResult, g: dict, i: int, full_pos: dict) -> Optional[tuple[str, dict]]:
-    """The first field in which ``res`` differs from golden case ``i``, with details."""
+def compare_case(res: PlanResult, g: dict, i: int, full_pos: dict,
+                 white_box: bool = True) -> Optional[tuple[str, dict]]:
+    """The first field in which ``res`` differs from golden case ``i``, with details;
+    ``white_box=False``: path, potential and start_reached only (golden answers of a build
+    without the trace hook)."""
     gp = golden_path_of(g, i)
     ours = np.asarray(res.path, dtype=np.float32).reshape(-1, 2)
     if ours.shape != gp.shape or not np.array_equal(ours.view(np.uint32), gp.view(np.uint32)):
@@ -89,6 +92,9 @@ def compare_case(res: PlanResult, g: dict, i: int, full_pos: dict) -> Optional[t
                 detail.update(cell=[x, y], ours=_f32_repr(ours_pot[y, x]), golden=_f32_repr(gpot[y, x]),
                               cells_differing=int(len(cells)))
         return "potential", detail
+    if not white_box:
+        return None if bool(res.start_reached) == bool(g["start_reached"][i]) else (
+            "start_reached", {"ours": bool(res.start_reached), "golden": bool(g["start_reached"][i])})
     if sha256_i32(res.trace) != bytes(g["trace_sha256"][i]):
         detail = {"length": int(len(res.trace))}
         j = full_pos.get(i)

@@ -110,14 +110,23 @@ def assembly(tc, source: Path, includes, defines, folder: Path) -> str:
 def find(tc, runner, navfn_cpp: Path, includes, defines, folder: Path) -> dict:
     """The arithmetic of NavFn built by ``tc``: build.json's ``arithmetic`` entry."""
     lines = fused_lines(assembly(tc, navfn_cpp, includes, defines, folder), navfn_cpp.name)
+    return record(lines, navfn_cpp, tc, runner, folder)
+
+
+def record(lines, navfn_cpp: Path, tc, runner, folder: Path, untraced: int = 0) -> dict:
+    """build.json's ``arithmetic`` entry from the fused ``lines`` of ``navfn_cpp`` (and
+    ``untraced`` fused instructions without a source line) and the conversion probe of ``tc``."""
     fused, at, problems = fused_sites(navfn_cpp, lines)
+    if untraced:
+        problems.append(f"{untraced} fused multiply-add instructions have no source line (no debug information: "
+                        f"build with -g), so their sites cannot be told")
     values = probe_conversion(tc, runner, folder)
     conv = conversion(values)
     if conv is None:
         problems.append(f"static_cast<int> of {list(PROBE_INPUTS)} gives {values}: neither "
                         f"{' nor '.join(CONVERSIONS)}")
     arith = Arithmetic(frozenset(fused), conv or "indefinite")
-    return {**arith.as_dict(), "fused_instructions": len(lines), "sites": at,
+    return {**arith.as_dict(), "fused_instructions": len(lines) + untraced, "sites": at,
             "conversion_probe": {"inputs": [repr(v) for v in PROBE_INPUTS], "outputs": values},
             "unexpressible": problems}
 

@@ -52,6 +52,8 @@ from typing import Optional
 
 from ..errors import NavfnInputError
 from .arithmetic import find as find_arithmetic
+from .arithmetic import record as record_arithmetic
+from .library import disassemble, elf_target, fused_lines_of_binary
 from .targets import Toolchain, toolchain
 
 HERE = Path(__file__).resolve().parent
@@ -208,8 +210,8 @@ def git_commit(src: Path) -> tuple:
 
 
 def _compile(tc: Toolchain, sources, includes, defines, out: Path, extra=()) -> None:
-    cmd = [tc.cxx, *tc.all_flags, *extra, *(f"-I{i}" for i in includes), *(f"-D{d}" for d in defines),
-           *map(str, sources), "-o", str(out)]
+    cmd = [tc.cxx, *tc.all_flags, *(f"-I{i}" for i in includes), *(f"-D{d}" for d in defines),
+           *map(str, sources), *extra, "-o", str(out)]  # extra after the sources: libraries to link
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         first = next((line for line in r.stderr.splitlines() if "error" in line), r.stderr.strip()[:300])
@@ -258,6 +260,18 @@ def _jobs(src: Path, tmp: Path) -> dict:
         "navfn-plugin": (plugin, plugin_includes, plugin_defines),
         **fixed,
     }
+
+
+def _library_toolchain(lib: Path, tc: Optional[Toolchain]) -> Toolchain:
+    """The toolchain that builds the driver for a library: the library's target (its ELF
+    header), with the compiler ``tc`` names when it is for that target."""
+    target = elf_target(lib)
+    if tc is None:
+        return toolchain(target, env_cxx=os.environ.get("CXX") if target == "x86-64" else None)
+    machine = tc.machine().split("-")[0].replace("_", "-")
+    if machine != target:
+        raise NavfnInputError(f"--library {lib} is built for {target}, the compiler {tc.cxx} for {machine}")
+    return tc
 
 
 def _plain_job(src: Path, jobs: dict) -> tuple:
@@ -315,12 +329,15 @@ def _skipped(src: Path, name: str) -> Optional[str]:
     return None
 
 
-def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None) -> dict:
+def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, library=None) -> dict:
     """Build the oracle ``programs`` (all by default) from ``nav2_src`` into the folder ``out``
     with the toolchain ``tc`` (default: x86-64 with ``$CXX`` or g++), compiling them side by
-    side, one per core; returns build.json."""
+    side, one per core; returns build.json.  ``library``: a shared library of NavFn built from
+    ``nav2_src``, which ``navfn-plain`` (the only program then) links (:mod:`.library`)."""
     src = find_sources(nav2_src)
     out = Path(out)
+    if library is not None:
+        tc, programs = _library_toolchain(Path(library), tc), ("navfn-plain",)
     if out.exists() and not (out / "build.json").is_file():
         raise NavfnInputError(f"{out}: exists and is not an oracle build folder (no build.json); name a new folder")
     unknown = [p for p in programs if p not in PROGRAMS]
@@ -335,13 +352,24 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None) -> d
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
     try:
         jobs = _jobs(src, tmp)
+        if library is not None:  # the driver alone, linked with a copy of the library beside it
+            lib = tmp / Path(library).name
+            shutil.copyfile(library, lib)
+            driver, includes, defines = jobs["navfn-plain"][0][0], *jobs["navfn-plain"][1:3]
+            # by name (-l:), so the program needs the file name, found beside it ($ORIGIN)
+            jobs["navfn-plain"] = ([driver], includes, defines, [f"-L{tmp}", f"-l:{lib.name}", "-Wl,-rpath,$ORIGIN"])
         with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
             running = [pool.submit(_compile, tc, *jobs[name][:3], tmp / name, *jobs[name][3:]) for name in programs]
             for job in running:
                 job.result()
         try:
             (tmp / "arithmetic").mkdir()
-            arith = find_arithmetic(tc, runner, *_plain_job(src, jobs), tmp / "arithmetic")
+            if library is None:
+                arith = find_arithmetic(tc, runner, *_plain_job(src, jobs), tmp / "arithmetic")
+            else:
+                navfn_cpp = _plain_job(src, jobs)[0]
+                lines, untraced = fused_lines_of_binary(disassemble(lib, tc.target), navfn_cpp.name)
+                arith = record_arithmetic(lines, navfn_cpp, tc, runner, tmp / "arithmetic", untraced)
         except RuntimeError as e:
             raise NavfnInputError(f"the arithmetic of the {tc.target} build could not be found: {e}") from None
         commit, why = git_commit(src)
@@ -354,6 +382,10 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None) -> d
             "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src, jobs)},
             "anchor": ANCHOR,
         }
+        if library is not None:
+            doc["library"] = {"file": str(Path(library).resolve()), "sha256": _sha256(Path(library)),
+                              "target": tc.target}
+            doc["source_sha256"] = {k: v for k, v in doc["source_sha256"].items() if k.endswith(".hpp")}
         if any(p in programs for p in FIXED_PROGRAMS):
             doc["fix_patch"] = {"file": fix_patch(src).name, "sha256": _sha256(fix_patch(src))}
         (tmp / "build.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
