@@ -485,3 +485,41 @@ def test_the_invariants_page_shows_a_replay_done_in_parts_so_far(tmp_path):
             {"status": status, "part": [k, 12], "paths": 1234}))
     text = _replayed(tmp_path / "check-4x6.replay.json")
     assert "in parts so far: 1 of 12" in text and "1,234 control paths" in text
+
+
+def test_a_certificate_carries_to_changed_code_only_when_its_transcript_is_the_same(tmp_path, monkeypatch):
+    """The transcript (every query a replay asks, by its text, and every decision) is the same
+    in every run; a certificate whose code hash is not this code's replays only when the
+    transcripts recorded under both codes are equal, and a recorded transcript that differs,
+    or none at all, refuses it."""
+    cert = REPORTS / "certificates" / "check-3x7.cert.json.gz"  # 82 queries
+    doc = C.read(cert)
+    first, again = C.transcript(doc), C.transcript(doc)
+    assert first == again and first["queries"] == 82 and first["code_hash"] == doc["code_hash"]
+    old = _edit(cert, tmp_path / "check-3x7.cert.json.gz", lambda d: d.update(code_hash="0" * 64))
+    sha, now = C.digest(old), first["code_hash"]
+    record = tmp_path / "transcripts.json"
+    monkeypatch.setattr(C, "TRANSCRIPTS", record)
+
+    def write(then_sha):
+        record.write_text(json.dumps({old.name: {"certificate_sha256": sha, "transcripts": {
+            "0" * 64: {"sha256": then_sha}, now: {"sha256": first["sha256"]}}}}))
+
+    assert "no recorded transcript carries it" in C.replay(old, order=FAST)["problems"][0]
+    write(first["sha256"])
+    got = C.replay(old, order=FAST)
+    assert got["status"] == "replayed" and got["carried"] == {"from": "0" * 64, "to": now}, got["problems"]
+    write("f" * 64)  # the code that wrote it asked something else
+    assert C.replay(old, order=FAST)["status"] == "refused"
+    assert not C.carried(old.name, C.read(old), "another sha", now)
+
+
+@pytest.mark.parametrize("path", sorted((REPORTS / "certificates").glob("check-*.cert.json.gz")), ids=lambda p: p.name)
+def test_every_recorded_transcript_is_of_its_committed_certificate(path):
+    """docs/reports/certificates/transcripts.json: each entry names the bytes of the certificate
+    committed under its name, and holds the transcript under the code that wrote it."""
+    record = C.recorded_transcripts().get(path.name)
+    if record is None:
+        pytest.skip(f"no transcript recorded for {path.name}")
+    assert record["certificate_sha256"] == C.digest(path)
+    assert C.read(path)["code_hash"] in record["transcripts"]

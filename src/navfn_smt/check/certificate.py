@@ -38,6 +38,7 @@ from __future__ import annotations
 import gzip
 import hashlib
 import json
+import re
 from collections import Counter
 from pathlib import Path
 from typing import Optional
@@ -140,12 +141,39 @@ def check_solvers(names) -> tuple:
     return names
 
 
+TRANSCRIBE = ("transcript",)  # the "solver" of a transcript (:func:`transcript`)
+_ASKED: list = []  # the queries a transcript's case asked, by SHA-256 of their text
+
+
+_DECLARED = re.compile(r"\(declare-(?:fun|const)\s+(\|[^|]*\||[^\s()]+)")
+_TOKEN = re.compile(r"\|[^|]*\||[^\s()]+")
+
+
+def canonical(smt2: str) -> str:
+    """SMT-LIB text with its declared constants renamed ``v0, v1, ...`` in the order they are
+    declared, and Z3's let names (``?x31``, ``$x53``, numbered by term ids) ``l0, l1, ...`` in
+    the order they appear: the same query built twice in one process (whose fresh names and
+    term ids count on) is the same text."""
+    table = {n: f"v{i}" for i, n in enumerate(dict.fromkeys(_DECLARED.findall(smt2)))}
+
+    def rename(m):
+        tok = m.group(0)
+        if tok not in table and tok[:2] in ("?x", "$x") and tok[2:].isdigit():
+            table[tok] = f"l{len(table)}"
+        return table.get(tok, tok)
+
+    return _TOKEN.sub(rename, smt2)
+
+
 def ask(assertions: list, order: tuple, timeout: float, memo: Optional[dict] = None) -> tuple:
     """``(status, who)``: the answer of the first solver of ``order`` that decides the query (sat
     or unsat) and its name; ``("unknown", reasons)`` when none does.  ``memo`` keeps the unsat
     answers by the query's text (an unsat is a proof: asking it again gives nothing new)."""
     q = smtlib.prepare(assertions)
     key = hashlib.sha256(q.smt2.encode()).hexdigest()
+    if order == TRANSCRIBE:  # a transcript: the query's text is recorded, and taken as unsat
+        _ASKED.append(hashlib.sha256(canonical(q.smt2).encode()).hexdigest())
+        return "unsat", TRANSCRIBE[0]
     if memo is not None and key in memo:
         return "unsat", memo[key]
     reasons = []
@@ -459,6 +487,78 @@ def _replay_job(args):
             for key, _, log in entries]
 
 
+def _transcript_job(args):
+    entries, names, verdicts, lo, hi, variant = args
+    out = []
+    for key, _, log in entries:
+        _ASKED.clear()
+        got = check_case(case_of(key), names, lo, hi, log, 1.0, variant, verdicts, TRANSCRIBE)
+        out.append([key, list(_ASKED), got])
+    return out
+
+
+# ---------------------------------------------------------------------------------------
+# Transcripts: a certificate carried to changed code
+# ---------------------------------------------------------------------------------------
+TRANSCRIPTS = Path(__file__).resolve().parents[3] / "docs" / "reports" / "certificates" / "transcripts.json"
+
+
+def transcript(doc: dict, jobs=1, progress=None) -> dict:
+    """What a replay of ``doc`` does under this code, without a solver: the cases the
+    enumeration and the reduction give, the inductions' problems, and for every case each
+    query the replay would ask (the SHA-256 of its SMT-LIB text, in order) and every decision
+    it makes (problems, evidence, witnesses), each query taken as unsat.  Two codes with the
+    same transcript replay the certificate alike: the same queries to the solvers, the same
+    decisions.  ``{"sha256", "code_hash", "cases", "queries"}``."""
+    from ..engine import as_engine, in_order, stream
+    from .runner import BATCH, PARALLEL_FROM
+
+    problems = header_problems(doc)
+    if problems:
+        raise NavfnInputError(f"not a certificate: {problems[0]}")
+    h = hashlib.sha256()
+    problems, entries = _case_entries(doc, None)
+    h.update(json.dumps([problems, induction_problems(doc),
+                         [[case_key(c), w] for c, w, _ in entries]]).encode())
+    lo, hi = doc["costs"]
+    args = (doc["properties"], doc["verdicts"], lo, hi, doc["variant"])
+    work = [(tuple([case_key(c), w, log] for c, w, log in entries[k:k + BATCH]), *args)
+            for k in range(0, len(entries), BATCH)]
+    done = queries = 0
+    for _, results in in_order(stream(_transcript_job, work, as_engine(jobs).for_work(len(entries), PARALLEL_FROM))):
+        for key, asked, got in results:
+            h.update(json.dumps([key, asked, got], sort_keys=True).encode())
+            done += 1
+            queries += len(asked)
+            if progress:
+                progress(done, len(entries), None)
+    return {"sha256": h.hexdigest(), "code_hash": code_hash(doc["properties"]), "cases": len(entries),
+            "queries": queries}
+
+
+def recorded_transcripts(path: Optional[Path] = None) -> dict:
+    """The committed transcripts (:data:`TRANSCRIPTS`): certificate file name ->
+    {"certificate_sha256", "transcripts": {code hash: transcript}}."""
+    path = path or TRANSCRIPTS
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        return {}
+    except (OSError, ValueError) as e:
+        raise NavfnInputError(f"{path}: not a transcripts file ({e})") from None
+
+
+def carried(name: str, doc: dict, sha256: str, now: str, record: Optional[dict] = None) -> bool:
+    """Whether the certificate (file ``name``, SHA-256 ``sha256``) written by code ``doc
+    ["code_hash"]`` carries to the code ``now``: its transcript recorded under ``now`` equals
+    the one recorded under the code that wrote it."""
+    entry = (recorded_transcripts() if record is None else record).get(name) or {}
+    ts = entry.get("transcripts") or {}
+    then = ts.get(doc.get("code_hash"))
+    return (entry.get("certificate_sha256") == sha256 and then is not None and now in ts
+            and ts[now]["sha256"] == then["sha256"])
+
+
 def _witness_problems(doc: dict, witnessed: set) -> list[str]:
     """A refuted property needs a witness: a path's seed that refutes it on the concrete spec
     (found while the cases are re-checked), or the header's ``witnesses`` entry, replayed here."""
@@ -515,9 +615,12 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
     if problems:
         return refused(problems)
     now = code_hash(doc["properties"])
-    if doc.get("code_hash") != now:
+    if doc.get("code_hash") != now and not (path and carried(Path(path).name, doc, digest(path), now)):
         return refused(["the kernels or the encoding changed since the certificate was written (code hash "
-                        f"{str(doc.get('code_hash'))[:12]}, now {now[:12]}): run the check again"])
+                        f"{str(doc.get('code_hash'))[:12]}, now {now[:12]}), and no recorded transcript carries "
+                        "it to this code (check --transcript): run the check again"])
+    if doc.get("code_hash") != now:  # carried: the same queries and decisions as under the code that wrote it
+        head["carried"] = {"from": doc["code_hash"], "to": now}
     problems = induction_problems(doc)
     if problems:
         return refused(problems)

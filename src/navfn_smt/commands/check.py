@@ -18,6 +18,8 @@ def cmd_check(args) -> int:
     from ..report import check as report
     from ..maps.suite import modes_of
 
+    if args.transcript:
+        return _transcript(args)
     if args.replay:
         return _replay(args)
     if not args.property:
@@ -178,6 +180,48 @@ def _replay(args) -> int:
     return 1
 
 
+def _transcript(args) -> int:
+    """``check --transcript CERT [--record]``: the replay's queries and decisions under this code,
+    and whether they are those of the code that wrote the certificate (it then carries)."""
+    import json
+    import time
+
+    from ..check import certificate as C
+    from ..engine import engine
+    from ..report import check as report
+
+    eng = engine(args.jobs, args.scheduler)
+    doc = C.read(args.transcript)
+    name, sha = Path(args.transcript).name, C.digest(args.transcript)
+    t0 = time.perf_counter()
+    try:
+        got = C.transcript(doc, eng, progress=report.progress(f"transcript {args.transcript}"))
+    finally:
+        report.stop_progress()
+    record = C.recorded_transcripts()
+    entry = record.get(name) if (record.get(name) or {}).get("certificate_sha256") == sha else None
+    entry = entry or {"certificate_sha256": sha, "transcripts": {}}
+    entry["transcripts"][got["code_hash"]] = {k: got[k] for k in ("sha256", "cases", "queries")}
+    print(f"{args.transcript}: transcript under code {got['code_hash'][:12]}: {got['sha256'][:16]} "
+          f"({got['cases']} cases, {got['queries']} queries, {time.perf_counter() - t0:.1f} s)")
+    if args.record:
+        record[name] = entry
+        C.TRANSCRIPTS.write_text(json.dumps(record, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+        print(f"recorded in {C.TRANSCRIPTS}")
+    written = doc.get("code_hash")
+    if written == got["code_hash"]:
+        print("this is the code that wrote the certificate")
+        return 0
+    if C.carried(name, doc, sha, got["code_hash"], {name: entry}):
+        print(f"the same as under the code that wrote it ({written[:12]}): the certificate carries to this code")
+        return 0
+    then = entry["transcripts"].get(written)
+    print(f"no transcript of the code that wrote it ({written[:12]}) is recorded" if then is None else
+          f"it differs from the transcript under the code that wrote it ({written[:12]}: {then['sha256'][:16]}): "
+          "the certificate does not carry; run the check again")
+    return 1
+
+
 def _part(text):
     """``--part K/N`` as ``(k, n)`` (default ``(1, 1)``: the whole certificate)."""
     if not text:
@@ -256,6 +300,11 @@ def register(sub) -> None:
                     "again, every sat flip witnessed; refused when the kernels or the encoding changed")
     ck.add_argument("--solver", metavar="S[,S...]", help="with --replay: the solvers asked, in turn, each only what "
                     "the ones before leave undecided (default: cvc5,bitwuzla; the search asked bitwuzla)")
+    ck.add_argument("--transcript", metavar="CERT", help="what a replay of CERT asks and decides under this code, "
+                    "without a solver (every query's SMT-LIB text by its SHA-256, every decision); equal to the "
+                    "transcript under the code that wrote CERT, the certificate carries to this code")
+    ck.add_argument("--record", action="store_true", help="with --transcript: record it in "
+                    "docs/reports/certificates/transcripts.json")
     ck.add_argument("--part", metavar="K/N", help="with --replay: every check of the whole certificate but the "
                     "control paths of the K-th of N equal runs of its cases only, so a long replay can be done in "
                     "parts (the whole when every part is, by --combine)")
