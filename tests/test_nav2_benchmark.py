@@ -278,16 +278,15 @@ def test_the_command_refuses_bad_input(small, tmp_path, monkeypatch, capsys):
     assert "benchmark maps are not in" in capsys.readouterr().err
 
 
-def test_the_cpp_plugin_agrees(small, nav2_src, tmp_path):
-    """With the C++ plugin (its two programs built for the test): every pose bit for bit, and the
-    planning time is the C++'s."""
-    from navfn_smt.oracle.build import build
+def test_the_cpp_plugin_agrees(small, builds):
+    """With the C++ plugin (Rolling's build the oracle tests share): every pose bit for bit, and
+    the planning time is the C++'s."""
     from navfn_smt.oracle.client import PluginOracle
 
     _, setup = small
-    build(nav2_src / "rolling", tmp_path / "o", programs=("navfn-plugin", "navfn-plugin-fixed"))
+    folder = builds["rolling"][1]
     draw = B.draw_pairs(setup.costmap, 6, margin=MARGIN)
-    with PluginOracle(tmp_path / "o", "original") as o, PluginOracle(tmp_path / "o", "fixed") as f:
+    with PluginOracle(folder, "original") as o, PluginOracle(folder, "fixed") as f:
         rows, diffs = B.run_benchmark(setup.costmap, setup.params, draw.pairs, B.PLANNERS,
                                       {"original": o, "fixed": f})
     assert diffs == []

@@ -156,21 +156,19 @@ def _replay(args) -> int:
                                       "certificate_sha256": sha,
                                       "check_intervals": got.get("check_intervals", args.check_intervals), **got})
     size = "x".join(map(str, got.get("size", [])))
-    if got["status"] == "replayed" and part != (1, 1):
-        lo, hi = got["case_range"]
-        print(f"{args.replay}: part {part[0]}/{part[1]} replayed: cases {lo} to {hi - 1} of the explored, "
-              f"{got['paths']} control paths re-checked, {got['seconds']} s (the whole certificate once every "
-              f"part is: --combine)")
-        for line in report.replay_evidence(got):
-            print(f"  {line}")
-        return 0
     if got["status"] == "replayed":
-        ind = got.get("induction", {})  # decided by an induction, not by the certificate's paths
-        verdicts = ", ".join(f"{n} {report.verdict_text(v, ind.get(n, 'exploration'))}"
-                             for n, v in got["verdicts"].items())
-        print(f"{args.replay}: replayed: {verdicts} on every "
-              f"{size} map ({got['cases']} cases explored, {got['paths']} control paths re-checked, "
-              f"{got['seconds']} s)")
+        if part != (1, 1):
+            lo, hi = got["case_range"]
+            print(f"{args.replay}: part {part[0]}/{part[1]} replayed: cases {lo} to {hi - 1} of the explored, "
+                  f"{got['paths']} control paths re-checked, {got['seconds']} s (the whole certificate once every "
+                  f"part is: --combine)")
+        else:
+            ind = got.get("induction", {})  # decided by an induction, not by the certificate's paths
+            verdicts = ", ".join(f"{n} {report.verdict_text(v, ind.get(n, 'exploration'))}"
+                                 for n, v in got["verdicts"].items())
+            print(f"{args.replay}: replayed: {verdicts} on every "
+                  f"{size} map ({got['cases']} cases explored, {got['paths']} control paths re-checked, "
+                  f"{got['seconds']} s)")
         for line in report.replay_evidence(got):
             print(f"  {line}")
         return 0
