@@ -93,6 +93,10 @@ def test_arithmetics_are_data_named_when_known():
     with pytest.raises(ValueError):
         Arithmetic(conversion="rounding")
     assert site_of_line("pot = ta + hf * v;") == "planar" and site_of_line("pot = ta + hf;") is None
+    # Humble names the quotient d, later versions div
+    for line in ("float v = -0.2301 * d * d + 0.5307 * d + 0.7040;",
+                 "const float v = -0.2301 * div * div + 0.5307 * div + 0.7040;"):
+        assert site_of_line(line) == "quadratic"
 
 
 def test_the_cost_translation_gives_the_same_ints_fused_or_not():

@@ -26,7 +26,7 @@ SITES = {
     "cost_translation": ("setCostmap: COST_NEUTRAL + COST_FACTOR * v (double, truncated to int)",
                          r"COST_NEUTRAL\s*\+\s*COST_FACTOR\s*\*", 2),
     "quadratic": ("updateCell: -0.2301 * div * div + 0.5307 * div (double; the first product's "
-                  "last multiplication fused with the sum)", r"-0\.2301\s*\*\s*div", 2),
+                  "last multiplication fused with the sum)", r"-0\.2301\s*\*\s*\w+\s*\*", 2),
     "planar": ("updateCell: ta + hf * v (float)", r"ta\s*\+\s*hf\s*\*\s*v", 2),
     "bilinear": ("calcPath: (1.0 - t) * a + t * b (double; the left product fused, the float t * b added)",
                  r"\(1\.0\s*-\s*d[xy]\)\s*\*", 6),
