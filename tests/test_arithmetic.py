@@ -162,3 +162,66 @@ def test_fused_instructions_of_a_library_are_traced_through_its_line_information
     1b00:\tvfmadd132ss %xmm1,%xmm2,%xmm0
 """
     assert fused_lines_of_binary(dump, "navfn.cpp") == ([452, 453], 1)
+
+
+def _nearest(x: Fraction, bits: int) -> float:
+    """The binary32 (bits 32) or binary64 value nearest the rational ``x``, ties to even."""
+    import numpy as np
+
+    t = np.float32 if bits == 32 else np.float64
+    f = t(float(x))  # within an ulp of the nearest
+    cands = [f, np.nextafter(f, t(np.inf)), np.nextafter(f, t(-np.inf))]
+    best = min(cands, key=lambda v: (abs(Fraction(float(v)) - x), int(np.asarray(v).view(
+        np.uint32 if bits == 32 else np.uint64)) & 1))
+    return float(best)
+
+
+def test_the_concrete_fused_multiply_add_rounds_once():
+    """``D.fma`` and ``D.fma64`` are the exact ``a * b + c`` rounded once (to float, to double),
+    on random and on cancelling inputs; the unfused sum rounds twice and differs on some."""
+    import random
+
+    import numpy as np
+
+    from navfn_smt.spec.numeric import CONCRETE as C, f32
+
+    rng = random.Random(36)
+    differs = 0
+    for i in range(3000):
+        a, b = f32(rng.uniform(-1e3, 1e3)), f32(rng.uniform(-1e3, 1e3))
+        c = f32(-a * b) if i % 3 == 0 else f32(rng.uniform(-1e6, 1e6))  # cancelling: the residual shows
+        exact = Fraction(a) * Fraction(b) + Fraction(c)
+        assert C.fma(a, b, c) == _nearest(exact, 32), (a, b, c)
+        differs += C.fma(a, b, c) != C.add(c, C.mul(a, b))
+        a64, b64, c64 = rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)
+        assert C.fma64(a64, b64, c64) == _nearest(Fraction(a64) * Fraction(b64) + Fraction(c64), 64)
+    assert differs > 500
+    assert np.float32(C.fma(1.0000001, 1.0000001, -1.0000002)) != 0.0
+
+
+def test_the_concrete_domain_converts_as_its_arithmetic_says():
+    from navfn_smt.spec.numeric import CONCRETE as C
+
+    arm = C.with_arithmetic(KNOWN["aarch64"])
+    assert [C.to_int32(v) for v in (3e9, -3e9, float("nan"), 7.9, -7.9)] == [-2**31, -2**31, -2**31, 7, -7]
+    assert [arm.to_int32(v) for v in (3e9, -3e9, float("nan"), 7.9, -7.9)] == [2**31 - 1, -2**31, 0, 7, -7]
+    assert C.arith is None and not C.fuses("planar") and arm.fuses("planar")
+    assert not C.with_arithmetic(KNOWN["x86-64"]).fuses("planar")
+
+
+def test_a_kernel_is_stated_once_and_computes_in_each_arithmetic():
+    """planar_wave in x86-64's and in arm64's arithmetic: the same code, values that differ
+    where the fused ``ta + hf * v`` or quadratic rounds once."""
+    import random
+
+    from navfn_smt.spec import kernels as K
+    from navfn_smt.spec.numeric import CONCRETE as C, f32
+
+    arm = C.with_arithmetic(KNOWN["aarch64"])
+    rng = random.Random(5)
+    differ = 0
+    for _ in range(2000):
+        l, r, u, d = (f32(rng.uniform(0, 3000)) for _ in range(4))
+        hf = f32(rng.randint(50, 253))
+        differ += K.planar_wave(C, l, r, u, d, hf) != K.planar_wave(arm, l, r, u, d, hf)
+    assert 0 < differ < 2000

@@ -53,14 +53,15 @@ def _capacity(capacity: Optional[int]) -> int:
 
 
 class ReferenceMapPlanner:
-    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None):
+    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None, arith=None):
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
+        self.arith = arith
 
     def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
             cycles: Optional[int] = None) -> PlanResult:
         return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
-                    path_cycles=path_cycles, cycles=cycles)
+                    path_cycles=path_cycles, cycles=cycles, arith=self.arith)
 
     def run_fixed(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
                   cycles: Optional[int] = None) -> PlanResult:
@@ -73,7 +74,8 @@ class ReferenceMapPlanner:
         """``calcPath(path_cycles)`` alone on a given potential: (exit, path; empty unless NEAR_GOAL)."""
         ny, nx = self.costs.shape
         ext = calc_path([float(v) for v in np.asarray(potential, np.float32).ravel()], nx, ny,
-                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), int(path_cycles))
+                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), int(path_cycles),
+                        arith=self.arith)
         return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
 
     def run_batch(self, cases, astar: bool) -> dict:
@@ -163,8 +165,11 @@ class ReferenceBackend:
 
     name = "reference"
 
+    def __init__(self, arith=None):
+        self.arith = arith  # the build's arithmetic (spec.arithmetic; None: x86-64's)
+
     def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> ReferenceMapPlanner:
-        return ReferenceMapPlanner(costs, capacity)
+        return ReferenceMapPlanner(costs, capacity, self.arith)
 
 
 class JitMapPlanner:
@@ -270,10 +275,18 @@ class _Fixed:
         return FixedMapPlanner(self.inner.prepare(costs, capacity))
 
 
-def get_backend(name: str, variant: str = F.DEFAULT_VARIANT) -> Backend:
-    """The backend ``name``; with ``variant="fixed"`` its planners carry the fix."""
-    try:
-        backend = _BACKENDS[name]()
-    except KeyError:
-        raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})") from None
+def get_backend(name: str, variant: str = F.DEFAULT_VARIANT, arith=None) -> Backend:
+    """The backend ``name``; with ``variant="fixed"`` its planners carry the fix; ``arith``: the
+    :class:`~navfn_smt.spec.arithmetic.Arithmetic` of the build it plans as (None: x86-64's).
+    Only the reference spec computes in another arithmetic so far."""
+    from ..spec.arithmetic import X86_64
+
+    if name not in _BACKENDS:
+        raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})")
+    other = arith is not None and arith != X86_64
+    if other and (name != ReferenceBackend.name or F.check_variant(variant) == "fixed"):
+        what = "the fix" if name == ReferenceBackend.name else f"the {name} backend"
+        raise NavfnInputError(f"{what} computes in x86-64 arithmetic only so far; the {arith.name} arithmetic "
+                              f"is computed by the reference spec (--backend {ReferenceBackend.name}, the original)")
+    backend = ReferenceBackend(arith) if name == ReferenceBackend.name else _BACKENDS[name]()
     return _Fixed(backend) if F.check_variant(variant) == "fixed" else backend

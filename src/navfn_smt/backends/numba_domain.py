@@ -28,9 +28,11 @@ import os
 from pathlib import Path
 
 import numpy as np
+from llvmlite import ir as llvm_ir
 from numba import config, njit, types
 from numba.core.imputils import lower_constant
-from numba.extending import NativeValue, models, overload, overload_method, register_model, typeof_impl, unbox
+from numba.extending import (NativeValue, intrinsic, models, overload, overload_method, register_model, typeof_impl,
+                             unbox)
 
 from ..spec import kernels as K
 from ..spec import numeric
@@ -201,6 +203,33 @@ def _div64(self, a, b):
     return F64(a) / F64(b)
 
 
+@intrinsic
+def _fma_llvm(typingctx, a, b, c):
+    """LLVM's ``llvm.fma`` on three floats of one type: ``a * b + c`` rounded once."""
+    if not (a == b == c and isinstance(a, types.Float)):
+        return None
+    sig = a(a, b, c)
+
+    def codegen(context, builder, signature, args):
+        ty = args[0].type
+        fn = builder.module.declare_intrinsic("llvm.fma", [ty], llvm_ir.FunctionType(ty, [ty, ty, ty]))
+        return builder.call(fn, args)
+
+    return sig, codegen
+
+
+def _fma(self, a, b, c):
+    return _fma_llvm(F32(a), F32(b), F32(c))
+
+
+def _fma64(self, a, b, c):
+    return _fma_llvm(F64(a), F64(b), F64(c))
+
+
+def _fuses(self, site):  # the compiled backend computes in x86-64's arithmetic: nothing fused
+    return False
+
+
 def _hypot64(self, a, b):  # libm hypot
     return math.hypot(F64(a), F64(b))
 
@@ -253,7 +282,8 @@ OPERATIONS = {
     "f32const": _f32const, "f64const": _f64const, "widen": _widen, "narrow": _narrow,
     "int_to_f32": _int_to_f32, "int_to_f64": _int_to_f64, "to_int32": _to_int32, "add_int": _add_int,
     "add": _add, "sub": _sub, "mul": _mul, "div": _div, "neg": _neg,
-    "add64": _add64, "sub64": _sub64, "mul64": _mul64, "div64": _div64,
+    "add64": _add64, "sub64": _sub64, "mul64": _mul64, "div64": _div64, "fma": _fma, "fma64": _fma64,
+    "fuses": _fuses,
     "hypot64": _hypot64, "hypotf": _hypotf, "roundf": _roundf_op,
     "lt": _lt, "le": _le, "gt": _gt, "ge": _ge, "eq": _eq,
     "and_": _and, "or_": _or, "not_": _not, "ite": _ite,

@@ -64,6 +64,11 @@ class ConcolicDomain:
         self._seen: set = set()
         self.assumptions = S.assumptions
 
+    @staticmethod
+    def fuses(site: str) -> bool:
+        """The concolic runs compute in x86-64's arithmetic: no multiply-add is fused."""
+        return False
+
     # ------------------------------------------------------------------ lifting
     def _kind(self, x) -> str:
         if isinstance(x, V):
@@ -184,6 +189,22 @@ class ConcolicDomain:
 
     def div64(self, a, b):
         return self._binary("f64", C.div64, self.S.div64, a, b, True)
+
+    def _fma(self, kind, f, sf, a, b, c):
+        """``a * b + c`` rounded once: its extremes over a box are at its corners (bilinear in
+        ``a, b``, increasing in ``c``; rounding is monotone)."""
+        if _plain(a) and _plain(b) and _plain(c):
+            return f(a, b, c)
+        va, vb, vc = self._lift(a, kind), self._lift(b, kind), self._lift(c, kind)
+        ends = [f(x, y, z) for x in (va.lo, va.hi) for y in (vb.lo, vb.hi) for z in (vc.lo, vc.hi)]
+        lo, hi = (-_INF, _INF) if any(math.isnan(e) for e in ends) else (min(ends), max(ends))
+        return V(kind, f(va.conc, vb.conc, vc.conc), lo, hi, sf(va.term, vb.term, vc.term))
+
+    def fma(self, a, b, c):
+        return self._fma("f32", C.fma, self.S.fma, a, b, c)
+
+    def fma64(self, a, b, c):
+        return self._fma("f64", C.fma64, self.S.fma64, a, b, c)
 
     def neg(self, a):
         if _plain(a):

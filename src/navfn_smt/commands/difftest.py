@@ -29,11 +29,16 @@ def cmd_difftest(args) -> int:
     suite, modes = suite_or_example(args.suite), modes_of(args.mode)
     eng = engine(args.jobs, args.scheduler)
     if args.oracle:
+        if args.target:
+            raise NavfnInputError("--target names the arithmetic of golden files; with --oracle DIR the build's "
+                                  "own arithmetic is used (found in the build)")
         return _live(args, suite, modes)
+    arith = _target_arithmetic(args.target)
     total = count_cases(suite, modes)
-    with progress_bar(total, f"difftest {suite} ({args.backend})", enabled=not args.quiet) as advance:
+    label = f"difftest {suite} ({args.backend}{f', {arith.name} arithmetic' if arith else ''})"
+    with progress_bar(total, label, enabled=not args.quiet) as advance:
         summary = run_suite(suite, modes, args.backend, eng=eng, total=total,
-                            progress=lambda o: advance(o.cases)).as_dict()
+                            progress=lambda o: advance(o.cases), arith=arith).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
@@ -57,17 +62,28 @@ def _live(args, suite, modes) -> int:
         print(f"{args.oracle} links a NavFn library ({_library_build(args.oracle)}): compared without the "
               f"white-box trace (path, potential, start reached)")
     with Oracle(args.oracle, variant=program) as oracle:
-        oracle.require_arithmetic()
+        arith = oracle.arithmetic()  # the spec computes in the build's arithmetic, found in the build
         label = (f"difftest {suite} ({args.backend}, {args.variant}, against the C++ of "
-                 f"{oracle.build['distribution']})")
+                 f"{oracle.build['distribution']} for {oracle.build.get('target', 'x86-64')}, {arith.name} arithmetic)")
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_live(suite, modes, args.backend, oracle, progress=lambda o: advance(o.cases),
-                               unbounded=args.unbounded, variant=args.variant).as_dict()
+                               unbounded=args.unbounded, variant=args.variant, arith=arith).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
     report.closing_line(summary)
     return 0 if summary["failed"] == 0 else 1
+
+
+def _target_arithmetic(target):
+    """The arithmetic of ``--target NAME`` (None: x86-64's, the golden files of the shared suite)."""
+    from ..spec.arithmetic import KNOWN
+
+    if target is None:
+        return None
+    if target not in KNOWN:
+        raise NavfnInputError(f"--target {target!r}: no such arithmetic (there are: {', '.join(KNOWN)})")
+    return KNOWN[target]
 
 
 def _library_build(folder) -> str:
@@ -158,6 +174,9 @@ def register(sub) -> None:
     dt.add_argument("--backend", choices=BACKENDS, default="jit", help=BACKEND_HELP)
     dt.add_argument("--oracle", metavar="DIR", help="compare with the C++ NavFn built in DIR (navfn-smt oracle "
                     "build), run live on every case, instead of the golden files")
+    dt.add_argument("--target", metavar="NAME", help="the golden files were recorded from a build in this "
+                    "arithmetic (x86-64, x86-64-v3, aarch64: docs/toolchains.md); the spec computes in it "
+                    "(--backend reference: the compiled backend computes x86-64's only so far)")
     dt.add_argument("--unbounded", action="store_true", help="with --oracle: the C++ and the spec both with "
                     "priority buffers that never drop a push")
     dt.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT,

@@ -26,7 +26,8 @@ import subprocess
 from collections import defaultdict
 from pathlib import Path
 
-from ..spec.arithmetic import CONVERSIONS, CONVERTERS, Arithmetic, site_of_line
+from ..spec.arithmetic import CONVERSIONS, Arithmetic, site_of_line
+from ..spec.numeric import CONVERTERS
 
 HERE = Path(__file__).resolve().parent
 FMA = re.compile(r"^\s*(v?fn?m(add|sub)[\w.]*|fml[as][\w.]*)\s")

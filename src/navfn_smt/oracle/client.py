@@ -45,19 +45,26 @@ class _Program:
         self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      env=env)
 
-    def require_arithmetic(self, spec=X86_64) -> None:
-        """A clear error unless the build computes in the arithmetic ``spec`` the spec runs:
-        a build is never compared in an arithmetic it does not have."""
+    def arithmetic(self):
+        """The :class:`~navfn_smt.spec.arithmetic.Arithmetic` the build was found to compute in; a
+        clear error when the spec cannot express it (or the build does not record it)."""
         arith, why = of_build(self.build)
         if arith is None:
             raise NavfnInputError(f"{self.folder}: {why}")
+        return arith
+
+    def require_arithmetic(self, spec=X86_64) -> None:
+        """A clear error unless the build computes in the arithmetic ``spec`` (the models of the
+        plugin and the costmap, which compute in x86-64's only): a build is never compared in
+        an arithmetic it does not have."""
+        arith = self.arithmetic()
         if arith != spec:
             fused = ", ".join(sorted(arith.fused)) or "none"
             raise NavfnInputError(
                 f"{self.folder} was built for {self.build.get('target', '?')} and computes in the {arith.name} "
-                f"arithmetic (fused multiply-adds: {fused}; float-to-int conversion {arith.conversion}); the spec "
-                f"computes in {spec.name} arithmetic only, so this build is not compared (its answers can be "
-                f"recorded with `navfn-smt suite record --oracle`)")
+                f"arithmetic (fused multiply-adds: {fused}; float-to-int conversion {arith.conversion}); this "
+                f"model computes in {spec.name} arithmetic only, so this build is not compared here (NavFn itself "
+                f"is: difftest --oracle DIR --backend reference)")
 
     def close(self) -> None:
         if self.proc.poll() is None:

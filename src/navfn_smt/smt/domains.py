@@ -79,6 +79,12 @@ class Domain:
     def _fresh_name(self, stem: str) -> str:
         return f"{stem}!{next(self._fresh)}"
 
+    @staticmethod
+    def fuses(site: str) -> bool:
+        """The symbolic encodings compute in x86-64's arithmetic: no multiply-add is fused
+        (spec.arithmetic; the concrete spec computes in any)."""
+        return False
+
 
 class FPDomain(Domain):
     """Bit-precise IEEE-754 semantics (``fp32``).
@@ -182,6 +188,12 @@ class FPDomain(Domain):
         return z3.fpNeg(a)
 
     add64, sub64, mul64, div64 = add, sub, mul, div
+
+    @staticmethod
+    def fma(a, b, c):  # a * b + c, rounded once (SMT-LIB's fp.fma)
+        return z3.fpFMA(RNE, a, b, c)
+
+    fma64 = fma
 
     # ------------------------------------------------------- library functions
     def _hypot(self, a, b, sort, name, accurate=True):
@@ -300,6 +312,12 @@ class ExactArithmetic:
     mul = mul64 = staticmethod(operator.mul)
     div = div64 = staticmethod(operator.truediv)
     neg = staticmethod(operator.neg)
+
+    @staticmethod
+    def fma(a, b, c):  # a * b + c, exact
+        return a * b + c
+
+    fma64 = fma
 
 
 class RealDomain(ExactArithmetic, Domain):

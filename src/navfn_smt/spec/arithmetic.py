@@ -18,8 +18,6 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from .constants import INT_MAX, INT_MIN
-from .numeric import cvt_to_int32
 
 # site -> (the C++, float or double, a pattern of its navfn.cpp line, lines expected in navfn.cpp)
 SITES = {
@@ -37,22 +35,6 @@ CONVERSIONS = {
     "indefinite": "NaN and values out of range give INT_MIN (x86-64's cvttss2si, the 'integer indefinite')",
     "saturating": "values out of range clamp to INT_MIN or INT_MAX, NaN gives 0 (arm64's fcvtzs)",
 }
-
-
-def cvt_to_int32_saturating(a: float) -> int:
-    """C ``static_cast<int>`` of a float or double on arm64 (``fcvtzs``): truncates toward zero,
-    values out of range clamp to INT_MIN or INT_MAX, NaN gives 0."""
-    if a != a:
-        return 0
-    if a >= 2147483648.0:
-        return INT_MAX
-    if a <= -2147483649.0:
-        return INT_MIN
-    return int(a)
-
-
-# each conversion as the concrete spec computes it (x86-64's is numeric.cvt_to_int32)
-CONVERTERS = {"indefinite": cvt_to_int32, "saturating": cvt_to_int32_saturating}
 
 
 @dataclass(frozen=True)

@@ -38,8 +38,8 @@ class NumericDomain(Protocol):
         """``(double) n`` for an ``int``: exact."""
 
     def to_int32(self, a):
-        """``(int) a``: truncation toward zero (x86-64's cvttss2si/cvttsd2si: INT_MIN when out
-        of range or NaN)."""
+        """``(int) a``: truncation toward zero; out of range or NaN as the domain's arithmetic
+        converts (x86-64's cvttss2si/cvttsd2si: INT_MIN; arm64's fcvtzs: saturated, NaN 0)."""
 
     def add_int(self, a, b):
         """``a + b`` on ``int``: wrapping at 32 bits as x86-64 does."""
@@ -60,6 +60,13 @@ class NumericDomain(Protocol):
     def neg(self, a):
         """``-a`` (a sign flip, exact)."""
 
+    def fma(self, a, b, c):
+        """``a * b + c`` on ``float`` contracted into one fused multiply-add: rounded once."""
+
+    def fuses(self, site):
+        """Whether the build contracts the multiply-add at ``site`` (spec.arithmetic.SITES): the
+        domain's arithmetic (x86-64's fuses none)."""
+
     # double arithmetic (binary64)
     def add64(self, a, b):
         """``double + double``."""
@@ -72,6 +79,9 @@ class NumericDomain(Protocol):
 
     def div64(self, a, b):
         """``double / double``."""
+
+    def fma64(self, a, b, c):
+        """``a * b + c`` on ``double`` contracted into one fused multiply-add: rounded once."""
 
     # the C library
     def hypot64(self, a, b):

@@ -15,7 +15,7 @@ from typing import Optional, Protocol
 
 from . import kernels as K
 from .constants import PATH_STEP
-from .numeric import CONCRETE as D
+from .numeric import CONCRETE as _D
 
 
 class ExtractionExit(enum.Enum):
@@ -75,9 +75,12 @@ def calc_path(
     n: int,
     path_step: float = PATH_STEP,
     watch: Optional[Watch] = None,
+    arith=None,
 ) -> Extraction:
     """``calcPath(n)`` on a propagated potential (flat list of float32 values); ``watch`` is
-    told each iteration and each grid-following step."""
+    told each iteration and each grid-following step; ``arith``: the build's
+    :class:`~.arithmetic.Arithmetic` (default x86-64's)."""
+    D = _D if arith is None else _D.with_arithmetic(arith)
     ns = nx * ny
     pot = potential
     gradx = [0.0] * ns

@@ -38,6 +38,9 @@ def planar_wave(D, l, r, u, d, hf):
         else { div = dc / hf;                             // float
                v = -0.2301*div*div + 0.5307*div + 0.7040; // double, narrowed to float
                pot = ta + hf * v; }                       // float
+
+    Two multiply-adds a compiler may fuse (:func:`mul_add64`, :func:`add_mul`): the quadratic's
+    ``(-0.2301*div)*div + 0.5307*div`` and ``ta + hf * v``.
     """
     zero = D.f32const(0.0)
     tc = D.ite(D.lt(l, r), l, r)
@@ -47,12 +50,22 @@ def planar_wave(D, l, r, u, d, hf):
     dc = D.ite(swap, D.neg(dc0), dc0)
     ta = D.ite(swap, tc, ta0)
     w = D.widen(D.div(dc, hf))
-    quad = D.add64(
-        D.add64(D.mul64(D.mul64(D.f64const(QUAD_A), w), w), D.mul64(D.f64const(QUAD_B), w)),
-        D.f64const(QUAD_C),
-    )
+    aw, bw = D.mul64(D.f64const(QUAD_A), w), D.mul64(D.f64const(QUAD_B), w)
+    quad = D.add64(mul_add64(D, "quadratic", aw, w, bw), D.f64const(QUAD_C))
     v = D.narrow(quad)
-    return D.ite(D.ge(dc, hf), D.add(ta, hf), D.add(ta, D.mul(hf, v)))
+    return D.ite(D.ge(dc, hf), D.add(ta, hf), add_mul(D, "planar", ta, hf, v))
+
+
+def mul_add64(D, site, a, b, c):
+    """``a * b + c`` in double at the contractible ``site`` (:data:`~.arithmetic.SITES`): one
+    rounding (``fma``) where the build fused it, the product rounded first otherwise."""
+    return D.fma64(a, b, c) if D.fuses(site) else D.add64(D.mul64(a, b), c)
+
+
+def add_mul(D, site, c, a, b):
+    """``c + a * b`` in float at the contractible ``site``: one rounding (``fmaf``) where the
+    build fused it, the product rounded first otherwise."""
+    return D.fma(a, b, c) if D.fuses(site) else D.add(c, D.mul(a, b))
 
 
 def cell_update(D, old, l, r, u, d, cost, hf):
@@ -163,9 +176,10 @@ def grad_cached(D, gx, gy):
 
 def bilinear(D, t, a, b):
     """``(1.0 - t) * a + t * b`` with float ``t a b``: the left product is double, the
-    right product float (``t * b`` are both floats), the sum double, narrowed to float."""
-    left = D.mul64(D.sub64(D.f64const(1.0), D.widen(t)), D.widen(a))
-    return D.narrow(D.add64(left, D.widen(D.mul(t, b))))
+    right product float (``t * b`` are both floats), the sum double, narrowed to float.  A
+    build that contracts fuses the left product with the sum (site ``bilinear``)."""
+    right = D.widen(D.mul(t, b))
+    return D.narrow(mul_add64(D, "bilinear", D.sub64(D.f64const(1.0), D.widen(t)), D.widen(a), right))
 
 
 def interpolate_gradient(D, dx, dy, g00, g10, g01, g11):
@@ -179,11 +193,12 @@ def interpolate_gradient(D, dx, dy, g00, g10, g01, g11):
 def step_offsets(D, dx, dy, x, y, path_step):
     """Advance the offset by ``path_step`` along ``(x, y)`` and normalise it.
 
-    ``ss = pathStep / hypotf(x, y); dx += x*ss; dy += y*ss`` (all float), then
-    :func:`wrap_offsets`.  Returns ``(dx, dy, cell_dx, cell_dy)``.
+    ``ss = pathStep / hypotf(x, y); dx += x*ss; dy += y*ss`` (all float; each a
+    multiply-add a build may fuse, site ``path_step``), then :func:`wrap_offsets`.  Returns
+    ``(dx, dy, cell_dx, cell_dy)``.
     """
     ss = D.div(path_step, D.hypotf(x, y))
-    return wrap_offsets(D, D.add(dx, D.mul(x, ss)), D.add(dy, D.mul(y, ss)))
+    return wrap_offsets(D, add_mul(D, "path_step", dx, x, ss), add_mul(D, "path_step", dy, y, ss))
 
 
 def wrap_offsets(D, ndx, ndy):

@@ -23,6 +23,7 @@ so one kernel (:mod:`navfn_smt.spec.kernels`) serves all interpretations.
 
 from __future__ import annotations
 
+import copy
 import ctypes
 import ctypes.util
 import math
@@ -30,7 +31,7 @@ import struct
 
 import numpy as np
 
-from .constants import INT_MIN
+from .constants import INT_MAX, INT_MIN
 
 _F32 = struct.Struct("<f")
 _pack = _F32.pack
@@ -54,10 +55,23 @@ def _load_libm():
     hypf = lib.hypotf
     hypf.restype = ctypes.c_float
     hypf.argtypes = [ctypes.c_float, ctypes.c_float]
-    return hyp, hypf
+    fma, fmaf = lib.fma, lib.fmaf
+    fma.restype, fmaf.restype = ctypes.c_double, ctypes.c_float
+    fma.argtypes, fmaf.argtypes = [ctypes.c_double] * 3, [ctypes.c_float] * 3
+    return hyp, hypf, fma, fmaf
 
 
-_c_hypot, _c_hypotf = _load_libm()
+_c_hypot, _c_hypotf, _c_fma, _c_fmaf = _load_libm()
+
+
+def c_fma(a: float, b: float, c: float) -> float:
+    """C ``fma``: ``a * b + c`` in binary64, rounded once (libm's, correctly rounded)."""
+    return _c_fma(a, b, c)
+
+
+def c_fmaf(a: float, b: float, c: float) -> float:
+    """C ``fmaf``: ``a * b + c`` in binary32, rounded once; the arguments are float32 values."""
+    return _c_fmaf(a, b, c)
 
 
 def c_hypot(a: float, b: float) -> float:
@@ -98,6 +112,22 @@ def cvt_to_int32(a: float) -> int:
     return INT_MIN
 
 
+def cvt_to_int32_saturating(a: float) -> int:
+    """C ``static_cast<int>`` of a float or double on arm64 (``fcvtzs``): truncates toward zero,
+    values out of range clamp to INT_MIN or INT_MAX, NaN gives 0."""
+    if a != a:
+        return 0
+    if a >= 2147483648.0:
+        return INT_MAX
+    if a <= -2147483649.0:
+        return INT_MIN
+    return int(a)
+
+
+# each float-to-int conversion a build may have (spec.arithmetic.CONVERSIONS), as computed here
+CONVERTERS = {"indefinite": cvt_to_int32, "saturating": cvt_to_int32_saturating}
+
+
 def wrap_int32(n: int) -> int:
     """Two's-complement wrap of an int to 32 bits (what x86-64 does on overflow)."""
     return ((n + 2**31) & 0xFFFFFFFF) - 2**31
@@ -108,9 +138,22 @@ class ConcreteDomain:
 
     Method families: ``*32`` helpers act on floats, ``*64`` on doubles; comparisons take
     two values of the same kind; ``ite`` chooses between two already computed values.
+    ``arith`` is the build's :class:`~navfn_smt.spec.arithmetic.Arithmetic` (None: x86-64's,
+    nothing fused, conversions indefinite); :meth:`with_arithmetic` gives the domain in another.
     """
 
     name = "concrete"
+    arith = None
+
+    def with_arithmetic(self, arith):
+        """This domain computing as a build of the arithmetic ``arith`` does."""
+        other = copy.copy(self)
+        other.arith = arith
+        return other
+
+    def fuses(self, site: str) -> bool:
+        """Whether the build computes the multiply-add at ``site`` with one rounding."""
+        return self.arith is not None and self.arith.fuses(site)
 
     # --- constants and conversions ------------------------------------------------
     @staticmethod
@@ -135,7 +178,8 @@ class ConcreteDomain:
     def int_to_f64(n: int) -> float:  # (double)n, exact for int32
         return float(n)
 
-    to_int32 = staticmethod(cvt_to_int32)
+    def to_int32(self, a: float) -> int:  # (int) of a float or double, as the build's target converts
+        return CONVERTERS[self.arith.conversion if self.arith is not None else "indefinite"](a)
 
     @staticmethod
     def add_int(a: int, b: int) -> int:  # int + int, wrapping at 32 bits
@@ -162,6 +206,8 @@ class ConcreteDomain:
     def neg(a: float) -> float:
         return -a
 
+    fma = staticmethod(c_fmaf)  # a * b + c in float, rounded once
+
     # --- double arithmetic (binary64) -----------------------------------------------
     @staticmethod
     def add64(a: float, b: float) -> float:
@@ -178,6 +224,8 @@ class ConcreteDomain:
     @staticmethod
     def div64(a: float, b: float) -> float:
         return _ieee_div(a, b)
+
+    fma64 = staticmethod(c_fma)  # a * b + c in double, rounded once
 
     # --- library functions ----------------------------------------------------------
     hypot64 = staticmethod(c_hypot)

@@ -68,6 +68,7 @@ def plan(
     capacity: Optional[int] = None,
     variant: str = F.DEFAULT_VARIANT,
     descent: bool = True,
+    arith=None,
 ) -> PlanResult:
     """Plan on NavFn-internal costs (a (height, width) uint8 array) with the reference spec.
 
@@ -76,6 +77,7 @@ def plan(
     ``variant="fixed"`` plans with the fix (:mod:`.fix`); ``extra["fix"]`` then lists the
     parts that acted (``"propagation"``, ``"descent"``), empty where the original plans;
     ``descent=False`` leaves the descent out (the fixed propagation and calcPath only).
+    ``arith``: the :class:`~.arithmetic.Arithmetic` of the build to plan as (default x86-64's).
     """
     fixed = F.check_variant(variant) == "fixed"
     arr = check_inputs(costs, start, goal)
@@ -83,7 +85,7 @@ def plan(
     start = (int(start[0]), int(start[1]))
     goal = (int(goal[0]), int(goal[1]))
     cost_list = add_border(arr).ravel().tolist()
-    st = setup(cost_list, nx, ny, goal, capacity)
+    st = setup(cost_list, nx, ny, goal, capacity, arith)
     limit = cycle_limit(nx, ny) if cycles is None else cycles
     acted = []
     if fixed:
@@ -94,7 +96,7 @@ def plan(
         reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
                             record_trace=record_trace)
     ext = calc_path(st.potential, nx, ny, start, goal,
-                    path_cycle_limit(nx) if path_cycles is None else path_cycles)
+                    path_cycle_limit(nx) if path_cycles is None else path_cycles, arith=arith)
     if fixed and descent and ext.exit is not ExtractionExit.NEAR_GOAL:
         ext = F.descend(st.potential, nx, ny, start, goal)
         if ext.exit is ExtractionExit.NEAR_GOAL:

@@ -56,6 +56,7 @@ class PropagationState:
     dropped: int = 0  # pushes rejected because the buffer was full
     trace: list = field(default_factory=list)  # [n0, c, c, ..., n1, c, ...]
     capacity: int = PRIORITYBUFSIZE  # of each buffer; C++ fixes it at PRIORITYBUFSIZE
+    domain: object = D  # the concrete domain in the build's arithmetic (updateCell's multiply-adds)
 
     @property
     def ns(self) -> int:
@@ -85,13 +86,14 @@ def _push(st: PropagationState, buf: list, n: int) -> None:
 
 
 def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
-          capacity: Optional[int] = None) -> PropagationState:
+          capacity: Optional[int] = None, arith=None) -> PropagationState:
     """``setupNavFn(true)``: potentials to POT_HIGH, buffers empty, ``curT = COST_OBS``,
     then ``initCost(goal, 0)``: the goal gets potential 0 and its four neighbours are
     pushed onto the current buffer (right, left, up, down).
 
     ``capacity`` bounds each buffer (default PRIORITYBUFSIZE, as in C++; see
-    :func:`unbounded_capacity` for one that never drops)."""
+    :func:`unbounded_capacity` for one that never drops); ``arith``: the build's
+    :class:`~.arithmetic.Arithmetic` (default x86-64's)."""
     ns = nx * ny
     st = PropagationState(
         nx=nx,
@@ -101,6 +103,7 @@ def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
         pending=[False] * ns,
         cur_t=D.f32const(COST_OBS),
         capacity=PRIORITYBUFSIZE if capacity is None else check_capacity(capacity),
+        domain=D if arith is None else D.with_arithmetic(arith),
     )
     k = goal[0] + goal[1] * nx
     st.potential[k] = D.f32const(0.0)
@@ -118,7 +121,7 @@ def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, 
     if not K.is_passable(D, cost):  # skip the arithmetic on obstacles (cell_update keeps them)
         return
     l, r, u, d = pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx]
-    new, changed = K.cell_update(D, pot[n], l, r, u, d, cost, _HF[cost])
+    new, changed = K.cell_update(st.domain, pot[n], l, r, u, d, cost, _HF[cost])
     if not changed:
         return
     pot[n] = new
