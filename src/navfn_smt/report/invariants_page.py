@@ -66,6 +66,10 @@ KERNEL_CODE = {
     "near_goal": "`NavFn::calcPath`: the goal test",
     "lowest_of_four": "`NavFn::calcPathDescent` (the fix, `patches/navfn-fix/`): the descent's step",
     "unreached": "`potarr[n] >= POT_HIGH` tests",
+    "add_mul": "`NavFn::updateCell` (`ta + hf * v`) and `calcPath` (`dx += x * ss`): a float multiply-add a build "
+               "may fuse",
+    "mul_add64": "`NavFn::updateCell` (the quadratic) and `calcPath` (the interpolation): a double multiply-add a "
+                 "build may fuse",
 }
 
 # The whole-planner properties of ``check``: formula and the planner code they are about
