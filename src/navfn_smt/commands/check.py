@@ -171,6 +171,9 @@ def _replay(args) -> int:
                   f"{got['seconds']} s)")
         for line in report.replay_evidence(got):
             print(f"  {line}")
+        if got.get("carried"):
+            print(f"  carried: written by code {got['carried']['from'][:12]}, replayed with code "
+                  f"{got['carried']['to'][:12]}; their recorded transcripts are equal (check --transcript)")
         return 0
     for p in got["problems"][:20]:
         print(f"problem: {p}")
