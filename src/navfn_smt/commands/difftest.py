@@ -57,10 +57,11 @@ def _live(args, suite, modes) -> int:
 
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
     program = "unbounded" if args.unbounded else "fixed" if args.variant == "fixed" else "traced"
-    if program == "traced" and _library_build(args.oracle):
+    library = _library_build(args.oracle) if program == "traced" else ""
+    if library:
         program = "plain"  # a library build: the library's own code, without the white-box trace
-        print(f"{args.oracle} links a NavFn library ({_library_build(args.oracle)}): compared without the "
-              f"white-box trace (path, potential, start reached)")
+        print(f"{args.oracle} links a NavFn library ({library}): compared without the white-box trace (path, "
+              f"potential, start reached)")
     with Oracle(args.oracle, variant=program) as oracle:
         arith = oracle.arithmetic()  # the spec computes in the build's arithmetic, found in the build
         label = (f"difftest {suite} ({args.backend}, {args.variant}, against the C++ of "
