@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 
 from navfn_smt.backends import BACKENDS, get_backend
 from navfn_smt.errors import NavfnInputError
+from navfn_smt.spec.arithmetic import KNOWN
 from navfn_smt.spec.extraction import ExtractionExit, UndefinedBehaviour
 
 OTHERS = [b for b in BACKENDS if b != "reference"]
@@ -56,9 +57,9 @@ def planning_cases(draw):
     return costs, start, goal, draw(st.booleans())
 
 
-def _plan(backend: str, costs, start, goal, astar, capacity=None):
+def _plan(backend: str, costs, start, goal, astar, capacity=None, arith=None):
     try:
-        return get_backend(backend).prepare(costs, capacity).run(start, goal, astar, trace=True)
+        return get_backend(backend, arith=arith).prepare(costs, capacity).run(start, goal, astar, trace=True)
     except UndefinedBehaviour:
         return "undefined"
 
@@ -92,6 +93,27 @@ def test_backend_agrees_with_reference(backend, case):
 
 
 @pytest.mark.parametrize("backend", OTHERS)
+@pytest.mark.parametrize("arith", ["x86-64-v3", "aarch64"])
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case=planning_cases(), data=st.data())
+@example(case=(np.full((7, 7), 50, np.uint8), (3, 3), (1, 1), True), data=None)  # potentials differ from x86-64's
+def test_backend_agrees_with_reference_in_each_arithmetic(backend, arith, case, data):
+    """In a fused arithmetic (and arm64's conversion) too: planning, and extraction alone from any
+    cell (where the conversion of an unreached potential decides)."""
+    costs, start, goal, astar = case
+    a = KNOWN[arith]
+    ref = _plan("reference", costs, start, goal, astar, arith=a)
+    assert_same(_plan(backend, costs, start, goal, astar, arith=a), ref, f"{backend} in {arith}")
+    if isinstance(ref, str) or data is None:
+        return
+    h, w = costs.shape
+    other = data.draw(st.tuples(st.integers(0, w - 1), st.integers(0, h - 1)), label="extraction start")
+    n = data.draw(st.integers(-1, 6 * max(w, h)), label="path cycles")
+    assert _extract(backend, costs, ref.potential, other, goal, n, a) == \
+        _extract("reference", costs, ref.potential, other, goal, n, a)
+
+
+@pytest.mark.parametrize("backend", OTHERS)
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(case=planning_cases(), capacity=st.integers(0, 8))
 @example(case=(np.full((9, 9), 50, np.uint8), (2, 2), (6, 6), False), capacity=3)
@@ -103,9 +125,9 @@ def test_backend_agrees_with_reference_at_small_capacity(backend, case, capacity
     assert_same(_plan(backend, costs, start, goal, astar, capacity), ref, backend)
 
 
-def _extract(backend: str, costs, potential, start, goal, n):
+def _extract(backend: str, costs, potential, start, goal, n, arith=None):
     try:
-        exit_, path = get_backend(backend).prepare(costs).extract(potential, start, goal, n)
+        exit_, path = get_backend(backend, arith=arith).prepare(costs).extract(potential, start, goal, n)
         return exit_, _bits(path)
     except UndefinedBehaviour:
         return "undefined"

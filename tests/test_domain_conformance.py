@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +26,7 @@ from navfn_smt.check.concolic import ConcolicDomain
 from navfn_smt.smt.enumerate import ArrayDomain
 from navfn_smt.smt.evaluate import RealEvalDomain
 from navfn_smt.spec import conformance as T
+from navfn_smt.spec.arithmetic import KNOWN, Arithmetic
 from navfn_smt.spec.domain import OPERATIONS, NumericDomain
 from navfn_smt.spec.numeric import CONCRETE as C
 from navfn_smt.testing import conformance as H
@@ -69,6 +72,7 @@ def test_every_domain_runs_every_kernel_it_can():
     not determine (heuristic, grad_cell, step)."""
     left_out = {r.name: set(T.CASE) - set(r.kernels) for r in H.RUNS}
     assert left_out["numba"] == left_out["concolic"] == left_out["fp32"] == set()
+    assert left_out["numba-aarch64"] == left_out["numba-x86-64-v3"] == set()
     assert left_out["array"] == {"heuristic", "nearest", "lowest"}
     assert left_out["real"] & left_out["real-exact"] == {"heuristic", "grad_cell", "step"}
 
@@ -105,6 +109,21 @@ def test_a_wrong_array_domain_is_caught():
     assert not T.agree(case.call(C, *row), H.array_results(case, [row], Forgetful)[0])
     assert T.agree(case.call(C, *row), H.array_results(case, [row])[0])
     assert H.mismatches(H.with_domain(H.RUN["array"], Forgetful, 4000), case) != []
+
+
+@pytest.mark.parametrize("case, wrong", [
+    ("cell_update", Arithmetic(KNOWN["aarch64"].fused - {"planar"}, "saturating")),
+    ("step", Arithmetic(KNOWN["aarch64"].fused - {"path_step"}, "saturating")),
+    ("nearest", KNOWN["x86-64-v3"]),
+], ids=["planar", "path_step", "conversion"])
+def test_the_compiled_domain_in_a_wrong_arithmetic_is_caught(case, wrong):
+    """The compiled domain computes in the arithmetic it is given, not in x86-64's: in arm64's
+    with one fused site dropped, or with x86-64's conversion, it differs from the concrete spec in
+    arm64's on the kernel of that site.  (The double sites, quadratic and bilinear, are rounded
+    to float after their multiply-add: fused or not, no drawn input tells them apart.)"""
+    run = H.RUN["numba-aarch64"]
+    assert H.mismatches(run, T.CASE[case]) == []
+    assert H.mismatches(replace(run, results=partial(H.numba_results, arith=wrong), n=2000), T.CASE[case]) != []
 
 
 def test_an_unsound_interval_is_caught():

@@ -930,9 +930,10 @@ def test_calc_path_gradcell_reads_past_potarr_is_undefined(start):
         calc_path(pot, 5, 5, start, (2, 2), 10)
     # the JIT backend's extraction reports the same exit instead of reading out of bounds
     from navfn_smt.backends import jit as J
+    from navfn_smt.backends.numba_domain import ND
 
     n = 25
-    code, _ = J.calc_path_zeroed(np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10,
+    code, _ = J.calc_path_zeroed(ND, np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10,
                            np.zeros(n, np.float32), np.zeros(n, np.float32), np.zeros((11, 2), np.float32))
     assert code == J.EXIT_UB
 

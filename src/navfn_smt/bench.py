@@ -77,10 +77,12 @@ def bench_suite(suite: Path, backend: str, mode: str) -> list[dict]:
 def bench_oracle(suite: Path, oracle, mode: str) -> list[dict]:
     """The C++ NavFn (``oracle``: a running plain build) and the JIT on every case of ``suite``,
     map by map in the same run: the C++'s own planning time (its driver's clock, pipes aside),
-    the whole calls (planning and the answers' transfer) and the JIT's batch time."""
+    the whole calls (planning and the answers' transfer) and the JIT's batch time, the JIT in
+    the arithmetic found in the build (as ``difftest --oracle`` compares them)."""
     maps = [load_map(d, suite) for d in discover(suite)]
     ncases = sum(len(m.cases) for m in maps)
-    planners = [get_backend("jit").prepare(m.costs) for m in maps]
+    arith = oracle.arithmetic()
+    planners = [get_backend("jit", arith=arith).prepare(m.costs) for m in maps]
     rows = []
     for md in modes_of(mode):
         astar = md == "astar"
@@ -94,7 +96,7 @@ def bench_oracle(suite: Path, oracle, mode: str) -> list[dict]:
             t0 = time.perf_counter()
             p.run_batch(m.cases, astar)
             jit += time.perf_counter() - t0
-        rows.append({"mode": md, "cases": ncases, "cpp_seconds": cpp, "jit_seconds": jit,
+        rows.append({"mode": md, "cases": ncases, "arithmetic": arith.name, "cpp_seconds": cpp, "jit_seconds": jit,
                      "jit_over_cpp": round(jit / cpp, 3) if cpp else None, "cpp_call_seconds": wall})
     return rows
 

@@ -173,13 +173,13 @@ class ReferenceBackend:
 
 
 class JitMapPlanner:
-    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None):
+    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None, arith=None):
         from .jit import JitPlanner
 
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
         self.ny, self.nx = self.costs.shape
-        self.work = JitPlanner(add_border(self.costs), self.capacity)
+        self.work = JitPlanner(add_border(self.costs), self.capacity, arith)
         self.cycles = cycle_limit(self.nx, self.ny)
         self.path_cycles = path_cycle_limit(self.nx)
 
@@ -228,7 +228,7 @@ class JitMapPlanner:
         n = int(path_cycles)
         path = np.empty((max(n, 0) + 1, 2), np.float32)
         p = self.work
-        code, npath = calc_path_zeroed(pot, self.nx, self.ny, int(start[0]), int(start[1]), int(goal[0]), int(goal[1]),
+        code, npath = calc_path_zeroed(p.D, pot, self.nx, self.ny, int(start[0]), int(start[1]), int(goal[0]), int(goal[1]),
                                  n, p.gradx, p.grady, path)
         if code == EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
@@ -256,8 +256,11 @@ class JitBackend:
 
     name = "jit"
 
+    def __init__(self, arith=None):
+        self.arith = arith  # the build's arithmetic (spec.arithmetic; None: x86-64's)
+
     def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> JitMapPlanner:
-        return JitMapPlanner(costs, capacity)
+        return JitMapPlanner(costs, capacity, self.arith)
 
 
 _BACKENDS: dict[str, type] = {b.name: b for b in (JitBackend, ReferenceBackend)}
@@ -278,15 +281,12 @@ class _Fixed:
 def get_backend(name: str, variant: str = F.DEFAULT_VARIANT, arith=None) -> Backend:
     """The backend ``name``; with ``variant="fixed"`` its planners carry the fix; ``arith``: the
     :class:`~navfn_smt.spec.arithmetic.Arithmetic` of the build it plans as (None: x86-64's).
-    Only the reference spec computes in another arithmetic so far."""
+    Both backends compute in any arithmetic; the fix so far in x86-64's only."""
     from ..spec.arithmetic import X86_64
 
     if name not in _BACKENDS:
         raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})")
-    other = arith is not None and arith != X86_64
-    if other and (name != ReferenceBackend.name or F.check_variant(variant) == "fixed"):
-        what = "the fix" if name == ReferenceBackend.name else f"the {name} backend"
-        raise NavfnInputError(f"{what} computes in x86-64 arithmetic only so far; the {arith.name} arithmetic "
-                              f"is computed by the reference spec (--backend {ReferenceBackend.name}, the original)")
-    backend = ReferenceBackend(arith) if name == ReferenceBackend.name else _BACKENDS[name]()
+    if arith is not None and arith != X86_64 and F.check_variant(variant) == "fixed":
+        raise NavfnInputError(f"the fix computes in x86-64 arithmetic only so far, not in the {arith.name} arithmetic")
+    backend = _BACKENDS[name](arith)
     return _Fixed(backend) if F.check_variant(variant) == "fixed" else backend

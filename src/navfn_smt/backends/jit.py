@@ -17,7 +17,7 @@ from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
 from ..spec.planner import path_cycle_limit
-from .numba_domain import ND, jit, jit_inline
+from .numba_domain import jit, jit_inline, numba_domain
 
 # maps up to this many cells keep the A* heuristic of every (dx, dy) offset once computed
 # (a float per offset: 4 * (2nx-1)(2ny-1) bytes, 16 MiB at the limit); larger maps call it
@@ -44,7 +44,7 @@ NCOUNTERS = 6
 
 
 @jit_inline
-def start_propagation(costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt):
+def start_propagation(D, costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt):
     """setupNavFn + initCost(goal) + the ``push_cur`` of the goal's four neighbours.
 
     Every potential POT_HIGH, nothing pending, the goal's potential 0, curT = COST_OBS
@@ -52,31 +52,31 @@ def start_propagation(costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt)
     ``push_admitted`` refused only for want of room (counted as dropped).
     """
     ns = nx * ny
-    high = ND.f32const(POT_HIGH)
+    high = D.f32const(POT_HIGH)
     for i in range(ns):
         pot[i] = high
         pending[i] = False
     for b in range(3):
         fill[b] = 0
         role[b] = b
-    curt[0] = ND.f32const(COST_OBS)
+    curt[0] = D.f32const(COST_OBS)
     cap = pb.shape[1]
     k = gx + gy * nx
-    pot[k] = ND.f32const(0.0)
+    pot[k] = D.f32const(0.0)
     dropped = 0
     for n in (k + 1, k - 1, k - nx, k + nx):
         j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard tests n against the map
-        if K.push_admitted(ND, n, ns, pending[j], costs[j], fill[0], cap):
+        if K.push_admitted(D, n, ns, pending[j], costs[j], fill[0], cap):
             pb[0, fill[0]] = n
             fill[0] += 1
             pending[n] = True
-        elif K.push_admitted(ND, n, ns, pending[j], costs[j], 0, 1):
+        elif K.push_admitted(D, n, ns, pending[j], costs[j], 0, 1):
             dropped += 1
     return dropped
 
 
 @jit_inline
-def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pending, pb, fill, role, curt, trace,
+def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pending, pb, fill, role, curt, trace,
                counters, memo, watch, newly):
     """The loop of ``propNavFnAstar`` / ``propNavFnDijkstra(cycles, atStart)``, resumable.
 
@@ -92,9 +92,9 @@ def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pend
     it has room (empty: none).
     """
     ns = nx * ny
-    high = ND.f32const(POT_HIGH)
+    high = D.f32const(POT_HIGH)
     cap = pb.shape[1]
-    inc = ND.int_to_f32(PRI_INC)
+    inc = D.int_to_f32(PRI_INC)
     cur = role[CUR]
     nxt = role[NXT]
     over = role[OVER]
@@ -131,18 +131,18 @@ def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pend
             n = pb[cur, i]
             nupd += 1
             cost = costs[n]
-            if not K.is_passable(ND, cost):
+            if not K.is_passable(D, cost):
                 continue
             l = pot[n - 1]
             r = pot[n + 1]
             u = pot[n - nx]
             d = pot[n + nx]
             old = pot[n]
-            new, changed = K.cell_update(ND, old, l, r, u, d, cost, ND.int_to_f32(cost))
+            new, changed = K.cell_update(D, old, l, r, u, d, cost, D.int_to_f32(cost))
             if not changed:
                 continue
             pot[n] = new
-            if watching and watch[n] >= 0 and not ND.lt(old, high):
+            if watching and watch[n] >= 0 and not D.lt(old, high):
                 newly[nnew] = watch[n]
                 nnew += 1
             key = new
@@ -153,15 +153,15 @@ def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pend
                 ddx = n % nx - sx
                 ddy = n // nx - sy
                 if memo.shape[0] == 0:
-                    h = K.astar_heuristic(ND, ddx, ddy)
+                    h = K.astar_heuristic(D, ddx, ddy)
                 else:
                     mi = (ddy + ny - 1) * (2 * nx - 1) + ddx + nx - 1
                     h = memo[mi]
                     if h != h:
-                        h = K.astar_heuristic(ND, ddx, ddy)
+                        h = K.astar_heuristic(D, ddx, ddy)
                         memo[mi] = h
-                key = ND.add(new, h)
-            dest = nxt if K.to_low_buffer(ND, key, cur_t) else over
+                key = D.add(new, h)
+            dest = nxt if K.to_low_buffer(D, key, cur_t) else over
             for j in range(4):
                 if j == 0:
                     m = n - 1
@@ -175,12 +175,12 @@ def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pend
                 else:
                     m = n + nx
                     pm = d
-                if K.push_wanted(ND, pm, key, K.edge_weight(ND, ND.int_to_f32(costs[m]))):
-                    if K.push_admitted(ND, m, ns, pending[m], costs[m], fill[dest], cap):
+                if K.push_wanted(D, pm, key, K.edge_weight(D, D.int_to_f32(costs[m]))):
+                    if K.push_admitted(D, m, ns, pending[m], costs[m], fill[dest], cap):
                         pb[dest, fill[dest]] = m
                         fill[dest] += 1
                         pending[m] = True
-                    elif K.push_admitted(ND, m, ns, pending[m], costs[m], 0, 1):
+                    elif K.push_admitted(D, m, ns, pending[m], costs[m], 0, 1):
                         ndrop += 1
         # swap: the next buffer becomes current; an empty one pulls in the overflow
         fill[cur] = 0
@@ -188,11 +188,11 @@ def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pend
         cur = nxt
         nxt = t
         if fill[cur] == 0:
-            cur_t = ND.add(cur_t, inc)
+            cur_t = D.add(cur_t, inc)
             t = cur
             cur = over
             over = t
-        if at_start and ND.lt(pot[start_cell], high):
+        if at_start and D.lt(pot[start_cell], high):
             finished = True
             break
         cycle += 1
@@ -212,7 +212,7 @@ def run_cycles(costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pend
 
 
 @jit
-def propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters, memo):
+def propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters, memo):
     """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
 
     ``pb`` is a (3, capacity) int array for the three buffers (its width is the capacity of
@@ -223,43 +223,43 @@ def propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fi
     """
     for i in range(counters.shape[0]):
         counters[i] = 0
-    counters[DROPPED] = start_propagation(costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt)
+    counters[DROPPED] = start_propagation(D, costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt)
     if astar:
-        curt[0] = ND.add(K.astar_heuristic(ND, gx - sx, gy - sy), curt[0])
+        curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), curt[0])
     no_watch = pb[0, :0]
-    run_cycles(costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace, counters,
+    run_cycles(D, costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace, counters,
                memo, no_watch, no_watch)
     if astar:
-        return ND.lt(pot[sy * nx + sx], ND.f32const(POT_HIGH))
+        return D.lt(pot[sy * nx + sx], D.f32const(POT_HIGH))
     return counters[CYCLE] < cycles
 
 
 @jit
-def propagate_on(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters,
+def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters,
                  memo):
     """The fix's ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), compiled: :func:`propagate`,
     then ``propNavFn*(cycles)`` again (A*: ``curT += dist`` at its entry, a cycle count from 0)
     while the start is unreached and a buffer holds cells.  Returns what the last call returns
     and the calls the fix added; ``tests/test_fix.py`` holds it equal to the spec."""
-    done = propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace,
+    done = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace,
                      counters, memo)
-    high = ND.f32const(POT_HIGH)
+    high = D.f32const(POT_HIGH)
     start_cell = sy * nx + sx
     no_watch = pb[0, :0]
     calls = 0
-    while ND.ge(pot[start_cell], high) and (fill[role[CUR]] > 0 or fill[role[NXT]] > 0):
+    while D.ge(pot[start_cell], high) and (fill[role[CUR]] > 0 or fill[role[NXT]] > 0):
         if astar:
-            curt[0] = ND.add(K.astar_heuristic(ND, gx - sx, gy - sy), curt[0])
+            curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), curt[0])
         counters[CYCLE] = 0
-        run_cycles(costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace,
+        run_cycles(D, costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace,
                    counters, memo, no_watch, no_watch)
-        done = ND.lt(pot[start_cell], high) if astar else counters[CYCLE] < cycles
+        done = D.lt(pot[start_cell], high) if astar else counters[CYCLE] < cycles
         calls += 1
     return done, calls
 
 
 @jit
-def calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, touched):
+def calc_path_touched(D, pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, touched):
     """calcPath(nmax); ``path`` is (nmax + 1, 2) float32.  Returns (exit code, npath, ntouched).
 
     The gradient arrays must be all zero on entry (``setupNavFn`` leaves them so; gradCell's
@@ -268,25 +268,25 @@ def calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, tou
     zero just those afterwards.
     """
     ns = nx * ny
-    zero = ND.f32const(0.0)
-    step = ND.f32const(PATH_STEP)
+    zero = D.f32const(0.0)
+    step = D.f32const(PATH_STEP)
     nt = 0
     stc = sy * nx + sx
     dx = zero
     dy = zero
     npath = 0
     for _ in range(nmax):
-        near = K.nearest_cell(ND, stc, dx, dy, nx, ns)
-        if K.near_goal(ND, pot[near]):
-            path[npath, 0] = ND.int_to_f32(gx)
-            path[npath, 1] = ND.int_to_f32(gy)
+        near = K.nearest_cell(D, stc, dx, dy, nx, ns)
+        if K.near_goal(D, pot[near]):
+            path[npath, 0] = D.int_to_f32(gx)
+            path[npath, 1] = D.int_to_f32(gy)
             npath += 1
             return EXIT_NEAR_GOAL, npath, nt
         if stc < nx or stc > ns - nx:
             return EXIT_OUT_OF_BOUNDS, npath, nt
         if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
             return EXIT_UB, npath, nt
-        px, py = K.path_point(ND, stc, nx, dx, dy)
+        px, py = K.path_point(D, stc, nx, dx, dy)
         path[npath, 0] = px
         path[npath, 1] = py
         npath += 1
@@ -294,55 +294,58 @@ def calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, tou
         up = stc - nx
         down = stc + nx
         ring = (up - 1, up, up + 1, stc - 1, stc + 1, down - 1, down, down + 1)
-        fallback = osc or K.unreached(ND, pot[stc])
+        fallback = osc or K.unreached(D, pot[stc])
         for m in ring:
-            fallback = fallback or K.unreached(ND, pot[m])
+            fallback = fallback or K.unreached(D, pot[m])
         if fallback:
-            best = K.lowest_of_eight(ND, pot[stc], (pot[up - 1], pot[up], pot[up + 1], pot[stc - 1],
+            best = K.lowest_of_eight(D, pot[stc], (pot[up - 1], pot[up], pot[up + 1], pot[stc - 1],
                                                     pot[stc + 1], pot[down - 1], pot[down], pot[down + 1]))
             if best >= 0:
                 stc = ring[best]
             dx = zero
             dy = zero
-            if K.unreached(ND, pot[stc]):
+            if K.unreached(D, pot[stc]):
                 return EXIT_HIGH_POTENTIAL, npath, nt
         else:
             for n in (stc, stc + 1, down, down + 1):
-                if K.grad_cached(ND, gradx[n], grady[n]):
+                if K.grad_cached(D, gradx[n], grady[n]):
                     continue
                 if n < nx or n > ns - nx:
                     continue
                 if n + nx >= ns:
                     return EXIT_UB, npath, nt
-                gradx[n], grady[n] = K.grad_cell(ND, pot[n], pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx])
+                gradx[n], grady[n] = K.grad_cell(D, pot[n], pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx])
                 if nt < touched.shape[0]:
                     touched[nt] = n
                     nt += 1
-            x = K.interpolate_gradient(ND, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
-            y = K.interpolate_gradient(ND, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
+            x = K.interpolate_gradient(D, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
+            y = K.interpolate_gradient(D, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
             if x == zero and y == zero:
                 return EXIT_ZERO_GRADIENT, npath, nt
-            dx, dy, cdx, cdy = K.step_offsets(ND, dx, dy, x, y, step)
+            dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
             stc += cdx + cdy * nx
     return EXIT_EXHAUSTED, npath, nt
 
 
 @jit
-def calc_path_zeroed(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
+def calc_path_zeroed(D, pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path):
     """calcPath(nmax) on gradient arrays in any state (zeroed first, O(cells)).  Returns (exit code, npath)."""
-    zero = ND.f32const(0.0)
+    zero = D.f32const(0.0)
     for i in range(nx * ny):
         gradx[i] = zero
         grady[i] = zero
-    code, npath, _ = calc_path_touched(pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, np.empty(0, np.int64))
+    code, npath, _ = calc_path_touched(D, pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, np.empty(0, np.int64))
     return code, npath
 
 
 class JitPlanner:
     """Work arrays for one map size, reused across the cases of a map; ``capacity`` bounds
-    each priority buffer (PRIORITYBUFSIZE, as in C++, unless given)."""
+    each priority buffer (PRIORITYBUFSIZE, as in C++, unless given); ``arith``: the build's
+    :class:`~navfn_smt.spec.arithmetic.Arithmetic` it computes in (None: x86-64's), carried to the
+    compiled loops as their numeric domain ``D``."""
 
-    def __init__(self, costs_with_border: np.ndarray, capacity: int = PRIORITYBUFSIZE):
+    def __init__(self, costs_with_border: np.ndarray, capacity: int = PRIORITYBUFSIZE, arith=None):
+        self.D = numba_domain(arith)
         c = np.ascontiguousarray(costs_with_border, dtype=np.uint8)
         self.ny, self.nx = c.shape
         self.costs = c.ravel()
@@ -380,13 +383,13 @@ class JitPlanner:
         while True:
             if fixed:
                 reached, self.calls = propagate_on(
-                    self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
+                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
                     self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
                     self.trace if record_trace else self.no_trace, self.counters, self.memo,
                 )
             else:
-                    reached = propagate(
-                    self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
+                reached = propagate(
+                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
                     self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
                     self.trace if record_trace else self.no_trace, self.counters, self.memo,
                 )
@@ -396,13 +399,13 @@ class JitPlanner:
         if self.path.shape[0] < path_cycles + 1:
             self.path = np.empty((path_cycles + 1, 2), np.float32)
         code, npath = calc_path_zeroed(
-            self.pot, self.nx, self.ny, sx, sy, gx, gy, path_cycles, self.gradx, self.grady, self.path
+            self.D, self.pot, self.nx, self.ny, sx, sy, gx, gy, path_cycles, self.gradx, self.grady, self.path
         )
         return bool(reached), int(code), int(npath)
 
 
 @jit
-def plan_cases_into(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
+def plan_cases_into(D, costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
                reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     """Plan every case of one map in one call (no trace); results go to the output arrays.
 
@@ -416,13 +419,13 @@ def plan_cases_into(costs, nx, ny, cases, astar, cycles, path_cycles, pot, pendi
     path_off[0] = 0
     for i in range(cases.shape[0]):
         sx, sy, gx, gy = cases[i, 0], cases[i, 1], cases[i, 2], cases[i, 3]
-        reached[i] = propagate(costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt,
+        reached[i] = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt,
                                no_trace, counters, memo)
         start_pot[i] = pot[sy * nx + sx]
         ncycles[i] = counters[CYCLES]
         nupdates[i] = counters[UPDATES]
         ndropped[i] = counters[DROPPED]
-        code, npath = calc_path_zeroed(pot, nx, ny, sx, sy, gx, gy, path_cycles, gradx, grady, buf)
+        code, npath = calc_path_zeroed(D, pot, nx, ny, sx, sy, gx, gy, path_cycles, gradx, grady, buf)
         exits[i] = code
         if code == EXIT_NEAR_GOAL:
             for k in range(npath):
@@ -450,7 +453,7 @@ def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int
     """Batch form of :meth:`JitPlanner.run` for benchmarks and bulk planning (no traces)."""
     cases = np.ascontiguousarray(cases, dtype=np.int64).reshape(-1, 4)
     out = case_columns(cases.shape[0], path_cycles)
-    plan_cases_into(planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, *planner.work_arrays(),
+    plan_cases_into(planner.D, planner.costs, planner.nx, planner.ny, cases, astar, cycles, path_cycles, *planner.work_arrays(),
                     *out.values())
     out["path"] = out["path"][: out["path_offsets"][-1]]
     return out

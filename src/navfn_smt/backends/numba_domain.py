@@ -23,6 +23,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import hashlib
+import inspect
 import math
 import os
 from pathlib import Path
@@ -36,6 +37,7 @@ from numba.extending import (NativeValue, intrinsic, models, overload, overload_
 
 from ..spec import kernels as K
 from ..spec import numeric
+from ..spec.arithmetic import X86_64
 
 JIT_OPTIONS = {"error_model": "numpy"}  # float division by zero gives inf/nan, as in C++
 
@@ -108,28 +110,57 @@ def jit_inline(fn):
 # The domain value and its type
 # --------------------------------------------------------------------------------------
 class NumbaDomain:
-    """The compiled domain; use :data:`ND`.  Only meaningful inside compiled code."""
+    """The compiled domain in one build's arithmetic; use :data:`ND` (x86-64's) or
+    :func:`numba_domain`.  Passed to compiled code as an argument, it costs nothing at run
+    time: its type carries the arithmetic, so each arithmetic compiles its own code, in
+    which ``D.fuses(site)`` is a constant and ``D.to_int32`` the build's conversion."""
 
     name = "numba"
 
+    def __init__(self, arith=X86_64):
+        self.arith = arith
+
+    def __reduce__(self):  # sent to worker processes as the arithmetic it computes in
+        return (numba_domain, (self.arith,))
+
 
 class NumbaDomainType(types.Dummy):
-    def __init__(self):
-        super().__init__(name="NumbaDomain")
+    def __init__(self, arith):
+        self.arith = arith
+        super().__init__(name=f"NumbaDomain[{arith.key}]")
 
 
-_TYPE = NumbaDomainType()
-typeof_impl.register(NumbaDomain)(lambda val, c: _TYPE)
+_TYPES = {}
+
+
+def _type_of(arith) -> NumbaDomainType:
+    if arith not in _TYPES:
+        _TYPES[arith] = NumbaDomainType(arith)
+    return _TYPES[arith]
+
+
+typeof_impl.register(NumbaDomain)(lambda val, c: _type_of(val.arith))
 register_model(NumbaDomainType)(models.OpaqueModel)
 lower_constant(NumbaDomainType)(lambda context, builder, ty, pyval: context.get_dummy_value())
 unbox(NumbaDomainType)(lambda typ, obj, c: NativeValue(c.context.get_dummy_value()))
 
-ND = NumbaDomain()
+_DOMAINS = {}
+
+
+def numba_domain(arith=None) -> NumbaDomain:
+    """The compiled domain computing as a build of ``arith`` does (None: x86-64's)."""
+    arith = X86_64 if arith is None else arith
+    if arith not in _DOMAINS:
+        _DOMAINS[arith] = NumbaDomain(arith)
+    return _DOMAINS[arith]
+
+
+ND = numba_domain(X86_64)
 
 # --------------------------------------------------------------------------------------
 # The operations (names and meaning as in navfn_smt.spec.numeric.ConcreteDomain)
 # --------------------------------------------------------------------------------------
-_cvt_to_int32 = njit(**JIT_OPTIONS)(numeric.cvt_to_int32)
+_CONVERTERS = {name: njit(**JIT_OPTIONS)(fn) for name, fn in numeric.CONVERTERS.items()}
 _roundf = njit(**JIT_OPTIONS)(numeric.c_roundf)
 _wrap_int32 = njit(**JIT_OPTIONS)(numeric.wrap_int32)
 F32, F64 = np.float32, np.float64
@@ -159,8 +190,13 @@ def _int_to_f64(self, n):
     return F64(n)
 
 
-def _to_int32(self, a):  # cvttss2si / cvttsd2si
-    return _cvt_to_int32(a)
+def _to_int32(self, a):  # the build's conversion: cvttss2si / cvttsd2si, or fcvtzs
+    convert = _CONVERTERS[self.arith.conversion]
+
+    def impl(self, a):
+        return convert(a)
+
+    return impl
 
 
 def _add_int(self, a, b):
@@ -226,8 +262,15 @@ def _fma64(self, a, b, c):
     return _fma_llvm(F64(a), F64(b), F64(c))
 
 
-def _fuses(self, site):  # the compiled backend computes in x86-64's arithmetic: nothing fused
-    return False
+def _fuses(self, site):  # a constant of the compiled code: whether the build fused ``site``
+    if not isinstance(site, types.StringLiteral):
+        return None  # asked again with the site's literal value
+    fused = self.arith.fuses(site.literal_value)
+
+    def impl(self, site):
+        return fused
+
+    return impl
 
 
 def _hypot64(self, a, b):  # libm hypot
@@ -300,8 +343,15 @@ def _returning(impl):
     return typer
 
 
+# operations whose code depends on the domain's arithmetic: their typing functions choose it
+TYPED_BY_ARITHMETIC = {"fuses": _fuses, "to_int32": _to_int32}
+
+
 def _register(name, impl):
-    overload_method(NumbaDomainType, name, jit_options=JIT_OPTIONS)(_returning(impl))
+    if name in TYPED_BY_ARITHMETIC:
+        overload_method(NumbaDomainType, name, jit_options=JIT_OPTIONS, prefer_literal=True)(impl)
+    else:
+        overload_method(NumbaDomainType, name, jit_options=JIT_OPTIONS)(_returning(impl))
 
 
 for _name, _impl in OPERATIONS.items():
@@ -317,4 +367,7 @@ KERNELS = tuple(
 )
 for _name in KERNELS:
     _fn = getattr(K, _name)
-    overload(_fn, jit_options=JIT_OPTIONS)(_returning(_fn))
+    # a kernel that names a multiply-add site is typed with the site's literal value, so that
+    # ``D.fuses(site)`` inside it is a constant
+    _literal = "site" in inspect.signature(_fn).parameters
+    overload(_fn, jit_options=JIT_OPTIONS, prefer_literal=_literal)(_returning(_fn))

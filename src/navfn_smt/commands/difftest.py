@@ -176,8 +176,7 @@ def register(sub) -> None:
     dt.add_argument("--oracle", metavar="DIR", help="compare with the C++ NavFn built in DIR (navfn-smt oracle "
                     "build), run live on every case, instead of the golden files")
     dt.add_argument("--target", metavar="NAME", help="the golden files were recorded from a build in this "
-                    "arithmetic (x86-64, x86-64-v3, aarch64: docs/toolchains.md); the spec computes in it "
-                    "(--backend reference: the compiled backend computes x86-64's only so far)")
+                    "arithmetic (x86-64, x86-64-v3, aarch64: docs/toolchains.md); the spec computes in it")
     dt.add_argument("--unbounded", action="store_true", help="with --oracle: the C++ and the spec both with "
                     "priority buffers that never drop a push")
     dt.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT,

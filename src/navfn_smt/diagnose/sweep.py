@@ -279,7 +279,7 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         if params.use_astar:
             for lo in range(0, len(planned), ASTAR_GOALS_PER_CALL):
                 chunk = planned[lo:lo + ASTAR_GOALS_PER_CALL]
-                pts = S.sweep_astar(costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.pot, planner.pending,
+                pts = S.sweep_astar(planner.D, costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.pot, planner.pending,
                                     planner.pb, planner.fill, planner.role, planner.curt, planner.memo, tcell,
                                     n_cycles, planner.gradx, planner.grady, buf, touched, out_i, out_f, pts, st,
                                     keep_paths, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
@@ -291,7 +291,7 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
             counters = np.zeros(S.NCOUNTERS, np.int64)
             memo_cell = np.full(nx * ny, -1, np.int64)
             while not st[S.DONE]:
-                pts = S.sweep_dijkstra(costs, nx, ny, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL,
+                pts = S.sweep_dijkstra(planner.D, costs, nx, ny, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL,
                                        planner.pot, planner.pending, planner.pb, planner.fill, planner.role,
                                        planner.curt, counters, st, goal_of, newly, tcell, n_cycles, planner.gradx,
                                        planner.grady, buf, touched, out_i, out_f, pts, keep_paths, col_of, row_of,

@@ -621,7 +621,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
 
         planner = J.JitPlanner(add_border(run.costs))
         no_memo = np.empty(0, np.float32)
-        run.reached = bool(J.propagate(planner.costs, nx, ny, navfn_start[0], navfn_start[1], navfn_goal[0],
+        run.reached = bool(J.propagate(planner.D, planner.costs, nx, ny, navfn_start[0], navfn_start[1], navfn_goal[0],
                                        navfn_goal[1], astar, run.cycle_limit, planner.pot, planner.pending, planner.pb,
                                        planner.fill, planner.role, planner.curt, planner.no_trace, planner.counters,
                                        no_memo))

@@ -35,7 +35,7 @@ import numpy as np
 from ..backends import jit as J
 from ..backends.jit import (EXIT_NEAR_GOAL, EXIT_UB, NCOUNTERS, calc_path_touched, propagate, run_cycles,
                             start_propagation)
-from ..backends.numba_domain import ND, jit
+from ..backends.numba_domain import jit
 from ..spec.constants import DBL_MAX, POT_HIGH
 from .plugin import squared_offset, tolerance_prefers
 
@@ -58,7 +58,7 @@ NSTATE = 3
 
 
 @jit
-def _legal_cell(pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy):
+def _legal_cell(D, pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy):
     """The tolerance search of ``_legal_pose`` for goal ``g`` by the plugin's rule
     (:func:`.plugin.tolerance_prefers`): the cell of the point it chooses, or (-1, -1)."""
     a = col_of[g]
@@ -76,7 +76,7 @@ def _legal_cell(pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells,
             if c < 0:
                 continue
             d = _squared_offset(xs[a, xi] - wx[g], dy)
-            if _tolerance_prefers(ND.widen(pot[r * nx + c]), d, best):
+            if _tolerance_prefers(D.widen(pot[r * nx + c]), d, best):
                 best = d
                 bx = c
                 by = r
@@ -84,20 +84,20 @@ def _legal_cell(pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells,
 
 
 @jit
-def _finish_goal(pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts, st,
+def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts, st,
                  keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
     """``_legal_pose`` + ``getPlanFromPotential`` for goal ``g`` (NavFn start ``(tx, ty)``) on
     ``pot`` as it is now; results into row ``g``.  ``memo_cell`` (length ns, or empty) maps a
     start cell to the goal whose extraction from it on this same potential is reused.
     Returns ``pts`` (grown when a kept path does not fit)."""
-    high = ND.f32const(POT_HIGH)
-    out_f[g, GOAL_POT] = ND.widen(pot[ty * nx + tx])
-    if ND.lt(pot[ty * nx + tx], high):
+    high = D.f32const(POT_HIGH)
+    out_f[g, GOAL_POT] = D.widen(pot[ty * nx + tx])
+    if D.lt(pot[ty * nx + tx], high):
         bx = tx
         by = ty
     else:
         out_i[g, USED_TOL] = 1
-        bx, by = _legal_cell(pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
+        bx, by = _legal_cell(D, pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
         if bx < 0:
             out_i[g, ST] = S_NO_LEGAL
             out_i[g, EXIT] = -1
@@ -112,8 +112,8 @@ def _finish_goal(pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touche
             out_f[g, LENGTH] = out_f[h, LENGTH]
             return pts
         memo_cell[by * nx + bx] = g
-    code, npath, nt = calc_path_touched(pot, nx, ny, bx, by, rx, ry, nmax, gradx, grady, buf, touched)
-    zero = ND.f32const(0.0)
+    code, npath, nt = calc_path_touched(D, pot, nx, ny, bx, by, rx, ry, nmax, gradx, grady, buf, touched)
+    zero = D.f32const(0.0)
     for i in range(nt):
         gradx[touched[i]] = zero
         grady[touched[i]] = zero
@@ -147,7 +147,7 @@ def _finish_goal(pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touche
 
 
 @jit
-def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill, role, curt, counters, st, goal_of,
+def sweep_dijkstra(D, costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill, role, curt, counters, st, goal_of,
                    newly, tcell, nmax, gradx, grady, buf, touched, out_i, out_f, pts, keep,
                    col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
     """Up to ``budget`` cycles of ``propNavFnDijkstra(cycles, atStart=false)`` from the robot
@@ -162,7 +162,7 @@ def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill
     no_memo = np.empty(0, np.float32)
     no_memo_cell = np.empty(0, np.int64)
     if not st[STARTED]:
-        start_propagation(costs, nx, ny, rx, ry, pot, pending, pb, fill, role, curt)
+        start_propagation(D, costs, nx, ny, rx, ry, pot, pending, pb, fill, role, curt)
         st[STARTED] = 1
         k = rx + ry * nx
         if goal_of[k] >= 0:  # the robot's own cell: finite before the first cycle
@@ -170,7 +170,7 @@ def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill
             counters[J.NEWLY] = 1
     stop = counters[J.CYCLE] + budget
     while counters[J.CYCLE] < stop:
-        if run_cycles(costs, nx, ny, rx, ry, False, False, cycles, stop - counters[J.CYCLE], pot, pending, pb, fill,
+        if run_cycles(D, costs, nx, ny, rx, ry, False, False, cycles, stop - counters[J.CYCLE], pot, pending, pb, fill,
                       role, curt, no_trace, counters, no_memo, goal_of, newly):
             st[DONE] = 1
             break
@@ -178,7 +178,7 @@ def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill
         for i in range(counters[J.NEWLY]):
             g = newly[i]
             out_i[g, CYCLE] = counters[J.CYCLE]
-            pts = _finish_goal(pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf, touched,
+            pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf, touched,
                                out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen,
                                wx, wy, no_memo_cell)
         counters[J.NEWLY] = 0
@@ -186,14 +186,14 @@ def sweep_dijkstra(costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill
         for g in range(out_i.shape[0]):
             if out_i[g, ST] == S_PENDING and goal_of[tcell[g, 1] * nx + tcell[g, 0]] == g:
                 out_i[g, CYCLE] = counters[J.CYCLE]
-                pts = _finish_goal(pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf,
+                pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf,
                                    touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys,
                                    ycells, ylen, wx, wy, memo_cell)
     return pts
 
 
 @jit
-def sweep_astar(costs, nx, ny, rx, ry, cycles, goals, pot, pending, pb, fill, role, curt, memo, tcell, nmax, gradx,
+def sweep_astar(D, costs, nx, ny, rx, ry, cycles, goals, pot, pending, pb, fill, role, curt, memo, tcell, nmax, gradx,
                 grady, buf, touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen,
                 wx, wy):
     """``calcNavFnAstar`` + ``_legal_pose`` + ``getPlanFromPotential`` for each goal in ``goals``
@@ -205,9 +205,9 @@ def sweep_astar(costs, nx, ny, rx, ry, cycles, goals, pot, pending, pb, fill, ro
         g = goals[i]
         tx = tcell[g, 0]
         ty = tcell[g, 1]
-        propagate(costs, nx, ny, tx, ty, rx, ry, True, cycles, pot, pending, pb, fill, role, curt, no_trace, counters,
+        propagate(D, costs, nx, ny, tx, ty, rx, ry, True, cycles, pot, pending, pb, fill, role, curt, no_trace, counters,
                   memo)
         out_i[g, CYCLE] = counters[J.CYCLES]
-        pts = _finish_goal(pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts,
+        pts = _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts,
                            st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, no_memo)
     return pts

@@ -64,7 +64,7 @@ class _Program:
                 f"{self.folder} was built for {self.build.get('target', '?')} and computes in the {arith.name} "
                 f"arithmetic (fused multiply-adds: {fused}; float-to-int conversion {arith.conversion}); this "
                 f"model computes in {spec.name} arithmetic only, so this build is not compared here (NavFn itself "
-                f"is: difftest --oracle DIR --backend reference)")
+                f"is: difftest --oracle DIR)")
 
     def close(self) -> None:
         if self.proc.poll() is None:

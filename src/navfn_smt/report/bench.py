@@ -68,7 +68,7 @@ def sizes_table(rows: list[dict]) -> None:
 def oracle_table(suite, distribution: str, rows: list[dict]) -> None:
     """Print the C++'s and the JIT's planning times on a suite and their ratio."""
     _table(f"bench: the JIT against the C++ NavFn ({distribution}), planning only, {suite}", rows,
-           ["mode", "cases", "cpp_seconds", "jit_seconds", "jit_over_cpp", "cpp_call_seconds"],
+           ["mode", "cases", "arithmetic", "cpp_seconds", "jit_seconds", "jit_over_cpp", "cpp_call_seconds"],
            headers={"cpp_seconds": "C++", "jit_seconds": "jit", "jit_over_cpp": "jit / C++",
                     "cpp_call_seconds": "C++ with transfer"},
            fmt={"cpp_seconds": duration, "jit_seconds": duration, "cpp_call_seconds": duration,

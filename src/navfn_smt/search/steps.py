@@ -83,13 +83,13 @@ def mutate(rng, c, lo, hi, maximise):
 
 
 @njit(cache=True)
-def _best_gap(cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
+def _best_gap(D, cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
               reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     """The cost screen of ``cand`` on ``cases``: the largest gap (0 when none is positive) and
     the first case that has it, as ``np.argmax`` of ``kinds._screen_cost`` picks it."""
     ny, nx = cand.shape
     flat = cand.ravel()
-    plan_cases_into(flat, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
+    plan_cases_into(D, flat, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
                grady, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts)
     n = cases.shape[0]
     g, _ = gaps(flat, nx, ny, path_pts[: path_off[n]], path_off[: n + 1])
@@ -101,7 +101,7 @@ def _best_gap(cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, r
 
 
 @njit(cache=True)
-def _focus_steps(rng, cur, cur_score, cand, lo, hi, cases, astar, cycles, path_cycles, stale, patience, steps,
+def _focus_steps(D, rng, cur, cur_score, cand, lo, hi, cases, astar, cycles, path_cycles, stale, patience, steps,
                  pot, pending, pb, fill, role, curt, memo, gradx, grady,
                  reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     for k in range(steps):
@@ -109,7 +109,7 @@ def _focus_steps(rng, cur, cur_score, cand, lo, hi, cases, astar, cycles, path_c
             return k, stale, -1.0, -1
         cand[:, :] = cur
         mutate(rng, cand, lo, hi, True)
-        sc, at = _best_gap(cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
+        sc, at = _best_gap(D, cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
                            grady, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts)
         if sc > cur_score:
             return k + 1, stale, sc, at
@@ -124,7 +124,8 @@ class FocusSteps:
 
     def __init__(self, nx: int, ny: int, pairs: int, cycles: int, path_cycles: int):
         self.cycles, self.path_cycles = int(cycles), int(path_cycles)
-        self.work = JitPlanner(np.full((ny, nx), COST_OBS, np.uint8)).work_arrays()
+        planner = JitPlanner(np.full((ny, nx), COST_OBS, np.uint8))
+        self.D, self.work = planner.D, planner.work_arrays()
         self.out = tuple(case_columns(pairs, self.path_cycles).values())
         self.cand = np.empty((ny, nx), np.uint8)
 
@@ -133,6 +134,6 @@ class FocusSteps:
         """Up to ``steps`` steps from ``cur`` (changed in place on a plateau): the steps taken,
         the stale count, and the score and best case of the last mutant (in :attr:`cand`)
         when it beat ``cur_score`` (else ``-1.0, -1``; fewer steps: a restart is due)."""
-        taken, stale, sc, at = _focus_steps(rng, cur, float(cur_score), self.cand, lo, hi, cases, astar, self.cycles,
+        taken, stale, sc, at = _focus_steps(self.D, rng, cur, float(cur_score), self.cand, lo, hi, cases, astar, self.cycles,
                                             self.path_cycles, stale, patience, steps, *self.work, *self.out)
         return int(taken), int(stale), float(sc), int(at)

@@ -34,7 +34,7 @@ from typing import Callable
 import numpy as np
 from numba import njit
 
-from ..backends.numba_domain import JIT_OPTIONS, ND
+from ..backends.numba_domain import JIT_OPTIONS, ND, numba_domain
 from ..check.concolic import ConcolicDomain, V, concrete
 from ..smt.domains import FPDomain, RealDomain
 from ..smt.enumerate import ArrayDomain
@@ -43,6 +43,7 @@ from ..smt.evaluate import FPEvalDomain, RealEvalDomain, fp32_result, real_resul
 from ..smt.replay import ExactReplayDomain, ReplayDomain
 from ..spec import conformance as T
 from ..spec.domain import OPERATIONS
+from ..spec.arithmetic import KNOWN
 from ..spec.numeric import CONCRETE as C
 from ..spec.numeric import ConcreteDomain
 
@@ -66,12 +67,13 @@ def _numba_value(kind, v):
     return np.bool_(v) if kind == T.BOOL else np.int64(v)
 
 
-def numba_results(case: T.KernelCase, rows: list) -> list:
-    """``case`` compiled against the numba domain (:data:`ND`), called on each row."""
+def numba_results(case: T.KernelCase, rows: list, arith=None) -> list:
+    """``case`` compiled against the numba domain in the arithmetic ``arith`` (None: x86-64's,
+    :data:`ND`), called on each row."""
     if case.name not in _COMPILED:
         _COMPILED[case.name] = njit(**JIT_OPTIONS)(case.call)
-    f = _COMPILED[case.name]
-    return [tuple(f(ND, *(_numba_value(k, v) for k, v in zip(case.kinds, args)))) for args in rows]
+    f, D = _COMPILED[case.name], numba_domain(arith)
+    return [tuple(f(D, *(_numba_value(k, v) for k, v in zip(case.kinds, args)))) for args in rows]
 
 
 def _around(v: float, steps: int = 2) -> tuple:
@@ -174,9 +176,11 @@ def real_results(case: T.KernelCase, rows: list, domain=RealEvalDomain) -> list:
 
 
 # ------------------------------------------------------------------------ what they must equal
-def concrete_results(case: T.KernelCase, rows: list) -> list:
-    """The concrete spec's results: what every domain is held to."""
-    return [case.call(C, *args) for args in rows]
+def concrete_results(case: T.KernelCase, rows: list, arith=None) -> list:
+    """The concrete spec's results (in the arithmetic ``arith``; None: x86-64's): what every
+    domain is held to."""
+    D = C if arith is None else C.with_arithmetic(arith)
+    return [case.call(D, *args) for args in rows]
 
 
 def _exact_value(E, kind, v):
@@ -223,6 +227,9 @@ class Run:
 
 RUNS = (
     Run("numba", numba_results, 4000, 7),
+    # the compiled domain in the fused arithmetics, each held to the concrete spec in the same
+    *(Run(f"numba-{name}", partial(numba_results, arith=KNOWN[name]), 4000, 7,
+          reference=partial(concrete_results, arith=KNOWN[name])) for name in ("x86-64-v3", "aarch64")),
     Run("concolic", concolic_results, 1000, 7),
     Run("array", array_results, 4000, 11, ARRAY_KERNELS),
     Run("fp32", fp32_results, 300, 5),
