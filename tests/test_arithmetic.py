@@ -11,10 +11,11 @@ import pytest
 
 from navfn_smt.cli import main
 from navfn_smt.errors import NavfnInputError
-from navfn_smt.oracle.arithmetic import EXPECTED, PROBE_INPUTS, conversion, fused_lines, fused_sites, of_build
+from navfn_smt.oracle.arithmetic import (EXPECTED, PROBE_INPUTS, conversion, fused_lines, fused_sites, of_build,
+                                         plugin_of_build, plugin_record)
 from navfn_smt.oracle.build import distribution, git_commit
 from navfn_smt.oracle.targets import toolchain
-from navfn_smt.spec.arithmetic import KNOWN, SITES, X86_64, Arithmetic, site_of_line
+from navfn_smt.spec.arithmetic import KNOWN, SITES, X86_64, Arithmetic, PluginArithmetic, site_of_line
 from navfn_smt.spec.constants import COST_FACTOR, COST_NEUTRAL
 
 # a navfn.cpp stand-in: one line per site as Nav2 writes it (the patterns of SITES), twice
@@ -65,6 +66,75 @@ def test_a_fused_line_the_spec_has_no_site_for_or_a_site_fused_in_part_is_unexpr
     assert fused == set() and problems and "navfn.cpp:11" in problems[0] and "a * b + c" in problems[0]
     fused, _, problems = fused_sites(src, [4])  # the planar site of one updateCell only
     assert "planar" not in fused and "planar fused on navfn.cpp lines [4] but not on [6]" in problems[0]
+
+
+PLANNER_CPP = """void NavfnPlanner::mapToWorld(double mx, double my, double & wx, double & wy)
+{
+  wx = costmap_->getOriginX() + mx * costmap_->getResolution();
+  wy = costmap_->getOriginY() + my * costmap_->getResolution();
+  double other = a * b + c;
+}
+"""
+PLANNER_HPP = "    return dx * dx + dy * dy;\n"
+GEOMETRY = """  q.x = sr * cp * cy - cr * sp * sy;
+  q.y = cr * sp * cy + sr * cp * sy;
+  q.z = cr * cp * sy - sr * sp * cy;
+  q.w = cr * cp * cy + sr * sp * sy;
+"""
+
+
+def _plugin_asm(tmp_path, fused) -> str:
+    """Assembly whose fused instructions come from ``fused``: (file name, line) pairs."""
+    files = {"navfn_planner.cpp": PLANNER_CPP, "navfn_planner.hpp": PLANNER_HPP, "geometry_utils.hpp": GEOMETRY,
+             "navfn.cpp": SOURCE}
+    body = []
+    for k, (name, text) in enumerate(files.items(), start=1):
+        (tmp_path / name).write_text(text)
+        body.append(f'\t.file {k} "{tmp_path}" "{name}"')
+    number = {name: k for k, name in enumerate(files, start=1)}
+    for name, line in fused:
+        body += [f"\t.loc {number[name]} {line} 3", "\tfmadd\td0, d1, d2, d3"]
+    return "\n".join(body) + "\n"
+
+
+def test_the_plugins_fused_lines_are_its_sites_wherever_they_are_inlined_from(tmp_path):
+    both = [("navfn_planner.cpp", 3), ("navfn_planner.cpp", 4), ("navfn_planner.hpp", 1), ("navfn.cpp", 4)]
+    doc = plugin_record(_plugin_asm(tmp_path, both + [("geometry_utils.hpp", 1), ("geometry_utils.hpp", 2)]))
+    assert doc["unexpressible"] == [] and doc["fused"] == ["map_to_world", "squared_distance", "yaw_quaternion"]
+    assert doc["sites"]["map_to_world"] == ["navfn_planner.cpp:3", "navfn_planner.cpp:4"]
+    assert doc["fused_instructions"] == 5  # navfn.cpp's own line is NavFn's arithmetic, found apart
+    assert plugin_record(_plugin_asm(tmp_path, [])) == {"fused": [], "fused_instructions": 0, "sites": {},
+                                                        "unexpressible": []}
+
+
+def test_a_plugin_line_that_is_no_site_or_a_site_fused_in_part_is_unexpressible(tmp_path):
+    doc = plugin_record(_plugin_asm(tmp_path, [("navfn_planner.cpp", 5)]))
+    assert doc["fused"] == [] and "navfn_planner.cpp:5 fused `double other = a * b + c;`" in doc["unexpressible"][0]
+    doc = plugin_record(_plugin_asm(tmp_path, [("navfn_planner.cpp", 3)]))
+    assert "map_to_world fused on navfn_planner.cpp lines [3] but not on [4]" in doc["unexpressible"][0]
+    bad = {"arithmetic": KNOWN["aarch64"].as_dict(), "plugin_arithmetic": doc}
+    assert plugin_of_build(bad)[0] is None and "cannot express" in plugin_of_build(bad)[1]
+    assert plugin_of_build({"arithmetic": KNOWN["aarch64"].as_dict()})[0] is None  # not recorded: built before
+    good = {"arithmetic": KNOWN["aarch64"].as_dict(), "plugin_arithmetic": {"fused": ["map_to_world"]}}
+    assert plugin_of_build(good)[0] == PluginArithmetic(KNOWN["aarch64"], frozenset({"map_to_world"}))
+
+
+def test_the_plugin_calls_none_of_costmap2ds_fused_functions(nav2_src):
+    """Costmap2D's own multiply-adds (mapToWorld, mapToWorldNoBounds, worldToMapEnforceBounds,
+    updateOrigin) fuse on arm64 too, but neither the plugin of any distribution nor our driver calls
+    them, so they are no sites of the plugin model."""
+    import re
+
+    from navfn_smt.oracle import build as B
+
+    called = re.compile(r"(costmap_?\w*(->|\.)|Costmap2D::)(mapToWorld|mapToWorldNoBounds|worldToMapEnforceBounds|"
+                        r"updateOrigin)\b")
+    files = [B.HERE / "plugin_driver.cpp",
+             *sorted(nav2_src.glob("*/nav2_navfn_planner/src/navfn_planner.cpp")),
+             *sorted(nav2_src.glob("*/nav2_navfn_planner/include/nav2_navfn_planner/navfn_planner.hpp"))]
+    assert len(files) == 11
+    assert [f for f in files if called.search(f.read_text())] == []
+    assert called.search("costmap_->mapToWorld(mx, my, wx, wy);")
 
 
 def test_the_probe_names_a_conversion_only_when_the_spec_computes_the_same_ints():

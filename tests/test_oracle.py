@@ -465,8 +465,8 @@ def target_builds(nav2_src, tmp_path_factory) -> dict:
             tc.runner()
         except NavfnInputError as e:
             pytest.skip(str(e))
-        out[name] = (build(nav2_src / "rolling", root / name, programs=("navfn-plain", "navfn-traced"), tc=tc),
-                     root / name)
+        programs = ("navfn-plain", "navfn-traced", *(("navfn-plugin",) if name == "aarch64" else ()))
+        out[name] = (build(nav2_src / "rolling", root / name, programs=programs, tc=tc), root / name)
     return out
 
 
@@ -556,6 +556,27 @@ def test_an_arithmetic_wrong_on_purpose_is_caught_by_the_difftest(target_builds,
     with Oracle(target_builds["aarch64"][1]) as oracle:
         s = run_live(EXAMPLE, MODES, "jit", oracle, arith=bad).as_dict()
     assert s["failed"] > 0, wrong
+
+
+def test_the_plugin_model_in_the_arithmetic_found_agrees_with_the_arm64_plugin(target_builds, capsys):
+    """The planner plugin built for arm64: its own multiply-adds (mapToWorld, squared_distance,
+    the yaw quaternion) are found fused; the model computing as found agrees with it on generated
+    costmaps, poses and parameters; with mapToWorld or NavFn's arithmetic left as x86-64's it
+    does not."""
+    from navfn_smt.difftest.plugin_live import generated_configs, run_plugin_live
+    from navfn_smt.oracle.client import PluginOracle
+    from navfn_smt.spec.arithmetic import KNOWN, PluginArithmetic
+
+    doc, folder = target_builds["aarch64"]
+    assert doc["plugin_arithmetic"]["fused"] == ["map_to_world", "squared_distance", "yaw_quaternion"]
+    assert main(["difftest", "--level", "plugin", "--oracle", str(folder), "--configs", "25", "--quiet"]) == 0
+    assert ", 0 failed" in capsys.readouterr().out
+    configs = list(generated_configs("rolling", 25, 0, 24))
+    with PluginOracle(folder) as oracle:
+        found = oracle.plugin_arithmetic()
+        for wrong in (PluginArithmetic(found.navfn, found.fused - {"map_to_world"}),
+                      PluginArithmetic(KNOWN["x86-64"], found.fused)):
+            assert run_plugin_live(configs, oracle, arith=wrong).as_dict()["failed"] > 0, wrong.name
 
 
 def test_the_conversion_probe_answers_as_the_spec_converts(target_builds):

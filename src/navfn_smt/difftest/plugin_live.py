@@ -98,13 +98,13 @@ def first_difference(run, answer) -> Optional[tuple[str, object, object]]:
     return None
 
 
-def compare_config(cfg: PluginConfig, oracle, backend: str, summary: PluginSummary) -> None:
+def compare_config(cfg: PluginConfig, oracle, backend: str, summary: PluginSummary, arith=None) -> None:
     """Plan every pair of ``cfg`` with the model, then the pairs without undefined behaviour with
     the C++ (one request); count and keep the differences."""
     runs = []
     t0 = time.perf_counter()
     for start, goal in cfg.pairs:
-        runs.append(create_plan(cfg.costmap, start, goal, cfg.params, backend))
+        runs.append(create_plan(cfg.costmap, start, goal, cfg.params, backend, arith))
     summary.model_seconds += time.perf_counter() - t0
     summary.configs += 1
     summary.cases += len(runs)
@@ -139,11 +139,12 @@ def _describe(cfg: PluginConfig, k: int, start: Pose, goal: Pose, diff) -> dict:
 
 
 def run_plugin_live(configs, oracle, backend: str = "jit",
-                    progress: Optional[Callable[[int], None]] = None) -> PluginSummary:
-    """Every configuration of ``configs`` against the running plugin ``oracle``."""
+                    progress: Optional[Callable[[int], None]] = None, arith=None) -> PluginSummary:
+    """Every configuration of ``configs`` against the running plugin ``oracle``, the model in the
+    arithmetic ``arith`` (a :class:`~navfn_smt.spec.arithmetic.PluginArithmetic`; None: x86-64's)."""
     summary = PluginSummary(oracle.build["distribution"])
     for cfg in configs:
-        compare_config(cfg, oracle, backend, summary)
+        compare_config(cfg, oracle, backend, summary, arith)
         if progress:
             progress(len(cfg.pairs))
     return summary

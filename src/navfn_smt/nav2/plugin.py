@@ -47,9 +47,11 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.arithmetic import PLUGIN_X86_64, X86_64, PluginArithmetic
 from ..spec.constants import DBL_MAX, FREE_SPACE, INT_MAX, LETHAL_OBSTACLE, POT_HIGH
 from ..spec.costs import add_border, set_costmap
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour
+from ..spec.numeric import c_fma
 from .params import PlannerParams
 
 LEGAL_BUT_NO_PLAN = ("Failed to create a plan from potential when a legal potential was found. "
@@ -209,13 +211,19 @@ def plugin_world_to_map(cm: Costmap, wx: float, wy: float) -> tuple[bool, Option
     return (mx < cm.size_x and my < cm.size_y), (mx, my)
 
 
-def plugin_map_to_world(cm: Costmap, px: float, py: float) -> tuple[float, float]:
-    """``NavfnPlanner::mapToWorld``: ``origin + p * resolution`` in double (p a float path point)."""
+def plugin_map_to_world(cm: Costmap, px: float, py: float,
+                        arith: PluginArithmetic = PLUGIN_X86_64) -> tuple[float, float]:
+    """``NavfnPlanner::mapToWorld``: ``origin + p * resolution`` in double (p a float path point);
+    one rounding where the build fused it (site ``map_to_world``)."""
+    if arith.fuses("map_to_world"):
+        return c_fma(float(px), cm.resolution, cm.origin_x), c_fma(float(py), cm.resolution, cm.origin_y)
     return cm.origin_x + float(px) * cm.resolution, cm.origin_y + float(py) * cm.resolution
 
 
-def squared_distance(a: Pose, b: Pose) -> float:
+def squared_distance(a: Pose, b: Pose, arith: PluginArithmetic = PLUGIN_X86_64) -> float:
     """``squared_distance`` of ``navfn_planner.hpp`` (double)."""
+    if arith.fuses("squared_distance"):
+        return fused_squared_offset(a.x - b.x, a.y - b.y)
     return squared_offset(a.x - b.x, a.y - b.y)
 
 
@@ -223,6 +231,18 @@ def squared_offset(dx, dy):
     """The arithmetic of :func:`squared_distance` on ``dx = a.x - b.x``, ``dy = a.y - b.y``:
     ``dx * dx + dy * dy`` in double (on floats, numpy arrays, or compiled)."""
     return dx * dx + dy * dy
+
+
+_fma_array = np.frompyfunc(c_fma, 3, 1)  # C's fma elementwise (broadcast), as objects
+
+
+def fused_squared_offset(dx, dy):
+    """:func:`squared_offset` as a build that fuses it computes it: ``fma(dx, dx, dy * dy)``
+    (on floats or numpy arrays)."""
+    if np.ndim(dx) == 0 and np.ndim(dy) == 0:
+        return c_fma(float(dx), float(dx), float(dy) * float(dy))
+    dx, dy = np.broadcast_arrays(np.asarray(dx, np.float64), np.asarray(dy, np.float64))
+    return np.asarray(_fma_array(dx, dx, dy * dy), dtype=np.float64)
 
 
 def cpp_double(v: float) -> str:
@@ -244,6 +264,7 @@ class PluginRun:
     target_cell: Optional[tuple[int, int]] = None  # ... of the goal: NavFn's start
     costs: Optional[np.ndarray] = None  # NavFn's internal costs after setCostmap
     potential: Optional[np.ndarray] = None  # (size_y, size_x) float32 after propagation
+    arith: PluginArithmetic = PLUGIN_X86_64  # the arithmetic of the build this run computes as
     reached: Optional[bool] = None  # the propagation call's return value
     cycles: int = 0  # propagation cycles
     cycle_limit: int = 0
@@ -282,11 +303,14 @@ def _fail(run: PluginRun, error: str, message: str) -> PluginRun:
 
 
 def create_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams = PlannerParams(),
-                backend: str = "jit") -> PluginRun:
-    """``NavfnPlanner::createPlan(start, goal)`` of ``params.distro`` on a costmap; never raises for
-    planning outcomes."""
+                backend: str = "jit", arith: Optional[PluginArithmetic] = None) -> PluginRun:
+    """``NavfnPlanner::createPlan(start, goal)`` of ``params.distro`` on a costmap, computed as a
+    build of the arithmetic ``arith`` does (None: x86-64's); never raises for planning outcomes."""
     flavour = flavour_of(params.distro)
-    run = PluginRun(poses=[])
+    run = PluginRun(poses=[], arith=arith or PLUGIN_X86_64)
+    if params.variant == "fixed" and run.arith.navfn != X86_64:
+        raise NavfnInputError(f"the fix computes in x86-64 arithmetic only so far, not in the "
+                              f"{run.arith.navfn.name} arithmetic")
     if flavour.throws and _checked_poses(cm, start, goal, params, run) is not None:
         return run
     if start.x == goal.x and start.y == goal.y:
@@ -417,7 +441,7 @@ def make_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, run: 
     if not poses:
         run.lines.append((ERROR, LEGAL_BUT_NO_PLAN))
         return
-    poses = smooth_approach_to_goal(best, poses, flavour.same_position_smoothing)
+    poses = smooth_approach_to_goal(best, poses, flavour.same_position_smoothing, run.arith)
     if params.use_final_approach_orientation:
         poses = _final_approach_orientation(poses, start)
     run.poses = poses
@@ -450,7 +474,8 @@ def _legal_pose(cm: Costmap, goal: Pose, tolerance: float, run: PluginRun) -> Op
     if len(xi) == 0 or len(yi) == 0:
         return None
     pot = run.potential[rows[yi][:, None], cols[xi][None, :]].astype(np.float64)  # (y, x): the loop's order
-    sdist = squared_offset((xs[xi] - goal.x)[None, :], (ys[yi] - goal.y)[:, None])
+    offset = fused_squared_offset if run.arith.fuses("squared_distance") else squared_offset
+    sdist = offset((xs[xi] - goal.x)[None, :], (ys[yi] - goal.y)[:, None])
     taken = tolerance_prefers(pot, sdist, DBL_MAX)  # the points the loop could take at all
     if not taken.any():
         return None
@@ -531,30 +556,31 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
         return []
     run.max_cycles = n
     try:
-        planner = get_backend(backend).prepare(run.costs)
+        planner = get_backend(backend, arith=run.arith.navfn).prepare(run.costs)
         run.extraction, path = planner.extract(run.potential, cell, run.robot_cell, n)
         if run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
             run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
         if params.variant == "fixed" and run.extraction is not ExtractionExit.NEAR_GOAL:
             # the patched calcPath: calcPathGradient (above, with its WARN), then calcPathDescent
-            run.extraction, path = get_backend(backend, "fixed").prepare(run.costs).extract(
+            run.extraction, path = get_backend(backend, "fixed", run.arith.navfn).prepare(run.costs).extract(
                 run.potential, cell, run.robot_cell, 0)
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
         return []
     run.path = path
-    return [Pose(*plugin_map_to_world(cm, px, py)) for px, py in path[::-1].tolist()]
+    return [Pose(*plugin_map_to_world(cm, px, py, run.arith)) for px, py in path[::-1].tolist()]
 
 
-def smooth_approach_to_goal(goal: Pose, poses: list, same_position: bool = True) -> list:
+def smooth_approach_to_goal(goal: Pose, poses: list, same_position: bool = True,
+                            arith: PluginArithmetic = PLUGIN_X86_64) -> list:
     """``smoothApproachToGoal``: replace the last pose by the goal when it lies farther from the
     one before than the goal does, or (same position; Jazzy on) to take its orientation; else
     append it."""
     if len(poses) >= 2:
         before, last = poses[-2], poses[-1]
-        if squared_distance(last, before) > squared_distance(goal, before):
+        if squared_distance(last, before, arith) > squared_distance(goal, before, arith):
             return poses[:-1] + [goal]
-        if same_position and squared_distance(last, goal) < 1e-6:
+        if same_position and squared_distance(last, goal, arith) < 1e-6:
             return poses[:-1] + [goal]
     return poses + [goal]
 
@@ -588,7 +614,7 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
     on_map = all(0 <= c[0] < nx and 0 <= c[1] < ny for c in (navfn_start, navfn_goal))
     if on_map:
         # calcNavFn* only propagate; calcPath comes later, from the chosen pose's cell
-        planner = get_backend(backend).prepare(run.costs)
+        planner = get_backend(backend, arith=run.arith.navfn).prepare(run.costs)
         r = planner.run(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
         if variant == "fixed" and not fix.reached(r.start_potential):
             r = planner.run_fixed(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
@@ -619,7 +645,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
     if backend == "jit":
         from ..backends import jit as J
 
-        planner = J.JitPlanner(add_border(run.costs))
+        planner = J.JitPlanner(add_border(run.costs), arith=run.arith.navfn)
         no_memo = np.empty(0, np.float32)
         run.reached = bool(J.propagate(planner.D, planner.costs, nx, ny, navfn_start[0], navfn_start[1], navfn_goal[0],
                                        navfn_goal[1], astar, run.cycle_limit, planner.pot, planner.pending, planner.pb,
@@ -628,7 +654,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
         run.potential = planner.pot.reshape(ny, nx).copy()
         run.cycles, run.dropped = int(planner.counters[J.CYCLES]), int(planner.counters[J.DROPPED])
         return
-    st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal)
+    st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal, arith=run.arith.navfn)
     run.reached = bool(propagate(st, navfn_start, navfn_goal, astar, run.cycle_limit, at_start=True,
                                  record_trace=False))
     run.potential = np.array(st.potential, dtype=np.float32).reshape(ny, nx)

@@ -26,7 +26,8 @@ import subprocess
 from collections import defaultdict
 from pathlib import Path
 
-from ..spec.arithmetic import CONVERSIONS, Arithmetic, site_of_line
+from ..spec.arithmetic import (CONVERSIONS, PLUGIN_SITES, Arithmetic, PluginArithmetic, plugin_site_of_line,
+                               site_of_line)
 from ..spec.numeric import CONVERTERS
 
 HERE = Path(__file__).resolve().parent
@@ -54,6 +55,76 @@ def fused_lines(assembly: str, source_name: str) -> list:
         if FMA.match(text) and current and Path(files.get(current[0], "")).name == source_name:
             lines.append(current[1])
     return lines
+
+
+def fused_lines_by_file(assembly: str) -> dict:
+    """``{(source file path, line): fused instructions}`` of every fused multiply-add of
+    ``assembly`` that has a source line, in any file (headers inlined into it too)."""
+    files, current, found = {}, None, defaultdict(int)
+    for text in assembly.splitlines():
+        m = FILE.match(text)
+        if m:
+            files[m.group(1)] = Path(m.group(2)) / m.group(3) if m.group(3) else Path(m.group(2))
+            continue
+        m = LOC.match(text)
+        if m:
+            current = (m.group(1), int(m.group(2)))
+            continue
+        if FMA.match(text) and current and current[0] in files:
+            found[(files[current[0]], current[1])] += 1
+    return dict(found)
+
+
+def plugin_record(assembly_text: str) -> dict:
+    """build.json's ``plugin_arithmetic`` entry from the assembly of ``navfn_planner.cpp``: the
+    plugin sites (:data:`~navfn_smt.spec.arithmetic.PLUGIN_SITES`) fused, every fused line by file,
+    and what the model cannot express (a fused line of the plugin's files that is no site, or a
+    site fused on some of its lines only, unless its value is the same either way).  NavFn's
+    own lines (navfn.cpp) are its arithmetic's, found apart."""
+    found, problems, fused = defaultdict(set), [], set()
+    lines = fused_lines_by_file(assembly_text)
+    texts = {}
+    for (path, n), _ in sorted(lines.items(), key=lambda kv: (str(kv[0][0]), kv[0][1])):
+        if path.name == "navfn.cpp":
+            continue
+        text = texts.setdefault(path, path.read_text(encoding="utf-8", errors="replace").splitlines()
+                                if path.is_file() else [])
+        line = text[n - 1] if 0 < n <= len(text) else ""
+        site = plugin_site_of_line(path.name, line)
+        if site is None:
+            problems.append(f"{path.name}:{n} fused `{line.strip() or '?'}`, which is no multiply-add site of the "
+                            f"plugin model")
+        else:
+            found[site].add((path, n))
+    for site, at in found.items():
+        path = next(iter(at))[0]
+        every = {(path, i + 1) for i, t in enumerate(texts[path]) if plugin_site_of_line(path.name, t) == site}
+        if at == every or PLUGIN_SITES[site][3]:
+            fused.add(site)
+        else:
+            problems.append(f"{site} fused on {path.name} lines {sorted(n for _, n in at)} but not on "
+                            f"{sorted(n for _, n in every - at)}")
+    return {"fused": sorted(fused), "fused_instructions": sum(v for (p, _), v in lines.items() if p.name != "navfn.cpp"),
+            "sites": {s: [f"{p.name}:{n}" for p, n in sorted(v, key=lambda t: t[1])] for s, v in sorted(found.items())},
+            "unexpressible": problems}
+
+
+def plugin_find(tc, source: Path, includes, defines, folder: Path) -> dict:
+    """The plugin's arithmetic as ``tc`` builds ``navfn_planner.cpp`` (:func:`plugin_record`)."""
+    return plugin_record(assembly(tc, source, includes, defines, folder))
+
+
+def plugin_of_build(doc: dict):
+    """The :class:`PluginArithmetic` a plugin build records, or None with why."""
+    navfn, why = of_build(doc)
+    if navfn is None:
+        return None, why
+    entry = doc.get("plugin_arithmetic")
+    if entry is None:
+        return None, "this build does not record its plugin's arithmetic (built before navfn-smt found it): build it again"
+    if entry.get("unexpressible"):
+        return None, "the plugin model cannot express this build's arithmetic: " + "; ".join(entry["unexpressible"])
+    return PluginArithmetic(navfn, frozenset(entry["fused"])), None
 
 
 def fused_sites(source: Path, lines) -> tuple:

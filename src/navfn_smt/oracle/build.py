@@ -52,6 +52,7 @@ from typing import Optional
 
 from ..errors import NavfnInputError
 from .arithmetic import find as find_arithmetic
+from .arithmetic import plugin_find
 from .arithmetic import record as record_arithmetic
 from .library import disassemble, elf_target, fused_lines_of_binary
 from .targets import Toolchain, toolchain
@@ -370,6 +371,11 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
                 navfn_cpp = _plain_job(src, jobs)[0]
                 lines, untraced = fused_lines_of_binary(disassemble(lib, tc.target), navfn_cpp.name)
                 arith = record_arithmetic(lines, navfn_cpp, tc, runner, tmp / "arithmetic", untraced)
+            plugin_arith = None
+            if "navfn-plugin" in programs:
+                sources, includes, defines = jobs["navfn-plugin"][:3]
+                planner_cpp = next(f for f in sources if Path(f).name == "navfn_planner.cpp")
+                plugin_arith = plugin_find(tc, planner_cpp, includes, defines, tmp / "arithmetic")
         except RuntimeError as e:
             raise NavfnInputError(f"the arithmetic of the {tc.target} build could not be found: {e}") from None
         commit, why = git_commit(src)
@@ -378,6 +384,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             **({"git_commit_note": why} if why else {}),
             "target": tc.target, "machine": tc.machine(), "compiler": tc.cxx, "compiler_version": tc.version(),
             "flags": tc.all_flags, "runner": runner, "arithmetic": arith,
+            **({"plugin_arithmetic": plugin_arith} if plugin_arith is not None else {}),
             "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs), "skipped": skipped,
             "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src, jobs)},
             "anchor": ANCHOR,

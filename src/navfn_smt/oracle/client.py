@@ -22,7 +22,7 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.planner import PlanResult
 from ..spec.arithmetic import X86_64
-from .arithmetic import of_build
+from .arithmetic import of_build, plugin_of_build
 from .build import load_build
 
 
@@ -153,6 +153,14 @@ class PluginOracle(_Program):
         self.program = "navfn-plugin-fixed" if variant == "fixed" else "navfn-plugin"
         self.planning_seconds = 0.0
         super().__init__(folder)
+
+    def plugin_arithmetic(self):
+        """The :class:`~navfn_smt.spec.arithmetic.PluginArithmetic` the plugin build was found to
+        compute in; a clear error when the model cannot express it (or the build does not record it)."""
+        arith, why = plugin_of_build(self.build)
+        if arith is None:
+            raise NavfnInputError(f"{self.folder}: {why}")
+        return arith
 
     def create_plans(self, cm, params, pairs) -> list[PluginAnswer]:
         """``createPlan(start, goal)`` for every (start, goal) :class:`~navfn_smt.nav2.plugin.Pose`

@@ -85,3 +85,49 @@ KNOWN = {
 def site_of_line(text: str):
     """The site whose pattern a line of navfn.cpp matches, or None."""
     return next((s for s, (_, pattern, _) in SITES.items() if re.search(pattern, text)), None)
+
+
+# The multiply-adds of the planner plugin's own code: navfn_planner.cpp and the headers it inlines
+# (site -> (the C++, a pattern of its line, the file, whether its value is the same fused or not)).
+# Costmap2D's own multiply-adds (mapToWorld, worldToMapEnforceBounds, updateOrigin) are in
+# functions the plugin never calls (tests/test_arithmetic.py holds that against the sources).
+PLUGIN_SITES = {
+    "map_to_world": ("NavfnPlanner::mapToWorld: origin + m * resolution (double), each published position",
+                     r"getOrigin[XY]\(\)\s*\+\s*m[xy]\s*\*", "navfn_planner.cpp", False),
+    "squared_distance": ("squared_distance: dx * dx + dy * dy (double), the tolerance search and the smoothing",
+                         r"dx\s*\*\s*dx\s*\+\s*dy\s*\*\s*dy", "navfn_planner.hpp", False),
+    "yaw_quaternion": ("orientationAroundZAxis: setRPY(0, 0, yaw)'s products (double); every product with the "
+                       "sine of the zero roll or pitch is an exact zero, so fused or not the quaternion is the same",
+                       r"q\.[xyzw]\s*=\s*\w+\s*\*\s*\w+\s*\*\s*\w+\s*[-+]", "geometry_utils.hpp", True),
+}
+
+
+def plugin_site_of_line(file_name: str, text: str):
+    """The plugin site a line of ``file_name`` is, or None."""
+    return next((s for s, (_, pattern, f, _) in PLUGIN_SITES.items()
+                 if f == file_name and re.search(pattern, text)), None)
+
+
+@dataclass(frozen=True)
+class PluginArithmetic:
+    """The arithmetic of a plugin build: NavFn's (:class:`Arithmetic`) and the plugin sites
+    (:data:`PLUGIN_SITES`) its compiler fused."""
+
+    navfn: Arithmetic = X86_64
+    fused: frozenset = frozenset()
+
+    def __post_init__(self):
+        unknown = sorted(set(self.fused) - set(PLUGIN_SITES))
+        if unknown:
+            raise ValueError(f"no such plugin site: {unknown}")
+
+    def fuses(self, site: str) -> bool:
+        return site in self.fused
+
+    @property
+    def name(self) -> str:
+        plugin = "+".join(sorted(self.fused)) or "none"
+        return f"{self.navfn.name}, plugin fused[{plugin}]"
+
+
+PLUGIN_X86_64 = PluginArithmetic()
