@@ -665,3 +665,13 @@ def test_golden_files_recorded_from_arm64_replay_on_the_spec_in_its_arithmetic(t
     capsys.readouterr()
     assert main(["difftest", str(suite), "--target", "sparc", "--quiet"]) == 2
     assert "no such arithmetic" in capsys.readouterr().err
+    # the spec in arm64's arithmetic records the arm64 build's golden files byte for byte
+    from navfn_smt.difftest.record import compare_golden_files
+
+    ours = tmp_path / "spec"
+    shutil.copytree(EXAMPLE, ours)
+    assert main(["suite", "record", str(ours), "--target", "aarch64", "--overwrite", "--quiet"]) == 0
+    pairs = [(d / f"golden_{m}.npz", suite / d.relative_to(ours) / f"golden_{m}.npz")
+             for d in discover(ours) for m in MODES]
+    assert len(pairs) == 26 and [compare_golden_files(a, b) for a, b in pairs] == [[]] * 26
+    assert main(["suite", "record", str(ours), "--target", "aarch64", "--oracle", oracle, "--overwrite"]) == 2

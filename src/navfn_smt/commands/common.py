@@ -73,3 +73,15 @@ def page_sources(check_reports, split_dir, files=None) -> dict:
     known = known_of_files(sorted({ob.source for ob in declared if ob.source}), declared, PREDICATES)
     return {"checks": checks, "images": page.images_dir(check_reports), "split": split,
             "declared": declared, "known": known}
+
+
+def target_arithmetic(target):
+    """The arithmetic ``--target NAME`` names (None: none given, x86-64's, the golden files' of
+    the shared suite); an unknown name is a clear error."""
+    from ..spec.arithmetic import KNOWN
+
+    if target is None:
+        return None
+    if target not in KNOWN:
+        raise NavfnInputError(f"--target {target!r}: no such arithmetic (there are: {', '.join(KNOWN)})")
+    return KNOWN[target]

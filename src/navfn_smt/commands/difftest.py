@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..errors import NavfnInputError
-from .common import BACKEND_HELP, MODE_HELP, check_files, suite_or_example
+from .common import BACKEND_HELP, MODE_HELP, check_files, suite_or_example, target_arithmetic
 
 
 def cmd_difftest(args) -> int:
@@ -33,7 +33,7 @@ def cmd_difftest(args) -> int:
             raise NavfnInputError("--target names the arithmetic of golden files; with --oracle DIR the build's "
                                   "own arithmetic is used (found in the build)")
         return _live(args, suite, modes)
-    arith = _target_arithmetic(args.target)
+    arith = target_arithmetic(args.target)
     total = count_cases(suite, modes)
     label = f"difftest {suite} ({args.backend}{f', {arith.name} arithmetic' if arith else ''})"
     with progress_bar(total, label, enabled=not args.quiet) as advance:
@@ -74,17 +74,6 @@ def _live(args, suite, modes) -> int:
         report.write_json(args.json, suite, args.backend, modes, summary)
     report.closing_line(summary)
     return 0 if summary["failed"] == 0 else 1
-
-
-def _target_arithmetic(target):
-    """The arithmetic of ``--target NAME`` (None: x86-64's, the golden files of the shared suite)."""
-    from ..spec.arithmetic import KNOWN
-
-    if target is None:
-        return None
-    if target not in KNOWN:
-        raise NavfnInputError(f"--target {target!r}: no such arithmetic (there are: {', '.join(KNOWN)})")
-    return KNOWN[target]
 
 
 def _library_build(folder) -> str:
