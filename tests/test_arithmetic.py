@@ -75,7 +75,7 @@ PLANNER_CPP = """void NavfnPlanner::mapToWorld(double mx, double my, double & wx
   double other = a * b + c;
 }
 """
-PLANNER_HPP = "    return dx * dx + dy * dy;\n"
+PLANNER_HPP = "    double dx = p1.x - p2.x;\n    double dy = p1.y - p2.y;\n    return dx * dx + dy * dy;\n"
 GEOMETRY = """  q.x = sr * cp * cy - cr * sp * sy;
   q.y = cr * sp * cy + sr * cp * sy;
   q.z = cr * cp * sy - sr * sp * cy;
@@ -92,19 +92,46 @@ def _plugin_asm(tmp_path, fused) -> str:
         (tmp_path / name).write_text(text)
         body.append(f'\t.file {k} "{tmp_path}" "{name}"')
     number = {name: k for k, name in enumerate(files, start=1)}
-    for name, line in fused:
-        body += [f"\t.loc {number[name]} {line} 3", "\tfmadd\td0, d1, d2, d3"]
+    for item in fused:
+        name, line, insn = item if len(item) == 3 else (*item, "fmadd\td0, d1, d2, d3")
+        body += [f"\t.loc {number[name]} {line} 3", f"\t{insn}"]
     return "\n".join(body) + "\n"
 
 
+def _square(fused: str, x86: bool = False) -> list:
+    """One inlined copy of ``dx * dx + dy * dy`` (navfn_planner.hpp lines 1 to 3) that fuses the
+    square of ``fused``, as arm64's or x86-64-v3's code (AT&T) does it."""
+    other = "dy" if fused == "dx" else "dx"
+    line = {"dx": 1, "dy": 2}
+    if x86:
+        return [("navfn_planner.hpp", line[fused], "vsubsd\t%xmm0, %xmm2, %xmm4"),
+                ("navfn_planner.hpp", line[other], "vsubsd\t%xmm1, %xmm3, %xmm5"),
+                ("navfn_planner.hpp", 3, "vmulsd\t%xmm5, %xmm5, %xmm5"),
+                ("navfn_planner.hpp", 3, "vfmadd132sd\t%xmm4, %xmm5, %xmm4")]
+    return [("navfn_planner.hpp", line[fused], "fsub\td4, d6, d0"), ("navfn_planner.hpp", line[other], "fsub\td5, d3, d1"),
+            ("navfn_planner.hpp", 3, "fmul\td5, d5, d5"), ("navfn_planner.hpp", 3, "fmadd\td4, d4, d4, d5")]
+
+
 def test_the_plugins_fused_lines_are_its_sites_wherever_they_are_inlined_from(tmp_path):
-    both = [("navfn_planner.cpp", 3), ("navfn_planner.cpp", 4), ("navfn_planner.hpp", 1), ("navfn.cpp", 4)]
+    both = [("navfn_planner.cpp", 3), ("navfn_planner.cpp", 4), *_square("dx"), *_square("dx", x86=True),
+            ("navfn.cpp", 4)]
     doc = plugin_record(_plugin_asm(tmp_path, both + [("geometry_utils.hpp", 1), ("geometry_utils.hpp", 2)]))
     assert doc["unexpressible"] == [] and doc["fused"] == ["map_to_world", "squared_distance", "yaw_quaternion"]
     assert doc["sites"]["map_to_world"] == ["navfn_planner.cpp:3", "navfn_planner.cpp:4"]
-    assert doc["fused_instructions"] == 5  # navfn.cpp's own line is NavFn's arithmetic, found apart
-    assert plugin_record(_plugin_asm(tmp_path, [])) == {"fused": [], "fused_instructions": 0, "sites": {},
-                                                        "unexpressible": []}
+    assert doc["squared_distance_orders"] == ["dx", "dx"]
+    assert doc["fused_instructions"] == 6  # navfn.cpp's own line is NavFn's arithmetic, found apart
+    assert plugin_record(_plugin_asm(tmp_path, [])) == {"fused": [], "squared_distance_orders": [],
+                                                        "fused_instructions": 0, "sites": {}, "unexpressible": []}
+
+
+@pytest.mark.parametrize("x86", [False, True], ids=["arm64", "x86-64-v3"])
+def test_an_inlined_copy_that_fuses_the_other_square_is_unexpressible(tmp_path, x86):
+    """GCC chose fma(dy, dy, dx * dx) in one inlined copy of Jazzy's and Humble's squared_distance
+    and fma(dx, dx, dy * dy) in the others: the model computes the latter only, so such a plugin is
+    not compared."""
+    doc = plugin_record(_plugin_asm(tmp_path, [*_square("dx", x86), *_square("dy", x86)]))
+    assert doc["squared_distance_orders"] == ["dx", "dy"] and "squared_distance" not in doc["fused"]
+    assert "fma(dx, dx, dy * dy) in 1 inlined copies and otherwise in 1" in doc["unexpressible"][0]
 
 
 def test_a_plugin_line_that_is_no_site_or_a_site_fused_in_part_is_unexpressible(tmp_path):

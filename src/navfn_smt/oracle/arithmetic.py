@@ -75,6 +75,61 @@ def fused_lines_by_file(assembly: str) -> dict:
     return dict(found)
 
 
+def _operands(text):
+    parts = text.split(None, 1)
+    return parts[0], [o.strip() for o in parts[1].split(",")] if len(parts) > 1 else []
+
+
+def squared_operand_orders(assembly: str, is_site) -> list:
+    """Which square each fused instruction of ``dx * dx + dy * dy`` fused (on a line ``is_site(path,
+    line)`` says is it): ``"dx"`` for ``fma(dx, dx, dy * dy)``, ``"dy"`` for ``fma(dy, dy, dx * dx)``,
+    None when not found.  The multiplicand register is followed back to the instruction that last
+    wrote it, and that instruction's line says ``dx =`` or ``dy =`` (arm64's ``fmadd d, n, m, a``;
+    x86's ``vfmadd{132,213,231}sd`` in AT&T order).  Each inlined copy may choose differently."""
+    files, current, body, orders = {}, None, [], []
+    for text in assembly.splitlines():
+        m = FILE.match(text)
+        if m:
+            files[m.group(1)] = Path(m.group(2)) / m.group(3) if m.group(3) else Path(m.group(2))
+            continue
+        m = LOC.match(text)
+        if m:
+            current = (files.get(m.group(1)), int(m.group(2)))
+            continue
+        t = text.strip()
+        if not t or t.startswith(".") or t.endswith(":"):
+            continue
+        body.append((current, t))
+        if FMA.match(text) and current and current[0] is not None and is_site(*current):
+            orders.append(_order(body))
+    return orders
+
+
+def _order(body) -> str:
+    """The square fused by the last instruction of ``body`` ((source line, text) pairs)."""
+    loc, insn = body[-1]
+    op, args = _operands(insn)
+    if args and args[0].startswith("%"):  # AT&T: vfmadd{132,213,231}sd a, b, c (Intel c, b, a)
+        a, b, c = args
+        mult = {"132": (c, a), "213": (b, c), "231": (b, a)}.get(re.sub(r"\D", "", op)[:3])
+        if mult is None or mult[0] != mult[1]:
+            return None
+        reg, dest_at = mult[0], -1
+    else:  # arm64: fmadd d, n, m, a
+        if len(args) != 4 or args[1] != args[2]:
+            return None
+        reg, dest_at = args[1], 0
+    for where, text in reversed(body[:-1]):
+        _, ops = _operands(text)
+        if ops and ops[dest_at] == reg:
+            if where is None or where[0] is None or not where[0].is_file():
+                return None
+            line = where[0].read_text(errors="replace").splitlines()[where[1] - 1]
+            m = re.search(r"\b(dx|dy)\s*=", line)
+            return m.group(1) if m else None
+    return None
+
+
 def plugin_record(assembly_text: str) -> dict:
     """build.json's ``plugin_arithmetic`` entry from the assembly of ``navfn_planner.cpp``: the
     plugin sites (:data:`~navfn_smt.spec.arithmetic.PLUGIN_SITES`) fused, every fused line by file,
@@ -104,7 +159,18 @@ def plugin_record(assembly_text: str) -> dict:
         else:
             problems.append(f"{site} fused on {path.name} lines {sorted(n for _, n in at)} but not on "
                             f"{sorted(n for _, n in every - at)}")
-    return {"fused": sorted(fused), "fused_instructions": sum(v for (p, _), v in lines.items() if p.name != "navfn.cpp"),
+    orders = []
+    if "squared_distance" in fused:  # the model computes fma(dx, dx, dy * dy); an inlined copy may differ
+        orders = squared_operand_orders(assembly_text, lambda path, n: path.name != "navfn.cpp" and (
+            path, n) in found["squared_distance"])
+        other = [o for o in orders if o != "dx"]
+        if other:
+            fused.discard("squared_distance")
+            problems.append(f"squared_distance fused as fma(dx, dx, dy * dy) in {len(orders) - len(other)} inlined "
+                            f"copies and otherwise in {len(other)} ({', '.join(map(str, other))}: fma(dy, dy, dx * dx) "
+                            f"or not found); the model computes the first only")
+    return {"fused": sorted(fused), "squared_distance_orders": orders,
+            "fused_instructions": sum(v for (p, _), v in lines.items() if p.name != "navfn.cpp"),
             "sites": {s: [f"{p.name}:{n}" for p, n in sorted(v, key=lambda t: t[1])] for s, v in sorted(found.items())},
             "unexpressible": problems}
 
