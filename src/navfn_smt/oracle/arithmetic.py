@@ -39,28 +39,10 @@ PROBE_INPUTS = (math.nan, math.inf, -math.inf, 3.0e9, -3.0e9, 2147483648.0, -214
 EXPECTED = {name: [convert(v) for v in PROBE_INPUTS] for name, convert in CONVERTERS.items()}
 
 
-def fused_lines(assembly: str, source_name: str) -> list:
-    """The source lines of ``source_name`` (a file name) that fused multiply-add instructions
-    of ``assembly`` (``-S -g`` output) come from, in order, one entry per instruction."""
-    files, current, lines = {}, None, []
-    for text in assembly.splitlines():
-        m = FILE.match(text)
-        if m:
-            files[m.group(1)] = m.group(3) or m.group(2)
-            continue
-        m = LOC.match(text)
-        if m:
-            current = (m.group(1), int(m.group(2)))
-            continue
-        if FMA.match(text) and current and Path(files.get(current[0], "")).name == source_name:
-            lines.append(current[1])
-    return lines
-
-
-def fused_lines_by_file(assembly: str) -> dict:
-    """``{(source file path, line): fused instructions}`` of every fused multiply-add of
-    ``assembly`` that has a source line, in any file (headers inlined into it too)."""
-    files, current, found = {}, None, defaultdict(int)
+def _located(assembly: str):
+    """Each line of ``assembly`` (``-S -g`` output) that is not a ``.file`` or ``.loc`` directive,
+    with the source ``(path, line)`` its code comes from (``(None, None)`` before the first)."""
+    files, current = {}, (None, None)
     for text in assembly.splitlines():
         m = FILE.match(text)
         if m:
@@ -68,14 +50,30 @@ def fused_lines_by_file(assembly: str) -> dict:
             continue
         m = LOC.match(text)
         if m:
-            current = (m.group(1), int(m.group(2)))
+            current = (files.get(m.group(1)), int(m.group(2)))
             continue
-        if FMA.match(text) and current and current[0] in files:
-            found[(files[current[0]], current[1])] += 1
+        yield current, text
+
+
+def fused_lines(assembly: str, source_name: str) -> list:
+    """The source lines of ``source_name`` (a file name) that fused multiply-add instructions
+    of ``assembly`` (``-S -g`` output) come from, in order, one entry per instruction."""
+    return [n for (path, n), text in _located(assembly)
+            if FMA.match(text) and path is not None and path.name == source_name]
+
+
+def fused_lines_by_file(assembly: str) -> dict:
+    """``{(source file path, line): fused instructions}`` of every fused multiply-add of
+    ``assembly`` that has a source line, in any file (headers inlined into it too)."""
+    found = defaultdict(int)
+    for where, text in _located(assembly):
+        if FMA.match(text) and where[0] is not None:
+            found[where] += 1
     return dict(found)
 
 
 def _operands(text):
+    """An instruction's mnemonic and its operands, as written."""
     parts = text.split(None, 1)
     return parts[0], [o.strip() for o in parts[1].split(",")] if len(parts) > 1 else []
 
@@ -86,30 +84,23 @@ def squared_operand_orders(assembly: str, is_site) -> list:
     None when not found.  The multiplicand register is followed back to the instruction that last
     wrote it, and that instruction's line says ``dx =`` or ``dy =`` (arm64's ``fmadd d, n, m, a``;
     x86's ``vfmadd{132,213,231}sd`` in AT&T order).  Each inlined copy may choose differently."""
-    files, current, body, orders = {}, None, [], []
-    for text in assembly.splitlines():
-        m = FILE.match(text)
-        if m:
-            files[m.group(1)] = Path(m.group(2)) / m.group(3) if m.group(3) else Path(m.group(2))
-            continue
-        m = LOC.match(text)
-        if m:
-            current = (files.get(m.group(1)), int(m.group(2)))
-            continue
+    body, orders = [], []
+    for where, text in _located(assembly):
         t = text.strip()
         if not t or t.startswith(".") or t.endswith(":"):
             continue
-        body.append((current, t))
-        if FMA.match(text) and current and current[0] is not None and is_site(*current):
+        body.append((where, t))
+        if FMA.match(text) and where[0] is not None and is_site(*where):
             orders.append(_order(body))
     return orders
 
 
 def _order(body) -> str:
     """The square fused by the last instruction of ``body`` ((source line, text) pairs)."""
-    loc, insn = body[-1]
-    op, args = _operands(insn)
+    op, args = _operands(body[-1][1])
     if args and args[0].startswith("%"):  # AT&T: vfmadd{132,213,231}sd a, b, c (Intel c, b, a)
+        if len(args) != 3:
+            return None
         a, b, c = args
         mult = {"132": (c, a), "213": (b, c), "231": (b, a)}.get(re.sub(r"\D", "", op)[:3])
         if mult is None or mult[0] != mult[1]:
@@ -122,7 +113,7 @@ def _order(body) -> str:
     for where, text in reversed(body[:-1]):
         _, ops = _operands(text)
         if ops and ops[dest_at] == reg:
-            if where is None or where[0] is None or not where[0].is_file():
+            if where[0] is None or not where[0].is_file():
                 return None
             line = where[0].read_text(errors="replace").splitlines()[where[1] - 1]
             m = re.search(r"\b(dx|dy)\s*=", line)
