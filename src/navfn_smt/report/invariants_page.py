@@ -364,13 +364,14 @@ def _replayed_parts(path: Path) -> str:
     """A replay done in parts so far (``check --replay --part K/N``, reports in ``parts/``): how
     many of the N parts replayed, or that none has."""
     stem = path.name.replace(".replay.json", "")
-    reports = [_read_json(f, "replay") for f in sorted((path.parent / "parts").glob(f"{stem}.replay-*of*.json"))]
-    done = [r for r in reports if r.get("status") == "replayed"]
+    files = sorted((path.parent / "parts").glob(f"{stem}.replay-*of*.json"))
+    done = [(f, r) for f in files if (r := _read_json(f, "replay")).get("status") == "replayed"]
     if not done:
         return "; not replayed"
-    n = done[0]["part"][1]
-    paths = sum(r["paths"] for r in done)
-    return (f"; replayed in parts so far: {len(done)} of {n} ([reports]({REPLAY_LINK}parts/), {paths:,} control "
+    n = done[0][1]["part"][1]
+    paths = sum(r["paths"] for _, r in done)
+    links = ", ".join(f"[{r['part'][0]}]({REPLAY_LINK}parts/{f.name})" for f, r in done)
+    return (f"; replayed in parts so far: {len(done)} of {n} (parts {links}; {paths:,} control "
             f"paths re-checked); the whole replay once every part is (`check --replay --combine`)")
 
 
