@@ -130,13 +130,9 @@ class NumbaDomainType(types.Dummy):
         super().__init__(name=f"NumbaDomain[{arith.key}]")
 
 
-_TYPES = {}
-
-
+@functools.lru_cache(maxsize=None)
 def _type_of(arith) -> NumbaDomainType:
-    if arith not in _TYPES:
-        _TYPES[arith] = NumbaDomainType(arith)
-    return _TYPES[arith]
+    return NumbaDomainType(arith)
 
 
 typeof_impl.register(NumbaDomain)(lambda val, c: _type_of(val.arith))
@@ -144,15 +140,14 @@ register_model(NumbaDomainType)(models.OpaqueModel)
 lower_constant(NumbaDomainType)(lambda context, builder, ty, pyval: context.get_dummy_value())
 unbox(NumbaDomainType)(lambda typ, obj, c: NativeValue(c.context.get_dummy_value()))
 
-_DOMAINS = {}
+@functools.lru_cache(maxsize=None)
+def _domain(arith) -> NumbaDomain:
+    return NumbaDomain(arith)
 
 
 def numba_domain(arith=None) -> NumbaDomain:
-    """The compiled domain computing as a build of ``arith`` does (None: x86-64's)."""
-    arith = X86_64 if arith is None else arith
-    if arith not in _DOMAINS:
-        _DOMAINS[arith] = NumbaDomain(arith)
-    return _DOMAINS[arith]
+    """The compiled domain computing as a build of ``arith`` does (None: x86-64's), one per arithmetic."""
+    return _domain(X86_64 if arith is None else arith)
 
 
 ND = numba_domain(X86_64)

@@ -222,9 +222,12 @@ def plugin_map_to_world(cm: Costmap, px: float, py: float,
 
 def squared_distance(a: Pose, b: Pose, arith: PluginArithmetic = PLUGIN_X86_64) -> float:
     """``squared_distance`` of ``navfn_planner.hpp`` (double)."""
-    if arith.fuses("squared_distance"):
-        return fused_squared_offset(a.x - b.x, a.y - b.y)
-    return squared_offset(a.x - b.x, a.y - b.y)
+    return squared_offset_in(arith)(a.x - b.x, a.y - b.y)
+
+
+def squared_offset_in(arith: PluginArithmetic):
+    """:func:`squared_offset`, or :func:`fused_squared_offset` where the build fused the site."""
+    return fused_squared_offset if arith.fuses("squared_distance") else squared_offset
 
 
 def squared_offset(dx, dy):
@@ -474,8 +477,7 @@ def _legal_pose(cm: Costmap, goal: Pose, tolerance: float, run: PluginRun) -> Op
     if len(xi) == 0 or len(yi) == 0:
         return None
     pot = run.potential[rows[yi][:, None], cols[xi][None, :]].astype(np.float64)  # (y, x): the loop's order
-    offset = fused_squared_offset if run.arith.fuses("squared_distance") else squared_offset
-    sdist = offset((xs[xi] - goal.x)[None, :], (ys[yi] - goal.y)[:, None])
+    sdist = squared_offset_in(run.arith)((xs[xi] - goal.x)[None, :], (ys[yi] - goal.y)[:, None])
     taken = tolerance_prefers(pot, sdist, DBL_MAX)  # the points the loop could take at all
     if not taken.any():
         return None

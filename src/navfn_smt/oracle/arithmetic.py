@@ -19,6 +19,7 @@ arithmetic to the build, which is the evidence that what was found is right.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import struct
@@ -72,18 +73,24 @@ def fused_lines_by_file(assembly: str) -> dict:
     return dict(found)
 
 
+def _source_lines(path: Path) -> tuple:
+    """The lines of a source file the assembly names (empty when it is not there to read)."""
+    return tuple(path.read_text(encoding="utf-8", errors="replace").splitlines()) if path.is_file() else ()
+
+
 def _operands(text):
     """An instruction's mnemonic and its operands, as written."""
     parts = text.split(None, 1)
     return parts[0], [o.strip() for o in parts[1].split(",")] if len(parts) > 1 else []
 
 
-def squared_operand_orders(assembly: str, is_site) -> list:
+def squared_operand_orders(assembly: str, is_site, lines_of=_source_lines) -> list:
     """Which square each fused instruction of ``dx * dx + dy * dy`` fused (on a line ``is_site(path,
     line)`` says is it): ``"dx"`` for ``fma(dx, dx, dy * dy)``, ``"dy"`` for ``fma(dy, dy, dx * dx)``,
     None when not found.  The multiplicand register is followed back to the instruction that last
     wrote it, and that instruction's line says ``dx =`` or ``dy =`` (arm64's ``fmadd d, n, m, a``;
-    x86's ``vfmadd{132,213,231}sd`` in AT&T order).  Each inlined copy may choose differently."""
+    x86's ``vfmadd{132,213,231}sd`` in AT&T order).  Each inlined copy may choose differently.
+    ``lines_of(path)``: a source file's lines."""
     body, orders = [], []
     for where, text in _located(assembly):
         t = text.strip()
@@ -91,11 +98,11 @@ def squared_operand_orders(assembly: str, is_site) -> list:
             continue
         body.append((where, t))
         if FMA.match(text) and where[0] is not None and is_site(*where):
-            orders.append(_order(body))
+            orders.append(_order(body, lines_of))
     return orders
 
 
-def _order(body) -> str:
+def _order(body, lines_of) -> str:
     """The square fused by the last instruction of ``body`` ((source line, text) pairs)."""
     op, args = _operands(body[-1][1])
     if args and args[0].startswith("%"):  # AT&T: vfmadd{132,213,231}sd a, b, c (Intel c, b, a)
@@ -113,10 +120,10 @@ def _order(body) -> str:
     for where, text in reversed(body[:-1]):
         _, ops = _operands(text)
         if ops and ops[dest_at] == reg:
-            if where[0] is None or not where[0].is_file():
+            text = lines_of(where[0]) if where[0] is not None else ()
+            if not 0 < where[1] <= len(text):
                 return None
-            line = where[0].read_text(errors="replace").splitlines()[where[1] - 1]
-            m = re.search(r"\b(dx|dy)\s*=", line)
+            m = re.search(r"\b(dx|dy)\s*=", text[where[1] - 1])
             return m.group(1) if m else None
     return None
 
@@ -128,13 +135,12 @@ def plugin_record(assembly_text: str) -> dict:
     site fused on some of its lines only, unless its value is the same either way).  NavFn's
     own lines (navfn.cpp) are its arithmetic's, found apart."""
     found, problems, fused = defaultdict(set), [], set()
+    source = functools.lru_cache(maxsize=None)(_source_lines)  # each file read once per record
     lines = fused_lines_by_file(assembly_text)
-    texts = {}
     for (path, n), _ in sorted(lines.items(), key=lambda kv: (str(kv[0][0]), kv[0][1])):
         if path.name == "navfn.cpp":
             continue
-        text = texts.setdefault(path, path.read_text(encoding="utf-8", errors="replace").splitlines()
-                                if path.is_file() else [])
+        text = source(path)
         line = text[n - 1] if 0 < n <= len(text) else ""
         site = plugin_site_of_line(path.name, line)
         if site is None:
@@ -144,7 +150,7 @@ def plugin_record(assembly_text: str) -> dict:
             found[site].add((path, n))
     for site, at in found.items():
         path = next(iter(at))[0]
-        every = {(path, i + 1) for i, t in enumerate(texts[path]) if plugin_site_of_line(path.name, t) == site}
+        every = {(path, i + 1) for i, t in enumerate(source(path)) if plugin_site_of_line(path.name, t) == site}
         if at == every or PLUGIN_SITES[site][3]:
             fused.add(site)
         else:
@@ -152,8 +158,8 @@ def plugin_record(assembly_text: str) -> dict:
                             f"{sorted(n for _, n in every - at)}")
     orders = []
     if "squared_distance" in fused:  # the model computes fma(dx, dx, dy * dy); an inlined copy may differ
-        orders = squared_operand_orders(assembly_text, lambda path, n: path.name != "navfn.cpp" and (
-            path, n) in found["squared_distance"])
+        orders = squared_operand_orders(assembly_text, lambda path, n: (path, n) in found["squared_distance"],
+                                        source)
         other = [o for o in orders if o != "dx"]
         if other:
             fused.discard("squared_distance")

@@ -34,7 +34,7 @@ from typing import Callable
 import numpy as np
 from numba import njit
 
-from ..backends.numba_domain import JIT_OPTIONS, ND, numba_domain
+from ..backends.numba_domain import JIT_OPTIONS, numba_domain
 from ..check.concolic import ConcolicDomain, V, concrete
 from ..smt.domains import FPDomain, RealDomain
 from ..smt.enumerate import ArrayDomain
@@ -69,7 +69,7 @@ def _numba_value(kind, v):
 
 def numba_results(case: T.KernelCase, rows: list, arith=None) -> list:
     """``case`` compiled against the numba domain in the arithmetic ``arith`` (None: x86-64's,
-    :data:`ND`), called on each row."""
+    :data:`~navfn_smt.backends.numba_domain.ND`), called on each row."""
     if case.name not in _COMPILED:
         _COMPILED[case.name] = njit(**JIT_OPTIONS)(case.call)
     f, D = _COMPILED[case.name], numba_domain(arith)
