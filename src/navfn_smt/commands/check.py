@@ -8,6 +8,13 @@ from ..errors import NavfnInputError
 from ..fileio import check_writable_dir
 from .common import MODE_HELP, check_files, check_positive, vars_of
 
+SEARCH_TIMEOUT = 60.0  # seconds per query of a search: what stays undecided is split, then unknown
+# seconds per query of a replay: each query was decided once, and the slowest recorded unsat of
+# the certificates CI replays took bitwuzla 75 s on this 2-core machine under a test run's load
+# (4x4's, a control path's seventh flip), past the search's limit; ten times that limit keeps a
+# loaded machine's verdict the quiet one's
+REPLAY_TIMEOUT = 600.0
+
 
 def cmd_check(args) -> int:
     """Bounded whole-planner checks; exit 0 only when every property is proved for every size asked."""
@@ -18,6 +25,8 @@ def cmd_check(args) -> int:
     from ..report import check as report
     from ..maps.suite import modes_of
 
+    if args.timeout is None:  # a replay re-asks what a search decided: a limit no load reaches
+        args.timeout = REPLAY_TIMEOUT if args.replay else SEARCH_TIMEOUT
     if args.transcript:
         return _transcript(args)
     if args.replay:
@@ -274,10 +283,11 @@ def register(sub) -> None:
                     "of 0 makes a NaN possible, where the intervals are unsound); lethal cells are enumerated")
     ck.add_argument("--semantics", choices=("fp32", "real"), default="fp32",
                     help="fp32: bit-precise float32 and float64, as the C++ computes (real: not available for check)")
-    ck.add_argument("--timeout", type=float, default=60.0, metavar="S",
-                    help="seconds per solver query; a query bitwuzla and cvc5 leave undecided is split (its cost box "
-                    "cut in four, twice) or evaluated at every point of its box (--exhaustive); what stays "
-                    "undecided is unknown")
+    ck.add_argument("--timeout", type=float, metavar="S",
+                    help=f"seconds per solver query (default {SEARCH_TIMEOUT:g}); a query bitwuzla and cvc5 leave "
+                    "undecided is split (its cost box cut in four, twice) or evaluated at every point of its box "
+                    f"(--exhaustive); what stays undecided is unknown.  With --replay (default {REPLAY_TIMEOUT:g}): "
+                    "a recorded unsat no solver of --solver decides within it refuses the certificate")
     ck.add_argument("--exhaustive", type=float, default=1e7, metavar="POINTS",
                     help="evaluate an undecided query at every point of its cost box when the box has at most this "
                     "many points (numpy, about 5 million points a second)")
