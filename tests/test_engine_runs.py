@@ -63,16 +63,22 @@ def _summary(s: dict) -> dict:
     return {k: v for k, v in s.items() if k != "seconds"}
 
 
+# seconds per query: each of these takes z3 a few seconds alone, and over 30 s beside a
+# certificate's replay and another solver (update_never_raises in fp32 came back unknown on the
+# cluster, proved in this process, in one loaded run); the limit is not what this test compares
+LIMIT = 300
+
+
 def test_prove_same_on_a_cluster(cluster, proof_file):
     from navfn_smt.smt.runner import run
 
-    here = run([proof_file], timeout=30, jobs=Engine(1), solvers=("z3",))
+    here = run([proof_file], timeout=LIMIT, jobs=Engine(1), solvers=("z3",))
     assert [(o.name, o.semantics) for o in here] == [(n, s) for n in QUICK for s in ("real", "fp32")]
     assert not any(o.fails for o in here)
     assert any(o.status == "refuted" and o.witness for o in here)
-    there = run([proof_file], timeout=30, jobs=Engine(scheduler=cluster.scheduler_address), solvers=("z3",))
+    there = run([proof_file], timeout=LIMIT, jobs=Engine(scheduler=cluster.scheduler_address), solvers=("z3",))
     assert _outcomes(there) == _outcomes(here)
-    local = run([proof_file], timeout=30, jobs=Engine(jobs=2), solvers=("z3",))
+    local = run([proof_file], timeout=LIMIT, jobs=Engine(jobs=2), solvers=("z3",))
     assert _outcomes(local) == _outcomes(here)
 
 
