@@ -95,9 +95,9 @@ def test_check_same_on_a_cluster(cluster):
     from navfn_smt.check.runner import check_one_size
 
     args = (("valid-path",), 3, 4, (True, False), 50, 90)
-    here = check_one_size(*args, timeout=60, jobs=Engine(1))
+    here = check_one_size(*args, timeout=LIMIT, jobs=Engine(1))
     assert here["valid-path"].status == "refuted" and here["valid-path"].cases == 32
-    there = check_one_size(*args, timeout=60, jobs=Engine(scheduler=cluster.scheduler_address))
+    there = check_one_size(*args, timeout=LIMIT, jobs=Engine(scheduler=cluster.scheduler_address))
     assert _size_results(there) == _size_results(here)
 
 
