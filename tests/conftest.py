@@ -16,11 +16,6 @@ from pathlib import Path
 
 import pytest
 
-# the tests read the reports as a pipe or a file gets them (one line per table row, the width
-# they need): the test process's COLUMNS=80 would fit them to 80 columns, and cut names short
-for _size in ("COLUMNS", "LINES"):
-    os.environ.pop(_size, None)
-
 REPO = Path(__file__).resolve().parent.parent
 SHARED = Path(os.environ.get("NAVFN_SHARED", REPO.parent / "shared"))
 SUITE = SHARED / "navfn-suite"
@@ -34,18 +29,10 @@ FIXTURE_MARKERS = {"shared_suite": "shared", "shared_suite_large": "large", "nav
                    "local_cluster": "dask", "proof_run": "prove", "progress_run": "prove"}
 
 
-# the tests that share the session's builds of Nav2 (:func:`builds`, three minutes on two cores)
-# run in one test process of ``pytest -n`` (``--dist loadgroup``, pyproject.toml), every other
-# test in the process of its file, with its file's module fixtures (a proof run, a cluster)
-SHARED_BUILDS = "builds"
-
-
 def pytest_collection_modifyitems(config, items):
     skip_slow = pytest.mark.skip(reason="slow: set NAVFN_SLOW=1")
     for item in items:
-        fixtures = getattr(item, "fixturenames", ())
-        item.add_marker(pytest.mark.xdist_group(SHARED_BUILDS if SHARED_BUILDS in fixtures else item.path.name))
-        for fixture in fixtures:
+        for fixture in getattr(item, "fixturenames", ()):
             if fixture in FIXTURE_MARKERS:
                 item.add_marker(FIXTURE_MARKERS[fixture])
         if "slow" in item.keywords and not SLOW:

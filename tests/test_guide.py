@@ -112,8 +112,8 @@ def matches(expected: list[str], actual: list[str]) -> bool:
 BLOCKS = guide_blocks()
 
 
-@pytest.fixture(scope="session")  # a block reads what an earlier one wrote: kept even where a
-def scratch():  # test process runs another file's tests between two of this file's (pytest -n)
+@pytest.fixture(scope="module")
+def scratch():
     d = Path(tempfile.mkdtemp(prefix="guide"))
     yield d
     shutil.rmtree(d, ignore_errors=True)
