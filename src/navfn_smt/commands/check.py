@@ -9,10 +9,10 @@ from ..fileio import check_writable_dir
 from .common import MODE_HELP, check_files, check_positive, vars_of
 
 SEARCH_TIMEOUT = 60.0  # seconds per query of a search: what stays undecided is split, then unknown
-# seconds per query of a replay: each query was decided once, and the slowest recorded unsat of
-# the certificates CI replays took bitwuzla 75 s on this 2-core machine under a test run's load
-# (4x4's, a control path's seventh flip), past the search's limit; ten times that limit keeps a
-# loaded machine's verdict the quiet one's
+# seconds per query of a replay, ten times a search's: each query was decided once, and the
+# slowest recorded unsat measured (4x4's, a control path's seventh flip) took bitwuzla 75 s on a
+# 2-core machine under a test run's load, past the search's limit; a loaded machine's verdict
+# stays the quiet one's
 REPLAY_TIMEOUT = 600.0
 
 
