@@ -52,11 +52,6 @@ def test_overflow_subset_reference_backend():
     _assert_clean([run_task(Task(t.map_dir, t.root, t.mode, t.backend, 1, 2)) for t in tasks])
 
 
-def test_shared_suite_jit_both_modes(shared_suite):
-    s = _assert_clean(run_suite(shared_suite, ("astar", "dijkstra"), "jit", jobs=2))
-    assert s["passed"] == 2 * 121404
-
-
 def test_shared_suite_reference_sample(shared_suite):
     """Every 197th case of every map, plus the cases whose full potential is stored."""
     outcomes = []

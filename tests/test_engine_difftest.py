@@ -109,6 +109,8 @@ def test_auto_stays_in_this_process_below_the_threshold(suite, serial, monkeypat
 
 @pytest.mark.shared
 def test_shared_suite_on_local_workers_equals_serial(shared_suite):
+    """The whole shared suite, both modes, by the JIT: every case passes in this process, and two
+    local workers give the same summary (the suite's only whole run in the tests)."""
     serial = comparable(run_suite(shared_suite, MODES, "jit"))
     assert serial["passed"] == 2 * 121404 and serial["failed"] == 0
     assert comparable(run_suite(shared_suite, MODES, "jit", jobs=2)) == serial

@@ -259,17 +259,6 @@ def test_the_unbounded_build_agrees_with_the_unbounded_spec_where_buffers_overfl
 
 
 # --------------------------------------------------------------------------- navfn-smt ci
-def test_ci_builds_difftests_every_level_and_writes_junit(nav2_src, tmp_path, capsys):
-    import xml.etree.ElementTree as ET
-
-    out = tmp_path / "ci"
-    assert main(["ci", str(nav2_src / "jazzy"), "--out", str(out), "--configs", "20", "--no-prove"]) == 0
-    suite = ET.parse(out / "junit.xml").getroot().find("testsuite")
-    names = [tc.get("name") for tc in suite.iter("testcase")]
-    assert names[:5] == ["build", "difftest navfn", "difftest navfn unbounded", "difftest plugin", "difftest costmap"]
-    assert suite.get("failures") == "0" and suite.get("name") == "navfn-smt ci jazzy"
-
-
 def test_ci_fails_on_a_seeded_bug_and_says_where(nav2_src, tmp_path, capsys):
     import xml.etree.ElementTree as ET
 

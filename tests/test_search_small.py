@@ -87,7 +87,10 @@ def test_the_guide_lets_the_climb_find_what_the_screen_alone_does_not():
     assert blind.best is None
 
 
-@pytest.mark.parametrize("mode, evaluations", [("astar", 50000), ("dijkstra", 20000)])
+# Dijkstra's hunt finds one in 20,000 evaluations (14 s); A*'s needed 50,000 (41 s) and is left
+# out of the default run: A*'s unreached maps of 15 cells and more are committed counterexamples
+# (unreached-astar-5x7, unreached-astar-7x8), each replayed in tests/test_check_bounded.py
+@pytest.mark.parametrize("mode, evaluations", [("dijkstra", 20000)])
 def test_unreached_under_16_interior_cells(mode, evaluations):
     """The default hunt of ``search unreached`` (sizes up to 9x9) finds, for a fixed seed and
     number of evaluations, a map of fewer than 16 interior cells whose start is connected to
