@@ -16,6 +16,11 @@ from pathlib import Path
 
 import pytest
 
+# the tests read reports as a pipe or a file gets them (a table row per line, as wide as it
+# needs): a COLUMNS in the test processes' environment would fit them to its width
+for _size in ("COLUMNS", "LINES"):
+    os.environ.pop(_size, None)
+
 REPO = Path(__file__).resolve().parent.parent
 SHARED = Path(os.environ.get("NAVFN_SHARED", REPO.parent / "shared"))
 SUITE = SHARED / "navfn-suite"
@@ -64,11 +69,26 @@ DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
 @pytest.fixture(scope="session")
 def builds(nav2_src, tmp_path_factory) -> dict:
     """Every program of the oracle built from each distribution's sources: ``{distro: (build.json,
-    folder)}``, once per test session (test_oracle.py and test_fix.py share it)."""
+    folder)}``, once per test session (test_oracle.py, test_fix.py and test_nav2_benchmark.py
+    share it).  Under ``pytest -n`` the test processes share one folder: the first to take its
+    lock builds, the others wait for it and read each build.json."""
+    import fcntl
+    import json
+
     from navfn_smt.oracle.build import build
 
-    root = tmp_path_factory.mktemp("oracle")
-    return {d: (build(nav2_src / d, root / d), root / d) for d in DISTROS}
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent  # the session's folder, above each test process's own
+    root = root / "oracle-builds"
+    root.mkdir(exist_ok=True)
+    out = {}
+    with open(root / "lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        for d in DISTROS:
+            done = root / d / "build.json"
+            out[d] = (json.loads(done.read_text()) if done.exists() else build(nav2_src / d, root / d), root / d)
+    return out
 
 
 @pytest.fixture

@@ -71,7 +71,8 @@ def register(sub) -> None:
                     "dropped (cost: every size alike, the largest gap reported, the best gap per size listed)")
     se.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
     se.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
-    se.add_argument("--timeout", type=float, default=60.0, metavar="S", help="seconds for the whole search, split between modes")
+    se.add_argument("--timeout", type=float, default=60.0, metavar="S",
+                    help="seconds for the whole search, split between modes (counted once the planner is compiled)")
     se.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (same seed and budget: same hunt)")
     se.add_argument("--costs", metavar="LO..HI", help="passable costs of the maps (default 50..253, what "
                     "setCostmap produces); lethal 254 is always allowed")
