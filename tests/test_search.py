@@ -195,3 +195,26 @@ def test_summary_of_the_shared_random_maps(shared_suite):
     assert (a["paths"], a["incomplete"], a["oscillation_paths"], a["turn_paths"], a["gap_max"]) == (9161, 21, 21, 998, 5070)
     assert (d["paths"], d["incomplete"], d["oscillation_paths"], d["turn_paths"], d["gap_max"]) == (9165, 17, 25, 1003, 3845)
     assert a["int_conversion_mid_path"] == d["int_conversion_mid_path"] == 0
+
+
+def test_a_hunts_clock_starts_once_its_planner_is_compiled(monkeypatch):
+    """Compiling the planner (about 20 s with a cold JIT cache) is not taken from --timeout: with
+    a compile slower than the whole budget the hunt still evaluates maps and finds its map."""
+    import time
+
+    from navfn_smt.search import hunt as H
+
+    compile_ = H._compile
+    seen = []
+
+    def slow(*args):
+        compile_(*args)
+        seen.append(args)
+        time.sleep(3.0)
+
+    monkeypatch.setattr(H, "_compile", slow)
+    f = H.hunt("incomplete", "dijkstra", (8, 8), 2.0, seed=0, shrink_result=False)
+    assert seen == [("incomplete", "dijkstra", H.DEFAULT_COSTS, "original")]
+    assert f is not None and f.evaluations > 0
+    f, tried = H.hunt_smallest("incomplete", "dijkstra", (6, 6), 2.0, seed=0)
+    assert len(seen) == 2 and sum(t["evaluations"] for t in tried) > 0
