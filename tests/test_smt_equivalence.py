@@ -5,9 +5,9 @@ the concrete spec bit for bit, on the conformance table's inputs (zeros of both 
 and other huge potentials, subnormals, infinities, NaN, rounding ties, bit patterns): about
 26,000 kernel evaluations in all (a quarter of the table's count of each kernel: the
 bit-precise domain folds each through Z3, about 4 ms an evaluation).  The library-function
-model (hypot/hypotf) must admit the value the platform's libm returns on every input.  The short runs of every domain, the real
-domain against exact rationals and every cost byte included, are the conformance harness's
-(``tests/test_domain_conformance.py``).
+model (hypot/hypotf) must admit the value the platform's libm returns on every input.  The
+short runs of every domain, the real domain against exact rationals and every cost byte
+included, are the conformance harness's (``tests/test_domain_conformance.py``).
 """
 
 from multiprocessing import get_context

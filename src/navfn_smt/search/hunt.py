@@ -25,6 +25,7 @@ budget only decides where it stops.
 
 from __future__ import annotations
 
+import functools
 import sys
 import time
 import zlib
@@ -292,6 +293,7 @@ class Climb:
         self.seconds += time.perf_counter() - began
 
 
+@functools.cache  # once per process: later hunts find the planner compiled
 def _compile(kind: str, mode: str, costs_range, variant: str) -> None:
     """A few evaluations of a throwaway climb on a 4x4 map, before a hunt's clock starts: with
     a cold JIT cache (a fresh install, a new version) compiling the planner and the kind's
