@@ -73,24 +73,51 @@ def test_worker_memory_limit_default():
 
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_sigint_in_difftest(tmp_path, jobs):
-    """Ctrl-C (to the whole process group) in a running difftest: exit 130, one line on stderr,
-    the partial count on stdout, no report file (not even a temporary one)."""
+    """Ctrl-C (to the whole process group) in a running difftest: exit 130, one line on stderr
+    after the progress lines, the partial count on stdout, no report file (not even a temporary
+    one).  The signal goes once the run reports progress, however loaded the machine is."""
     suite = tmp_path / "suite"
     import shutil
 
-    for k in range(6):  # six copies of every category: the run lasts far longer than the wait below
+    for k in range(6):  # six copies of every category: the run lasts far longer than the first progress line
         for cat in EXAMPLE.iterdir():
             if cat.is_dir():
                 shutil.copytree(cat, suite / f"{cat.name}{k}")
     code = ("import signal, sys; signal.signal(signal.SIGINT, signal.default_int_handler); "
             "from navfn_smt.cli import main; sys.exit(main())")
-    p = subprocess.Popen([sys.executable, "-c", code, "difftest", str(suite), "--json", "r.json", "--quiet",
+    env = {**os.environ, "NAVFN_HEARTBEAT": "0.05"}  # stderr is a pipe: progress lines, 20 a second
+    p = subprocess.Popen([sys.executable, "-c", code, "difftest", str(suite), "--json", "r.json",
                           "--jobs", jobs, "--backend", "reference"], cwd=tmp_path, stdout=subprocess.PIPE,
-                         stderr=subprocess.PIPE, start_new_session=True)
-    time.sleep(3.0)
+                         stderr=subprocess.PIPE, start_new_session=True, env=env)
+    first = p.stderr.readline().decode()  # blocks until the run has compared cases
+    assert first.startswith(f"difftest {suite}") and " 0/" not in first, first
     os.killpg(p.pid, signal.SIGINT)
     out, err = p.communicate(timeout=60)
-    assert p.returncode == 130, err.decode()
-    assert err.decode().strip() == "navfn-smt: interrupted"
+    lines = (first + err.decode()).splitlines()
+    assert p.returncode == 130, "\n".join(lines)
+    assert lines[-1] == "navfn-smt: interrupted"
+    assert all(line.startswith(f"difftest {suite}") for line in lines[:-1]), lines  # no traceback
     assert "interrupted after" in out.decode()
     assert [f.name for f in tmp_path.iterdir()] == ["suite"]
+
+
+def test_sigint_while_the_command_line_is_built(monkeypatch, capsys):
+    """Ctrl-C before the command runs (while its modules are imported): exit 130, one line."""
+    from navfn_smt import cli
+
+    def interrupted():
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "build_parser", interrupted)
+    assert cli.main(["difftest"]) == 130
+    assert capsys.readouterr().err == "navfn-smt: interrupted\n"
+
+
+@pytest.mark.parametrize("value", ["fast", "0", "-1", "nan", "inf"])
+def test_a_bad_heartbeat_interval_is_named(monkeypatch, capsys, value):
+    from navfn_smt.cli import main
+
+    monkeypatch.setenv("NAVFN_HEARTBEAT", value)
+    assert main(["difftest"]) == 2
+    assert capsys.readouterr().err.strip() == (f"navfn-smt: error: NAVFN_HEARTBEAT={value!r}: give the seconds "
+                                               f"between two progress lines, a positive number")

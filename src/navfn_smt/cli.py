@@ -75,12 +75,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    """Run one command; its exit status (2 for bad input, 130 when interrupted)."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    if getattr(args, "jobs", 1) is not None and getattr(args, "jobs", 1) < 1:
-        parser.error("--jobs must be at least 1")
+    """Run one command; its exit status (2 for bad input, 130 when interrupted, even while the
+    command line is still being built)."""
     try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        if getattr(args, "jobs", 1) is not None and getattr(args, "jobs", 1) < 1:
+            parser.error("--jobs must be at least 1")
         return args.func(args)
     except NavfnInputError as e:
         print(f"navfn-smt: error: {e}", file=sys.stderr)

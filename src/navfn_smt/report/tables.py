@@ -4,7 +4,8 @@ the progress of a long run.
 On a terminal, tables fit its width and a long run shows a rich progress bar on stderr.
 When the output is piped or redirected, tables are printed at their natural width (a
 table never wraps in a file or a pager; ``COLUMNS`` still sets a width when given) and a
-long run prints a plain heartbeat line on stderr every :data:`HEARTBEAT` seconds.
+long run prints a plain heartbeat line on stderr every :data:`HEARTBEAT` seconds (or every
+``NAVFN_HEARTBEAT`` seconds when that variable is set).
 """
 
 from __future__ import annotations
@@ -15,6 +16,8 @@ import sys
 import time
 
 from rich.console import Console
+
+from ..errors import NavfnInputError
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
 HEARTBEAT = 10.0  # seconds between two progress lines when stderr is not a terminal
@@ -44,10 +47,27 @@ def duration(seconds: float) -> str:
     return f"{s // 3600} h {s % 3600 // 60:02d} min"
 
 
-def heartbeat(total: int, description: str, every: float = HEARTBEAT, stream=None, clock=time.monotonic):
+def heartbeat_every() -> float:
+    """Seconds between two heartbeat lines: ``NAVFN_HEARTBEAT`` when set, else :data:`HEARTBEAT`."""
+    text = os.environ.get("NAVFN_HEARTBEAT", "").strip()
+    if not text:
+        return HEARTBEAT
+    try:
+        every = float(text)
+    except ValueError:
+        every = -1.0
+    if not every > 0 or every == float("inf"):
+        raise NavfnInputError(f"NAVFN_HEARTBEAT={text!r}: give the seconds between two progress lines, a positive "
+                              f"number")
+    return every
+
+
+def heartbeat(total: int, description: str, every: float | None = None, stream=None, clock=time.monotonic):
     """``advance(n)`` that prints ``description: done/total (p%), elapsed, about T left`` to
     ``stream`` (stderr) at most every ``every`` seconds, and a last line when the run ends
-    after having printed any (a run shorter than ``every`` stays silent)."""
+    after having printed any (a run shorter than ``every`` stays silent).  ``every`` defaults to
+    :func:`heartbeat_every`."""
+    every = heartbeat_every() if every is None else every
     t0 = clock()
     state = {"done": 0, "t0": t0, "last": t0, "printed": False}
 
@@ -80,7 +100,7 @@ def _rich_progress() -> Progress:
 
 
 @contextlib.contextmanager
-def progress_bar(total: int, description: str, enabled: bool = True, every: float = HEARTBEAT):
+def progress_bar(total: int, description: str, enabled: bool = True, every: float | None = None):
     """Yields ``advance(n)``: a rich bar on stderr when it is a terminal, else a heartbeat
     line every ``every`` seconds (:func:`heartbeat`); nothing when not ``enabled``."""
     if not enabled:
@@ -95,7 +115,7 @@ def progress_bar(total: int, description: str, enabled: bool = True, every: floa
 
 
 @contextlib.contextmanager
-def progress_counts(description: str, enabled: bool = True, every: float = HEARTBEAT):
+def progress_counts(description: str, enabled: bool = True, every: float | None = None):
     """Yields ``progress(done, total)`` for work that learns its total only once it runs
     (absolute counts rather than steps): a rich bar on a terminal, else heartbeat lines."""
     if not enabled:
