@@ -268,7 +268,7 @@ def test_shortcut_answers_recheck_and_change_no_verdict(monkeypatch):
     plain = explore(case, names, 50, 253, FPDomain, timeout=60, shortcuts=False)
     assert fast.cached_unsat and fast.sampled_sat and not plain.cached_unsat and not plain.sampled_sat
     assert fast.results["start-reached"].status == plain.results["start-reached"].status == "holds"
-    assert recheck_case(case, names, 50, 253, fast.log, 60, "original") == []
+    assert recheck_case(case, names, 50, 253, fast.log, 60, "original", order=("bitwuzla",)) == []  # cvc5: 8x slower
     assert learned
     for pc, j, core in learned:
         query = [pc[i] for i in core] + [z3.Not(pc[j])]
