@@ -361,11 +361,12 @@ def induction_status(name: str, verdict_of, variant: str = "original") -> str:
     return max(statuses, key=STATUS_RANK.index) if statuses else "open"
 
 
-def induction(name: str, timeout: float = 30.0, variant: str = "original") -> Optional[dict]:
+def induction(name: str, timeout: float = 30.0, variant: str = "original", solvers=None) -> Optional[dict]:
     """The every-size proof of an inductive property: its predicates' obligations checked in
-    fp32 and judged against what is known (:mod:`~navfn_smt.smt.knowledge`); the status is
-    derived from their standings, so a solver slower today than when the proof was found
-    leaves it as known, and only a decision against what is known changes it."""
+    fp32 by the solver portfolio (``solvers``, default all, as ``prove`` asks them) and judged
+    against what is known (:mod:`~navfn_smt.smt.knowledge`); the status is derived from their
+    standings, so a solver slower today than when the proof was found leaves it as known, and
+    only a decision against what is known changes it."""
     if name not in inductive(variant):
         return None
     from ..proofs import PREDICATES
@@ -373,6 +374,7 @@ def induction(name: str, timeout: float = 30.0, variant: str = "original") -> Op
     from ..smt.checking import check
     from ..smt.obligation import load_obligations
     from ..smt.runner import default_proof_files, solve_query
+    from ..smt.solvers import SOLVERS
     from ..smt.split import known_of_files
 
     preds = [p for p in PREDICATES if p.name in inductive(variant)[name]]
@@ -380,7 +382,8 @@ def induction(name: str, timeout: float = 30.0, variant: str = "original") -> Op
     files = default_proof_files()
     obligations = {o.name: o for o in load_obligations(files)}
     known = known_of_files(files, list(obligations.values()), PREDICATES)
-    runs = [check(obligations[w], "fp32", timeout, solve_query(("z3",)), known=known[(w, "fp32")]) for w in wanted]
+    runs = [check(obligations[w], "fp32", timeout, solve_query(tuple(solvers or SOLVERS)), known=known[(w, "fp32")])
+            for w in wanted]
     return {"predicates": [p.name for p in preds],
             "status": induction_status(name, outcome_verdicts(runs, known), variant),
             "obligations": {o.name: o.standing for o in runs},

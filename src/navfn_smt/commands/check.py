@@ -81,7 +81,8 @@ def cmd_check(args) -> int:
                     cx["mode"] == "astar", r.property, {"reason": cx["reason"], "exit": cx["exit"]},
                     extra={"found_by": "check", "size_proved_below": CR.proved_sizes(results, r.property),
                            "variant": args.variant}))
-    induction = {n: CR.induction(n, variant=args.variant) for n in names if n in CR.inductive(args.variant)}
+    induction = {n: CR.induction(n, timeout=args.timeout, variant=args.variant)
+                 for n in names if n in CR.inductive(args.variant)}
     if args.json:
         report.write_json(args.json, {
             "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": args.semantics,
