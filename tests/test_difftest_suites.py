@@ -53,18 +53,20 @@ def test_overflow_subset_reference_backend():
 
 
 def test_shared_suite_reference_sample(shared_suite):
-    """Every 197th case of every map, plus the cases whose full potential is stored."""
+    """Every 601st case of every map, plus the cases whose full potential is stored (the JIT runs
+    every case: tests/test_engine_difftest.py; the backends agree bit for bit on generated maps:
+    tests/test_backend_conformance.py)."""
     outcomes = []
     for t in plan_tasks(shared_suite, ("astar", "dijkstra"), "reference"):
         if t.lo != 0:  # one pass per map and mode
             continue
         smap = load_map(t.map_dir, shared_suite)
-        idx = set(range(0, len(smap.cases), 197))
+        idx = set(range(0, len(smap.cases), 601))
         idx |= set(load_golden(smap.golden_path(t.mode))["full_index"][:3].tolist())
         for i in sorted(idx):
             outcomes.append(run_task(Task(t.map_dir, t.root, t.mode, "reference", i, i + 1)))
     s = _assert_clean(outcomes)
-    assert s["passed"] > 1000
+    assert s["passed"] > 500
 
 
 def test_large_suite_jit(shared_suite_large):

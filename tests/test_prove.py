@@ -231,3 +231,36 @@ def test_committed_invariants_page_shows_the_predicates():
         name, real, fp32, base, step = rows[p.name]
         assert (real, fp32) == tuple(derive(p, s, verdict_of, PREDICATES)["status"] for s in ("real", "fp32")), name
         assert all(f"`{x}`" in base for x in p.base) and all(f"`{x}`" in step for x in p.lemmas), name
+
+
+def test_slow_only_is_what_all_adds_to_the_default_run():
+    """``prove --slow-only`` (CI, after a test run that checked the default queries): the slow
+    queries and the fp32 queries whose refutation searches a bound, and with the default run
+    every query of ``--all``."""
+    from navfn_smt.smt.runner import default_proof_files, tasks
+
+    files = default_proof_files()
+
+    def keys(**kw):
+        return [(t.name, t.semantics) for t in tasks(files, **kw)]
+
+    whole, default, slow = keys(everything=True), keys(everything=False), keys(slow_only=True)
+    assert set(default) | set(slow) == set(whole) and len(whole) == len(set(whole))
+    both = set(default) & set(slow)
+    assert both and all(s == "fp32" for _, s in both)  # the bound searches, which only --all runs
+    assert ("update_keeps_a_lower_neighbour", "fp32") in both
+    assert not set(default) & set(keys(slow_only=True, bounds=False))
+    assert set(slow) - set(default) == set(whole) - set(default) != set()
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--all"], "--slow-only and --all exclude each other"),
+    (["--markdown", "p.md"], "--slow-only leaves the default queries out"),
+])
+def test_slow_only_refuses_what_needs_a_whole_run(tmp_path, monkeypatch, capsys, extra, message):
+    from navfn_smt.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["prove", "--slow-only", *extra]) == 2
+    assert capsys.readouterr().err.startswith(f"navfn-smt: error: {message}")
+    assert list(tmp_path.iterdir()) == []

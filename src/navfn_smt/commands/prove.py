@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..errors import NavfnInputError
 from ..fileio import check_writable_dir
 from .common import check_files, check_positive
 
@@ -35,8 +36,13 @@ def cmd_prove(args) -> int:
     from ..smt.knowledge import record_decisions
     from ..smt.obligation import load_obligations
     from ..smt.solvers import SOLVERS
-    from ..smt.runner import SEMANTICS, default_proof_files, run, slow_queries, write_smt2
+    from ..smt.runner import SEMANTICS, default_proof_files, run, slow_queries, wanted, write_smt2
 
+    if args.slow_only and args.markdown:
+        raise NavfnInputError("--slow-only leaves the default queries out: the invariants page (--markdown) needs "
+                              "a whole run (--all)")
+    if args.slow_only and args.all:
+        raise NavfnInputError("--slow-only and --all exclude each other: --slow-only runs only what --all adds")
     files = _proof_files(args.files) if args.files else default_proof_files()
     semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
     check_positive("--timeout", args.timeout)
@@ -52,15 +58,18 @@ def cmd_prove(args) -> int:
 
     obligations = load_obligations(files)
     known = known_of_files(files, obligations, PREDICATES)
-    n = sum(len([s for s in semantics if s in o.expect and (args.all or s not in o.slow)]) for o in obligations)
+    whole = args.all or args.slow_only
+    bounds = whole and not args.no_bound_search
+    n = sum(wanted(o, s, args.all, args.slow_only, bounds) for o in obligations for s in semantics)
     with progress_bar(n, "prove") as advance:
         outcomes = run(files, semantics, args.timeout, eng, solvers, progress=lambda o: advance(1),
-                       bounds=args.all and not args.no_bound_search, everything=args.all, known=known)
+                       bounds=bounds, everything=args.all, known=known, slow_only=args.slow_only)
     witness_files = proof_run.write_witnesses(outcomes, witnesses)
     if args.smt2:
         write_smt2(files, semantics, Path(args.smt2))
     report.table(outcomes, known)
-    meta = proof_run.meta(args.timeout, solvers, semantics, files)
+    meta = {**proof_run.meta(args.timeout, solvers, semantics, files),
+            "queries": "all" if args.all else "slow only" if args.slow_only else "default"}
     if args.report:
         report.write_json(args.report, outcomes, witness_files, meta, known)
     if args.junit:
@@ -68,7 +77,7 @@ def cmd_prove(args) -> int:
     if args.markdown:
         report.write_markdown(args.markdown, outcomes, meta, _page_sources(meta["files"]))
     proof_run.witness_note(outcomes, witnesses)
-    left = [] if args.all else slow_queries(files, semantics)
+    left = [] if whole else slow_queries(files, semantics)
     if left:
         print(f"{len(left)} slow queries left to `navfn-smt prove --all` (splits: `navfn-smt split`): {', '.join(left)}")
     proof_run.closing_line(outcomes)
@@ -101,11 +110,14 @@ def register(sub) -> None:
     pr.add_argument("--all", action="store_true",
                     help="also the slow queries (whole queries a split decides, long proofs), which the default "
                          "run leaves out to stay within a minute")
+    pr.add_argument("--slow-only", action="store_true",
+                    help="only what --all adds to the default run: the slow queries and the bound searches (for "
+                         "a CI whose test run has checked the default queries already)")
     pr.add_argument("--record", action="store_true",
                     help="record every decision made where nothing was known (known.json beside the proof file, "
                          "keyed by a hash of the proof file, kernels and domains), so later runs judge against it")
     pr.add_argument("--no-bound-search", action="store_true",
-                    help="with --all, do not search bounds for properties refuted in fp32 (the default run "
+                    help="with --all or --slow-only, do not search bounds for properties refuted in fp32 (the default run "
                          "gives verdicts only: the bound search re-verifies its cached bound with two queries)")
     pr.add_argument("--witness-dir", metavar="DIR",
                     help="where counterexamples are written (default: STEM-witnesses next to the first of "

@@ -69,18 +69,29 @@ def _job(task: Task) -> Outcome:
 
 
 def tasks(paths, semantics=SEMANTICS, timeout: float = 30.0, solvers=("z3",), bounds: bool = True,
-          everything: bool = True) -> list[Task]:
+          everything: bool = True, slow_only: bool = False) -> list[Task]:
     """Every (obligation, semantics) of the proof files that has an expected verdict, in
     file, obligation and semantics order (the order of the results); without
-    ``everything``, not the slow ones (:attr:`Obligation.slow`)."""
+    ``everything``, not the slow ones (:attr:`Obligation.slow`); with ``slow_only``, only what
+    ``everything`` adds to the default run: the slow ones and, with ``bounds``, the fp32
+    queries whose bound a refutation searches (:func:`wanted`)."""
     sources = {}
     out = []
     for o in load_obligations(paths):
         if o.source not in sources:
             sources[o.source] = Path(o.source).read_bytes()
         out.extend(Task(o.source, sources[o.source], o.name, s, timeout, tuple(solvers), bounds)
-                   for s in semantics if s in o.expect and (everything or s not in o.slow))
+                   for s in semantics if wanted(o, s, everything, slow_only, bounds))
     return out
+
+
+def wanted(o, semantics: str, everything: bool = True, slow_only: bool = False, bounds: bool = True) -> bool:
+    """Whether a run asks ``o`` in ``semantics`` (:func:`tasks`)."""
+    if semantics not in o.expect:
+        return False
+    if slow_only:
+        return semantics in o.slow or (bounds and o.bound is not None and semantics == "fp32")
+    return everything or semantics not in o.slow
 
 
 def slow_queries(paths, semantics=SEMANTICS) -> list[str]:
@@ -90,14 +101,14 @@ def slow_queries(paths, semantics=SEMANTICS) -> list[str]:
 
 def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: Union[Engine, int] = 1, solvers=("z3",),
         progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True,
-        everything: bool = True, known: Optional[dict] = None) -> list[Outcome]:
+        everything: bool = True, known: Optional[dict] = None, slow_only: bool = False) -> list[Outcome]:
     """The outcome of every obligation of ``paths`` in every semantics it declares, judged
     against what is ``known`` (:func:`navfn_smt.smt.split.known_of_files`; default: each
     obligation's declaration), in the order of :func:`tasks` whatever the order they finish in.  ``jobs``: an
     :class:`~navfn_smt.engine.Engine` (``auto`` resolved here), or a number of local workers."""
     if not (timeout > 0 and timeout < float("inf")):
         raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
-    work = tasks(paths, semantics, timeout, solvers, bounds, everything)
+    work = tasks(paths, semantics, timeout, solvers, bounds, everything, slow_only)
     if not work:
         raise NavfnInputError("no obligation to check in the requested semantics")
     eng = as_engine(jobs)
