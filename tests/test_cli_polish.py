@@ -289,12 +289,13 @@ def test_render_zooms_on_a_short_case_of_a_large_map(tmp_path, capsys):
     assert (tmp_path / "z.png").stat().st_size > 0
 
 
-def test_check_heartbeat_does_not_wait_for_a_case(capsys):
+def test_check_heartbeat_does_not_wait_for_a_case(capsys, monkeypatch):
     import time
 
     from navfn_smt.report import check as report
 
-    tick = report.progress("4x4", every=0.05)
+    monkeypatch.setenv("NAVFN_HEARTBEAT", "0.05")  # its own default is 20 s
+    tick = report.progress("4x4")
     time.sleep(0.3)  # no case finished yet: the heartbeat still prints
     tick(1, 2, None)
     tick(2, 2, None)

@@ -20,12 +20,17 @@ def stop_progress() -> None:
         _running.pop().set()
 
 
-def progress(label: str, every: float = 20.0):
+def progress(label: str, every: float | None = None):
     """``(done, total, case_result)`` callback for one size: a line on stderr every ``every``
-    seconds, whether or not a case finished in between (a hard case can take minutes), and one
-    at the end, terminal or not.  The heartbeat of the previous size stops."""
+    seconds (default 20, or ``NAVFN_HEARTBEAT``), whether or not a case finished in between (a
+    hard case can take minutes), and one at the end, terminal or not.  The heartbeat of the
+    previous size stops."""
     import threading
     import time
+
+    from .tables import heartbeat_every
+
+    every = heartbeat_every(20.0) if every is None else every
 
     stop_progress()
     stop = threading.Event()

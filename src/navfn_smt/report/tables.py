@@ -47,11 +47,11 @@ def duration(seconds: float) -> str:
     return f"{s // 3600} h {s % 3600 // 60:02d} min"
 
 
-def heartbeat_every() -> float:
-    """Seconds between two heartbeat lines: ``NAVFN_HEARTBEAT`` when set, else :data:`HEARTBEAT`."""
+def heartbeat_every(default: float = HEARTBEAT) -> float:
+    """Seconds between two heartbeat lines: ``NAVFN_HEARTBEAT`` when set, else ``default``."""
     text = os.environ.get("NAVFN_HEARTBEAT", "").strip()
     if not text:
-        return HEARTBEAT
+        return default
     try:
         every = float(text)
     except ValueError:
