@@ -213,3 +213,13 @@ def test_docs_without_out_prints_the_page_and_writes_nothing(tmp_path):
     assert rc == 0, err
     assert out == PAGE.read_text(encoding="utf-8")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_parts_replayed_so_far_are_listed_in_their_order():
+    """A size replayed in parts lists its parts by number (1, 2, ..., 10), not as text sorts them."""
+    import re
+
+    rows = [line for line in PAGE.read_text().splitlines() if "replayed in parts so far" in line]
+    for row in rows:
+        numbers = [int(k) for k in re.findall(r"\[(\d+)\]\(reports/certificates/parts/", row)]
+        assert numbers == sorted(numbers) and len(numbers) == len(set(numbers)), row[:200]

@@ -365,7 +365,8 @@ def _replayed_parts(path: Path) -> str:
     many of the N parts replayed, or that none has."""
     stem = path.name.replace(".replay.json", "")
     files = sorted((path.parent / "parts").glob(f"{stem}.replay-*of*.json"))
-    done = [(f, r) for f in files if (r := _read_json(f, "replay")).get("status") == "replayed"]
+    done = sorted(((f, r) for f in files if (r := _read_json(f, "replay")).get("status") == "replayed"),
+                  key=lambda fr: fr[1]["part"][0])  # in the parts' order: 1, 2, ..., 10, not 1, 10, 11, ...
     if not done:
         return "; not replayed"
     n = done[0][1]["part"][1]
