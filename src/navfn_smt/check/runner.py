@@ -361,9 +361,9 @@ def induction_status(name: str, verdict_of, variant: str = "original") -> str:
     return max(statuses, key=STATUS_RANK.index) if statuses else "open"
 
 
-def induction(name: str, timeout: float = 30.0, variant: str = "original", solvers=None) -> Optional[dict]:
+def induction(name: str, timeout: float = 30.0, variant: str = "original") -> Optional[dict]:
     """The every-size proof of an inductive property: its predicates' obligations checked in
-    fp32 by the solver portfolio (``solvers``, default all, as ``prove`` asks them) and judged
+    fp32 by the whole solver portfolio (as ``prove`` asks them) and judged
     against what is known (:mod:`~navfn_smt.smt.knowledge`); the status is derived from their
     standings, so a solver slower today than when the proof was found leaves it as known, and
     only a decision against what is known changes it."""
@@ -382,7 +382,7 @@ def induction(name: str, timeout: float = 30.0, variant: str = "original", solve
     files = default_proof_files()
     obligations = {o.name: o for o in load_obligations(files)}
     known = known_of_files(files, list(obligations.values()), PREDICATES)
-    runs = [check(obligations[w], "fp32", timeout, solve_query(tuple(solvers or SOLVERS)), known=known[(w, "fp32")])
+    runs = [check(obligations[w], "fp32", timeout, solve_query(SOLVERS), known=known[(w, "fp32")])
             for w in wanted]
     return {"predicates": [p.name for p in preds],
             "status": induction_status(name, outcome_verdicts(runs, known), variant),

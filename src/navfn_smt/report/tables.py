@@ -16,9 +16,9 @@ import sys
 import time
 
 from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
 from ..errors import NavfnInputError
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
 HEARTBEAT = 10.0  # seconds between two progress lines when stderr is not a terminal
 WIDE = 10_000  # the width of a console that is not a terminal: wide enough that no table wraps

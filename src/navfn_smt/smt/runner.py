@@ -96,7 +96,8 @@ def wanted(o, semantics: str, everything: bool = True, slow_only: bool = False, 
 
 def slow_queries(paths, semantics=SEMANTICS) -> list[str]:
     """The ``name (semantics)`` of the slow queries a default run leaves out."""
-    return [f"{o.name} ({s})" for o in load_obligations(paths) for s in semantics if s in o.expect and s in o.slow]
+    return [f"{o.name} ({s})" for o in load_obligations(paths) for s in semantics
+            if wanted(o, s, slow_only=True, bounds=False)]
 
 
 def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: Union[Engine, int] = 1, solvers=("z3",),
