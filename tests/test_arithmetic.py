@@ -17,6 +17,7 @@ from navfn_smt.oracle.build import distribution, git_commit
 from navfn_smt.oracle.targets import toolchain
 from navfn_smt.spec.arithmetic import KNOWN, SITES, X86_64, Arithmetic, PluginArithmetic, site_of_line
 from navfn_smt.spec.constants import COST_FACTOR, COST_NEUTRAL
+from navfn_smt.spec.numeric import c_fma
 
 # a navfn.cpp stand-in: one line per site as Nav2 writes it (the patterns of SITES), twice
 SOURCE = """\
@@ -73,8 +74,13 @@ PLANNER_CPP = """void NavfnPlanner::mapToWorld(double mx, double my, double & wx
   wx = costmap_->getOriginX() + mx * costmap_->getResolution();
   wy = costmap_->getOriginY() + my * costmap_->getResolution();
   double other = a * b + c;
+        double sdist = squared_distance(p, goal);
+      squared_distance(last_pose.pose, second_to_last_pose.pose) >
+      squared_distance(goal, second_to_last_pose.pose))
+    if (squared_distance(last_pose.pose, goal) < 1e-6) {
 }
 """
+CALLS = {"tolerance": 6, "smooth_last": 7, "smooth_goal": 8, "same_position": 9}  # their lines above
 PLANNER_HPP = "    double dx = p1.x - p2.x;\n    double dy = p1.y - p2.y;\n    return dx * dx + dy * dy;\n"
 GEOMETRY = """  q.x = sr * cp * cy - cr * sp * sy;
   q.y = cr * sp * cy + sr * cp * sy;
@@ -83,61 +89,105 @@ GEOMETRY = """  q.x = sr * cp * cy - cr * sp * sy;
 """
 
 
+FILES = {"navfn_planner.cpp": PLANNER_CPP, "navfn_planner.hpp": PLANNER_HPP, "geometry_utils.hpp": GEOMETRY,
+         "navfn.cpp": SOURCE}
+
+
 def _plugin_asm(tmp_path, fused) -> str:
-    """Assembly whose fused instructions come from ``fused``: (file name, line) pairs."""
-    files = {"navfn_planner.cpp": PLANNER_CPP, "navfn_planner.hpp": PLANNER_HPP, "geometry_utils.hpp": GEOMETRY,
-             "navfn.cpp": SOURCE}
+    """Assembly whose fused instructions come from ``fused``: (file name, line[, instruction[, call
+    line]]) items."""
     body = []
-    for k, (name, text) in enumerate(files.items(), start=1):
+    for k, (name, text) in enumerate(FILES.items(), start=1):
         (tmp_path / name).write_text(text)
         body.append(f'\t.file {k} "{tmp_path}" "{name}"')
-    number = {name: k for k, name in enumerate(files, start=1)}
+    number = {name: k for k, name in enumerate(FILES, start=1)}
     for item in fused:
-        name, line, insn = item if len(item) == 3 else (*item, "fmadd\td0, d1, d2, d3")
+        name, line, insn = item[:3] if len(item) >= 3 else (*item, "fmadd\td0, d1, d2, d3")
         body += [f"\t.loc {number[name]} {line} 3", f"\t{insn}"]
     return "\n".join(body) + "\n"
 
 
-def _square(fused: str, x86: bool = False) -> list:
-    """One inlined copy of ``dx * dx + dy * dy`` (navfn_planner.hpp lines 1 to 3) that fuses the
-    square of ``fused``, as arm64's or x86-64-v3's code (AT&T) does it."""
+def _plugin_dis(tmp_path, items) -> str:
+    """``objdump -d -l --inlines`` output of the same items: each instruction after its source line
+    and, for an item with a call line, the line of navfn_planner.cpp it is inlined at."""
+    body = ["0000000000000000 <_ZN18nav2_navfn_planner12NavfnPlanner8makePlanE>:"]
+    for k, item in enumerate(items):
+        name, line, insn = item[:3] if len(item) >= 3 else (*item, "fmadd\td0, d1, d2, d3")
+        body.append(f"{tmp_path}/{name}:{line}")
+        if len(item) > 3:
+            body.append(f"inlined by {tmp_path}/navfn_planner.cpp:{item[3]} (_ZN18nav2_navfn_planner12NavfnPlanner)")
+        body.append(f"    {4 * k:x}:\t{insn}")
+    return "\n".join(body) + "\n"
+
+
+def _record(tmp_path, items) -> dict:
+    return plugin_record(_plugin_asm(tmp_path, items), lambda: _plugin_dis(tmp_path, items))
+
+
+def _square(fused: str, x86: bool = False, call: str = "tolerance") -> list:
+    """One copy of ``dx * dx + dy * dy`` (navfn_planner.hpp lines 1 to 3) inlined at the call
+    ``call`` that fuses the square of ``fused``, as arm64's or x86-64-v3's code (AT&T) does it."""
     other = "dy" if fused == "dx" else "dx"
-    line = {"dx": 1, "dy": 2}
+    line, at = {"dx": 1, "dy": 2}, CALLS[call]
     if x86:
-        return [("navfn_planner.hpp", line[fused], "vsubsd\t%xmm0, %xmm2, %xmm4"),
-                ("navfn_planner.hpp", line[other], "vsubsd\t%xmm1, %xmm3, %xmm5"),
-                ("navfn_planner.hpp", 3, "vmulsd\t%xmm5, %xmm5, %xmm5"),
-                ("navfn_planner.hpp", 3, "vfmadd132sd\t%xmm4, %xmm5, %xmm4")]
-    return [("navfn_planner.hpp", line[fused], "fsub\td4, d6, d0"), ("navfn_planner.hpp", line[other], "fsub\td5, d3, d1"),
-            ("navfn_planner.hpp", 3, "fmul\td5, d5, d5"), ("navfn_planner.hpp", 3, "fmadd\td4, d4, d4, d5")]
+        insns = [(line[fused], "vsubsd\t%xmm0, %xmm2, %xmm4"), (line[other], "vsubsd\t%xmm1, %xmm3, %xmm5"),
+                 (3, "vmulsd\t%xmm5, %xmm5, %xmm5"), (3, "vfmadd132sd\t%xmm4, %xmm5, %xmm4")]
+    else:
+        insns = [(line[fused], "fsub\td4, d6, d0"), (line[other], "fsub\td5, d3, d1"), (3, "fmul\td5, d5, d5"),
+                 (3, "fmadd\td4, d4, d4, d5")]
+    return [("navfn_planner.hpp", n, insn, at) for n, insn in insns]
 
 
 def test_the_plugins_fused_lines_are_its_sites_wherever_they_are_inlined_from(tmp_path):
-    both = [("navfn_planner.cpp", 3), ("navfn_planner.cpp", 4), *_square("dx"), *_square("dx", x86=True),
-            ("navfn.cpp", 4)]
-    doc = plugin_record(_plugin_asm(tmp_path, both + [("geometry_utils.hpp", 1), ("geometry_utils.hpp", 2)]))
+    both = [("navfn_planner.cpp", 3), ("navfn_planner.cpp", 4), *_square("dx"),
+            *_square("dx", x86=True, call="smooth_last"), ("navfn.cpp", 4)]
+    doc = _record(tmp_path, both + [("geometry_utils.hpp", 1), ("geometry_utils.hpp", 2)])
     assert doc["unexpressible"] == [] and doc["fused"] == ["map_to_world", "squared_distance", "yaw_quaternion"]
     assert doc["sites"]["map_to_world"] == ["navfn_planner.cpp:3", "navfn_planner.cpp:4"]
-    assert doc["squared_distance_orders"] == ["dx", "dx"]
+    assert doc["squared_distance_orders"] == {"smooth_last": "dx", "tolerance": "dx"}
     assert doc["fused_instructions"] == 6  # navfn.cpp's own line is NavFn's arithmetic, found apart
-    assert plugin_record(_plugin_asm(tmp_path, [])) == {"fused": [], "squared_distance_orders": [],
-                                                        "fused_instructions": 0, "sites": {}, "unexpressible": []}
+
+    def untouched():
+        raise AssertionError("the disassembly is read only when squared_distance fuses")
+    assert plugin_record(_plugin_asm(tmp_path, []), untouched) == {
+        "fused": [], "squared_distance_orders": {}, "fused_instructions": 0, "sites": {}, "unexpressible": []}
 
 
 @pytest.mark.parametrize("x86", [False, True], ids=["arm64", "x86-64-v3"])
-def test_an_inlined_copy_that_fuses_the_other_square_is_unexpressible(tmp_path, x86):
-    """GCC chose fma(dy, dy, dx * dx) in one inlined copy of Jazzy's and Humble's squared_distance
-    and fma(dx, dx, dy * dy) in the others: the model computes the latter only, so such a plugin is
-    not compared."""
-    doc = plugin_record(_plugin_asm(tmp_path, [*_square("dx", x86), *_square("dy", x86)]))
-    assert doc["squared_distance_orders"] == ["dx", "dy"] and "squared_distance" not in doc["fused"]
-    assert "fma(dx, dx, dy * dy) in 1 inlined copies and otherwise in 1" in doc["unexpressible"][0]
+def test_each_call_of_squared_distance_computes_the_square_its_copy_fused(tmp_path, x86):
+    """GCC fuses fma(dy, dy, dx * dx) in the tolerance search's copy of Jazzy's and Humble's
+    squared_distance and fma(dx, dx, dy * dy) in the smoothing's: found per call, and the model
+    computes each call as found."""
+    from navfn_smt.nav2.plugin import Pose, squared_distance
+
+    copies = [*_square("dy", x86), *_square("dx", x86, "smooth_last"), *_square("dx", x86, "same_position")]
+    doc = _record(tmp_path, copies)
+    assert doc["unexpressible"] == [] and "squared_distance" in doc["fused"]
+    assert doc["squared_distance_orders"] == {"same_position": "dx", "smooth_last": "dx", "tolerance": "dy"}
+    found = plugin_of_build({"arithmetic": KNOWN["aarch64"].as_dict(), "plugin_arithmetic": doc})[0]
+    assert found.dy_first == {"tolerance"} and "fma(dy, dy, dx * dx) in tolerance" in found.name
+    a, b = Pose(0.02, 0.36), Pose(0.0, 0.0)  # the two orders round differently here
+    assert squared_distance(a, b, "tolerance", found) == c_fma(0.36, 0.36, 0.02 * 0.02)
+    assert squared_distance(a, b, "smooth_last", found) == c_fma(0.02, 0.02, 0.36 * 0.36)
+    assert c_fma(0.36, 0.36, 0.02 * 0.02) != c_fma(0.02, 0.02, 0.36 * 0.36)
+
+
+@pytest.mark.parametrize("x86", [False, True], ids=["arm64", "x86-64-v3"])
+def test_copies_of_one_call_that_differ_or_a_call_the_model_does_not_make_are_unexpressible(tmp_path, x86):
+    doc = _record(tmp_path, [*_square("dx", x86), *_square("dy", x86)])
+    assert "squared_distance" not in doc["fused"]
+    assert "call tolerance fused fma(dx, dx, dy * dy) in one inlined copy" in doc["unexpressible"][0]
+    stray = [(n, line, insn, 5) for n, line, insn, _ in _square("dx", x86)]  # inlined at `other = a * b + c`
+    doc = _record(tmp_path, stray)
+    assert "navfn_planner.cpp:5, which is no call of it the plugin model makes" in doc["unexpressible"][0]
+    untold = [*_square("dx", x86)[:3], ("navfn_planner.hpp", 3, "fmadd\td4, d4, d5, d5", 6)]  # not a square
+    assert "could not be told" in _record(tmp_path, untold)["unexpressible"][0]
 
 
 def test_a_plugin_line_that_is_no_site_or_a_site_fused_in_part_is_unexpressible(tmp_path):
-    doc = plugin_record(_plugin_asm(tmp_path, [("navfn_planner.cpp", 5)]))
+    doc = _record(tmp_path, [("navfn_planner.cpp", 5)])
     assert doc["fused"] == [] and "navfn_planner.cpp:5 fused `double other = a * b + c;`" in doc["unexpressible"][0]
-    doc = plugin_record(_plugin_asm(tmp_path, [("navfn_planner.cpp", 3)]))
+    doc = _record(tmp_path, [("navfn_planner.cpp", 3)])
     assert "map_to_world fused on navfn_planner.cpp lines [3] but not on [4]" in doc["unexpressible"][0]
     bad = {"arithmetic": KNOWN["aarch64"].as_dict(), "plugin_arithmetic": doc}
     assert plugin_of_build(bad)[0] is None and "cannot express" in plugin_of_build(bad)[1]

@@ -568,6 +568,33 @@ def test_the_plugin_model_in_the_arithmetic_found_agrees_with_the_arm64_plugin(t
             assert run_plugin_live(configs, oracle, arith=wrong).as_dict()["failed"] > 0, wrong.name
 
 
+def test_each_call_of_the_plugins_squared_distance_is_compared_with_the_square_it_fused(nav2_src, tmp_path):
+    """Jazzy's plugin for x86-64-v3 fuses fma(dy, dy, dx * dx) in the tolerance search's copy of
+    squared_distance and fma(dx, dx, dy * dy) in the smoothing's: found per call, and the model
+    computing so agrees with the build on the two generated configurations (of the first 41) where
+    the order changes a plan; with dx's square in every call it does not."""
+    from dataclasses import replace
+
+    from navfn_smt.difftest.plugin_live import generated_configs, run_plugin_live
+    from navfn_smt.errors import NavfnInputError
+    from navfn_smt.oracle.targets import toolchain
+
+    tc = toolchain("x86-64-v3")
+    try:
+        tc.runner()
+    except NavfnInputError as e:
+        pytest.skip(str(e))
+    doc = build(nav2_src / "jazzy", tmp_path / "b", programs=("navfn-plugin",), tc=tc)
+    assert doc["plugin_arithmetic"]["squared_distance_orders"] == {
+        "same_position": "dx", "smooth_goal": "dx", "smooth_last": "dx", "tolerance": "dy"}
+    configs = [c for k, c in enumerate(generated_configs("jazzy", 41, 0, 24)) if k in (39, 40)]
+    with PluginOracle(tmp_path / "b") as oracle:
+        found = oracle.plugin_arithmetic()
+        assert found.dy_first == {"tolerance"}
+        assert run_plugin_live(configs, oracle, arith=found).as_dict()["failed"] == 0
+        assert run_plugin_live(configs, oracle, arith=replace(found, dy_first=frozenset())).as_dict()["failed"] == 2
+
+
 def test_the_conversion_probe_answers_as_the_spec_converts(target_builds):
     from navfn_smt.oracle.arithmetic import EXPECTED
 

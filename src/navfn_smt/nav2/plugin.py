@@ -220,14 +220,20 @@ def plugin_map_to_world(cm: Costmap, px: float, py: float,
     return cm.origin_x + float(px) * cm.resolution, cm.origin_y + float(py) * cm.resolution
 
 
-def squared_distance(a: Pose, b: Pose, arith: PluginArithmetic = PLUGIN_X86_64) -> float:
-    """``squared_distance`` of ``navfn_planner.hpp`` (double)."""
-    return squared_offset_in(arith)(a.x - b.x, a.y - b.y)
+def squared_distance(a: Pose, b: Pose, call: str, arith: PluginArithmetic = PLUGIN_X86_64) -> float:
+    """``squared_distance`` of ``navfn_planner.hpp`` (double), as the build computes it in the
+    call ``call`` of navfn_planner.cpp (:data:`~navfn_smt.spec.arithmetic.SQUARED_CALLS`)."""
+    return squared_offset_in(arith, call)(a.x - b.x, a.y - b.y)
 
 
-def squared_offset_in(arith: PluginArithmetic):
-    """:func:`squared_offset`, or :func:`fused_squared_offset` where the build fused the site."""
-    return fused_squared_offset if arith.fuses("squared_distance") else squared_offset
+def squared_offset_in(arith: PluginArithmetic, call: str):
+    """:func:`squared_offset`, or where the build fused the site, :func:`fused_squared_offset`
+    with the square the build fused in the call ``call``."""
+    if not arith.fuses("squared_distance"):
+        return squared_offset
+    if arith.squared_order(call) == "dy":
+        return lambda dx, dy: fused_squared_offset(dy, dx)
+    return fused_squared_offset
 
 
 def squared_offset(dx, dy):
@@ -477,7 +483,7 @@ def _legal_pose(cm: Costmap, goal: Pose, tolerance: float, run: PluginRun) -> Op
     if len(xi) == 0 or len(yi) == 0:
         return None
     pot = run.potential[rows[yi][:, None], cols[xi][None, :]].astype(np.float64)  # (y, x): the loop's order
-    sdist = squared_offset_in(run.arith)((xs[xi] - goal.x)[None, :], (ys[yi] - goal.y)[:, None])
+    sdist = squared_offset_in(run.arith, "tolerance")((xs[xi] - goal.x)[None, :], (ys[yi] - goal.y)[:, None])
     taken = tolerance_prefers(pot, sdist, DBL_MAX)  # the points the loop could take at all
     if not taken.any():
         return None
@@ -580,9 +586,10 @@ def smooth_approach_to_goal(goal: Pose, poses: list, same_position: bool = True,
     append it."""
     if len(poses) >= 2:
         before, last = poses[-2], poses[-1]
-        if squared_distance(last, before, arith) > squared_distance(goal, before, arith):
+        farther = squared_distance(last, before, "smooth_last", arith)
+        if farther > squared_distance(goal, before, "smooth_goal", arith):
             return poses[:-1] + [goal]
-        if same_position and squared_distance(last, goal, arith) < 1e-6:
+        if same_position and squared_distance(last, goal, "same_position", arith) < 1e-6:
             return poses[:-1] + [goal]
     return poses + [goal]
 

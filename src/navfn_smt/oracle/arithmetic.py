@@ -22,19 +22,24 @@ from __future__ import annotations
 import functools
 import math
 import re
+import shutil
 import struct
 import subprocess
 from collections import defaultdict
 from pathlib import Path
 
 from ..spec.arithmetic import (CONVERSIONS, PLUGIN_SITES, Arithmetic, PluginArithmetic, plugin_site_of_line,
-                               site_of_line)
+                               site_of_line, squared_call_of_line)
 from ..spec.numeric import CONVERTERS
 
 HERE = Path(__file__).resolve().parent
 FMA = re.compile(r"^\s*(v?fn?m(add|sub)[\w.]*|fml[as][\w.]*)\s")
 LOC = re.compile(r"^\s*\.loc\s+(\d+)\s+(\d+)")
 FILE = re.compile(r'^\s*\.file\s+(\d+)\s+"([^"]*)"(?:\s+"([^"]*)")?')
+# objdump -d -l --inlines: a source line, a call it is inlined at, an instruction
+LINE = re.compile(r"^(/?[^\s:]+):(\d+)(?:\s|$)")
+INLINED = re.compile(r"^inlined by (/?[^\s:]+):(\d+)(?:\s|$)")
+INSN = re.compile(r"^\s*[0-9a-f]+:\s+(\S.*)$")
 PROBE_INPUTS = (math.nan, math.inf, -math.inf, 3.0e9, -3.0e9, 2147483648.0, -2147483904.0, 1.5e10)
 # what each conversion the spec knows gives on the probe's inputs (the spec's own converters)
 EXPECTED = {name: [convert(v) for v in PROBE_INPUTS] for name, convert in CONVERTERS.items()}
@@ -84,21 +89,42 @@ def _operands(text):
     return parts[0], [o.strip() for o in parts[1].split(",")] if len(parts) > 1 else []
 
 
-def squared_operand_orders(assembly: str, is_site, lines_of=_source_lines) -> list:
-    """Which square each fused instruction of ``dx * dx + dy * dy`` fused (on a line ``is_site(path,
-    line)`` says is it): ``"dx"`` for ``fma(dx, dx, dy * dy)``, ``"dy"`` for ``fma(dy, dy, dx * dx)``,
-    None when not found.  The multiplicand register is followed back to the instruction that last
-    wrote it, and that instruction's line says ``dx =`` or ``dy =`` (arm64's ``fmadd d, n, m, a``;
-    x86's ``vfmadd{132,213,231}sd`` in AT&T order).  Each inlined copy may choose differently.
+def located_binary(disassembly: str):
+    """Each instruction of ``objdump -d -l --inlines`` output as ``((path, line), calls, text)``:
+    the source line its code comes from (``(None, None)`` when it has none) and the lines of the
+    calls it is inlined at, innermost first."""
+    where, calls = (None, None), []
+    for text in disassembly.splitlines():
+        m = LINE.match(text)
+        if m:
+            where, calls = (Path(m.group(1)), int(m.group(2))), []
+            continue
+        m = INLINED.match(text)
+        if m:
+            calls.append((Path(m.group(1)), int(m.group(2))))
+            continue
+        if text.endswith(">:"):  # a new function: its lines come after its label
+            where, calls = (None, None), []
+            continue
+        m = INSN.match(text)
+        if m:
+            yield where, tuple(calls), m.group(1)
+
+
+def squared_operand_orders(disassembly: str, is_site, lines_of=_source_lines) -> list:
+    """``[(call, order)]``, one per fused instruction of ``dx * dx + dy * dy`` (on a line
+    ``is_site(path, line)`` says is it) in ``objdump -d -l --inlines`` output: the line
+    ``(path, n)`` of the call the copy is inlined at (None when not inlined), and which square it
+    fused: ``"dx"`` for ``fma(dx, dx, dy * dy)``, ``"dy"`` for ``fma(dy, dy, dx * dx)``, None when
+    not found.  The multiplicand register is followed back to the instruction that last wrote it,
+    and that instruction's line says ``dx =`` or ``dy =`` (arm64's ``fmadd d, n, m, a``; x86's
+    ``vfmadd{132,213,231}sd`` in AT&T order).  Each inlined copy may choose differently.
     ``lines_of(path)``: a source file's lines."""
     body, orders = [], []
-    for where, text in _located(assembly):
-        t = text.strip()
-        if not t or t.startswith(".") or t.endswith(":"):
-            continue
-        body.append((where, t))
-        if FMA.match(text) and where[0] is not None and is_site(*where):
-            orders.append(_order(body, lines_of))
+    for where, calls, text in located_binary(disassembly):
+        body.append((where, text.strip()))
+        if FMA.match(" " + text) and where[0] is not None and is_site(*where):
+            orders.append((calls[0] if calls else None, _order(body, lines_of)))
     return orders
 
 
@@ -128,12 +154,37 @@ def _order(body, lines_of) -> str:
     return None
 
 
-def plugin_record(assembly_text: str) -> dict:
+def _orders_by_call(disassembly: str, lines: set, source) -> tuple:
+    """``({call: order}, problems)``: the square fused in each call of squared_distance
+    (:data:`~navfn_smt.spec.arithmetic.SQUARED_CALLS`), from the fused instructions on ``lines``
+    (``(file name, line)``) of ``disassembly``; a copy whose call or order is not found, a call the
+    model does not make, or a call whose copies differ is a problem."""
+    by_call, problems = defaultdict(set), []
+    for call, order in squared_operand_orders(disassembly, lambda path, n: (path.name, n) in lines, source):
+        text = source(call[0]) if call is not None else ()
+        name = squared_call_of_line(text[call[1] - 1]) if call is not None and 0 < call[1] <= len(text) else None
+        where = f"{call[0].name}:{call[1]}" if call is not None else "a copy not inlined"
+        if name is None:
+            problems.append(f"squared_distance fused at {where}, which is no call of it the plugin model makes")
+        elif order is None:
+            problems.append(f"squared_distance fused at {where}: which square was fused could not be told")
+        else:
+            by_call[name].add(order)
+    for name, found in sorted(by_call.items()):
+        if len(found) > 1:
+            problems.append(f"squared_distance's call {name} fused fma(dx, dx, dy * dy) in one inlined copy and "
+                            f"fma(dy, dy, dx * dx) in another")
+    return {name: found.pop() for name, found in sorted(by_call.items()) if len(found) == 1}, problems
+
+
+def plugin_record(assembly_text: str, disassembly) -> dict:
     """build.json's ``plugin_arithmetic`` entry from the assembly of ``navfn_planner.cpp``: the
     plugin sites (:data:`~navfn_smt.spec.arithmetic.PLUGIN_SITES`) fused, every fused line by file,
-    and what the model cannot express (a fused line of the plugin's files that is no site, or a
-    site fused on some of its lines only, unless its value is the same either way).  NavFn's
-    own lines (navfn.cpp) are its arithmetic's, found apart."""
+    the square fused in each call of squared_distance (from ``disassembly()``, the ``objdump -d -l
+    --inlines`` text of the assembled object, which names the call each inlined copy is at; asked
+    only when that site fuses), and what the model cannot express (a fused line of the plugin's
+    files that is no site, or a site fused on some of its lines only, unless its value is the
+    same either way).  NavFn's own lines (navfn.cpp) are its arithmetic's, found apart."""
     found, problems, fused = defaultdict(set), [], set()
     source = functools.lru_cache(maxsize=None)(_source_lines)  # each file read once per record
     lines = fused_lines_by_file(assembly_text)
@@ -156,16 +207,12 @@ def plugin_record(assembly_text: str) -> dict:
         else:
             problems.append(f"{site} fused on {path.name} lines {sorted(n for _, n in at)} but not on "
                             f"{sorted(n for _, n in every - at)}")
-    orders = []
-    if "squared_distance" in fused:  # the model computes fma(dx, dx, dy * dy); an inlined copy may differ
-        orders = squared_operand_orders(assembly_text, lambda path, n: (path, n) in found["squared_distance"],
-                                        source)
-        other = [o for o in orders if o != "dx"]
-        if other:
+    orders = {}
+    if "squared_distance" in fused:  # which square each call's inlined copies fused
+        orders, why = _orders_by_call(disassembly(), {(p.name, n) for p, n in found["squared_distance"]}, source)
+        if why:
             fused.discard("squared_distance")
-            problems.append(f"squared_distance fused as fma(dx, dx, dy * dy) in {len(orders) - len(other)} inlined "
-                            f"copies and otherwise in {len(other)} ({', '.join(map(str, other))}: fma(dy, dy, dx * dx) "
-                            f"or not found); the model computes the first only")
+            problems += why
     return {"fused": sorted(fused), "squared_distance_orders": orders,
             "fused_instructions": sum(v for (p, _), v in lines.items() if p.name != "navfn.cpp"),
             "sites": {s: [f"{p.name}:{n}" for p, n in sorted(v, key=lambda t: t[1])] for s, v in sorted(found.items())},
@@ -174,7 +221,24 @@ def plugin_record(assembly_text: str) -> dict:
 
 def plugin_find(tc, source: Path, includes, defines, folder: Path) -> dict:
     """The plugin's arithmetic as ``tc`` builds ``navfn_planner.cpp`` (:func:`plugin_record`)."""
-    return plugin_record(assembly(tc, source, includes, defines, folder))
+    text = assembly(tc, source, includes, defines, folder)
+    return plugin_record(text, lambda: disassemble(tc, folder / (source.stem + ".s")))
+
+
+def disassemble(tc, asm: Path) -> str:
+    """``objdump -d -l --inlines`` of the assembly ``asm`` assembled by ``tc``'s compiler."""
+    obj = asm.with_suffix(".o")
+    r = subprocess.run([tc.cxx, *tc.all_flags, "-c", str(asm), "-o", str(obj)], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"{asm.name} did not assemble: {r.stderr.strip()[:300]}")
+    tool = tc.objdump()
+    if shutil.which(tool) is None:
+        raise RuntimeError(f"{tool} is needed to tell the calls of the plugin's fused squared_distance apart "
+                           f"(Debian: binutils for the target)")
+    r = subprocess.run([tool, "-d", "-l", "--inlines", "--no-show-raw-insn", str(obj)], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"{tool} could not read {obj.name}: {r.stderr.strip()[:300]}")
+    return r.stdout
 
 
 def plugin_of_build(doc: dict):
@@ -187,7 +251,11 @@ def plugin_of_build(doc: dict):
         return None, "this build does not record its plugin's arithmetic (built before navfn-smt found it): build it again"
     if entry.get("unexpressible"):
         return None, "the plugin model cannot express this build's arithmetic: " + "; ".join(entry["unexpressible"])
-    return PluginArithmetic(navfn, frozenset(entry["fused"])), None
+    orders = entry.get("squared_distance_orders") or {}
+    if not isinstance(orders, dict):  # by copy (older builds): unexpressible above unless every copy's was dx
+        orders = {}
+    return PluginArithmetic(navfn, frozenset(entry["fused"]),
+                            frozenset(c for c, o in orders.items() if o == "dy")), None
 
 
 def fused_sites(source: Path, lines) -> tuple:

@@ -16,18 +16,15 @@ is reported as unexpressible: the sites cannot be told.
 
 from __future__ import annotations
 
-import re
 import shutil
 import subprocess
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from .arithmetic import FMA
+from .arithmetic import FMA, located_binary
 
 ELF_MACHINES = {62: "x86-64", 183: "aarch64"}  # e_machine -> the target of oracle.targets
 OBJDUMP = {"x86-64": "objdump", "aarch64": "aarch64-linux-gnu-objdump"}
-LINE = re.compile(r"^(/?[^\s:]+):(\d+)(?:\s|$)")
-INSN = re.compile(r"^\s*[0-9a-f]+:\s+(\S.*)$")
 
 
 def elf_target(path: Path) -> str:
@@ -48,21 +45,13 @@ def elf_target(path: Path) -> str:
 def fused_lines_of_binary(disassembly: str, source_name: str) -> tuple:
     """``(lines, untraced)``: the ``source_name`` lines that fused multiply-add instructions of
     ``objdump -d -l`` output come from, and how many such instructions have no line at all."""
-    current, lines, untraced = None, [], 0
-    for text in disassembly.splitlines():
-        m = LINE.match(text)
-        if m:
-            current = (Path(m.group(1)).name, int(m.group(2)))
-            continue
-        if text.endswith(">:"):  # a new function: its lines come after its label
-            current = None
-            continue
-        m = INSN.match(text)
-        if m and FMA.match(" " + m.group(1)):
-            if current is None:
+    lines, untraced = [], 0
+    for (path, n), _, text in located_binary(disassembly):
+        if FMA.match(" " + text):
+            if path is None:
                 untraced += 1
-            elif current[0] == source_name:
-                lines.append(current[1])
+            elif path.name == source_name:
+                lines.append(n)
     return lines, untraced
 
 

@@ -63,6 +63,12 @@ class Toolchain:
         r = subprocess.run([self.cxx, "--version"], capture_output=True, text=True)
         return (r.stdout.splitlines() or [""])[0]
 
+    def objdump(self) -> str:
+        """The objdump that reads this toolchain's objects: this machine's for its own
+        architecture, ``<triple>-objdump`` (Debian's cross binutils) for another's."""
+        machine = self.machine()
+        return "objdump" if machine.split("-")[0] == platform.machine() else f"{machine}-objdump"
+
     def runner(self) -> list:
         """The command prefix that runs this toolchain's programs here: none for this machine's
         own, ``qemu-<arch>`` for another's (a clear error when it is not installed)."""

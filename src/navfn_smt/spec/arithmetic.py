@@ -102,6 +102,23 @@ PLUGIN_SITES = {
 }
 
 
+# The calls of squared_distance in navfn_planner.cpp (call -> a pattern of its line).  GCC
+# inlines each call and may fuse either square in each copy: ``fma(dx, dx, dy * dy)`` (order
+# "dx") or ``fma(dy, dy, dx * dx)`` (order "dy"), so a build's order is found per call.
+SQUARED_CALLS = {
+    "tolerance": r"sdist\s*=\s*squared_distance\(",
+    "smooth_last": r"squared_distance\(\s*last_pose\.pose\s*,\s*second_to_last_pose",
+    "smooth_goal": r"squared_distance\(\s*goal\s*,\s*second_to_last_pose",
+    "same_position": r"squared_distance\(\s*last_pose\.pose\s*,\s*goal\s*\)",
+}
+SQUARED_ORDERS = ("dx", "dy")
+
+
+def squared_call_of_line(text: str):
+    """The call of squared_distance a line of navfn_planner.cpp makes, or None."""
+    return next((c for c, pattern in SQUARED_CALLS.items() if re.search(pattern, text)), None)
+
+
 def plugin_site_of_line(file_name: str, text: str):
     """The plugin site a line of ``file_name`` is, or None."""
     return next((s for s, (_, pattern, f, _) in PLUGIN_SITES.items()
@@ -115,19 +132,27 @@ class PluginArithmetic:
 
     navfn: Arithmetic = X86_64
     fused: frozenset = frozenset()
+    dy_first: frozenset = frozenset()  # the calls (SQUARED_CALLS) whose fused square is dy's
 
     def __post_init__(self):
-        unknown = sorted(set(self.fused) - set(PLUGIN_SITES))
+        unknown = sorted(set(self.fused) - set(PLUGIN_SITES)) + sorted(set(self.dy_first) - set(SQUARED_CALLS))
         if unknown:
-            raise ValueError(f"no such plugin site: {unknown}")
+            raise ValueError(f"no such plugin site or call: {unknown}")
 
     def fuses(self, site: str) -> bool:
         return site in self.fused
 
+    def squared_order(self, call: str) -> str:
+        """Which square the build fuses in the call ``call`` of squared_distance (when it fuses)."""
+        if call not in SQUARED_CALLS:
+            raise ValueError(f"no such call of squared_distance: {call}")
+        return "dy" if call in self.dy_first else "dx"
+
     @property
     def name(self) -> str:
         plugin = "+".join(sorted(self.fused)) or "none"
-        return f"{self.navfn.name}, plugin fused[{plugin}]"
+        dy = f", fma(dy, dy, dx * dx) in {'+'.join(sorted(self.dy_first))}" if self.dy_first else ""
+        return f"{self.navfn.name}, plugin fused[{plugin}]{dy}"
 
 
 PLUGIN_X86_64 = PluginArithmetic()
