@@ -372,3 +372,102 @@ def test_a_kernel_is_stated_once_and_computes_in_each_arithmetic():
         hf = f32(rng.randint(50, 253))
         differ += K.planar_wave(C, l, r, u, d, hf) != K.planar_wave(arm, l, r, u, d, hf)
     assert 0 < differ < 2000
+
+
+# --------------------------------------------------------------------------- the costmap layers
+MATH_CPP = """double distanceToLine(double pX, double pY, double x0, double y0, double x1, double y1)
+{
+  double A = pX - x0;
+  double B = pY - y0;
+  double C = x1 - x0;
+  double D = y1 - y0;
+  double dot = A * C + B * D;
+  double len_sq = C * C + D * D;
+    xx = x0 + param * C;
+    yy = y0 + param * D;
+  double other = a * b + c;
+}
+"""
+LAYER_FILES = {"costmap_math.cpp": MATH_CPP,
+               "inflation_layer.cpp": "        static_cast<unsigned int>(distance_cells * lut_precision + 0.5f));\n",
+               "costmap_2d.cpp": "  } else if (wx > resolution_ * size_x_ + origin_x_) {\n",
+               "fmaintrin.h": "  return (__m256)__builtin_ia32_vfmaddps256 ((__v8sf)__A, (__v8sf)__B,\n"}
+
+
+def _distance_to_line_code(dot: str = "A", len_sq: str = "C") -> list:
+    """arm64 code of distanceToLine (the lines of MATH_CPP) fusing the products named."""
+    fused_dot = ("fmul\td6, d1, d3", "fmadd\td6, d0, d2, d6") if dot == "A" else ("fmul\td6, d0, d2",
+                                                                                   "fmadd\td6, d1, d3, d6")
+    fused_len = ("fmul\td7, d3, d3", "fmadd\td7, d2, d2, d7") if len_sq == "C" else ("fmul\td7, d2, d2",
+                                                                                     "fmadd\td7, d3, d3, d7")
+    return [("costmap_math.cpp", 3, "fsub\td0, d8, d4"), ("costmap_math.cpp", 4, "fsub\td1, d9, d5"),
+            ("costmap_math.cpp", 5, "fsub\td2, d10, d4"), ("costmap_math.cpp", 6, "fsub\td3, d11, d5"),
+            *(("costmap_math.cpp", 7, i) for i in fused_dot), *(("costmap_math.cpp", 8, i) for i in fused_len),
+            ("costmap_math.cpp", 9, "fmadd\td12, d13, d2, d4"), ("costmap_math.cpp", 10, "fmadd\td14, d13, d3, d5")]
+
+
+def _layers_dis(tmp_path, items, untraced: int = 0) -> str:
+    for name, text in LAYER_FILES.items():
+        (tmp_path / name).write_text(text)
+    body = ["0000000000001000 <_Z14distanceToLinedddddd>:"]
+    body += [f"    {4 * k:x}:\tfmadd\td0, d1, d2, d3" for k in range(untraced)]  # before any line
+    for k, (name, line, insn) in enumerate(items):
+        body += [f"{tmp_path}/{name}:{line}", f"    {0x100 + 4 * k:x}:\t{insn}"]
+    return "\n".join(body) + "\n"
+
+
+def test_the_layers_fused_lines_are_their_sites_and_distance_to_lines_products_are_found(tmp_path):
+    from navfn_smt.oracle.arithmetic import layers_of_build, layers_record
+    from navfn_smt.spec.arithmetic import LayersArithmetic
+
+    items = [*_distance_to_line_code(), ("inflation_layer.cpp", 1, "fmadd\ts0, s1, s2, s3"),
+             ("costmap_2d.cpp", 1, "fmadd\td0, d1, d2, d3"), ("fmaintrin.h", 1, "fmla\tv0.4s, v1.4s, v2.4s")]
+    doc = layers_record(_layers_dis(tmp_path, items))
+    assert doc["unexpressible"] == [] and doc["fused"] == ["distance_to_line", "lut_index"]
+    assert doc["orders"] == {"dot": "A", "len_sq": "C"} and doc["intrinsics"] == 1
+    assert list(doc["harmless"]) == ["enforce_bounds"] and doc["fused_instructions"] == 7
+    doc = layers_record(_layers_dis(tmp_path, _distance_to_line_code("B", "D")))
+    assert doc["orders"] == {"dot": "B", "len_sq": "D"} and doc["fused"] == ["distance_to_line"]
+    found = layers_of_build({"arithmetic": KNOWN["aarch64"].as_dict(), "layers_arithmetic": doc})[0]
+    assert found == LayersArithmetic(frozenset({"distance_to_line"}), "B", "D")
+    assert layers_of_build({"arithmetic": X86_64.as_dict()})[0] == LayersArithmetic()  # recorded before: fuses none
+    assert "build it again" in layers_of_build({"arithmetic": KNOWN["aarch64"].as_dict()})[1]
+
+
+def test_the_layers_model_computes_distance_to_line_with_the_products_found():
+    from navfn_smt.nav2.footprint import c_hypot, distance_to_line
+    from navfn_smt.spec.arithmetic import LayersArithmetic
+
+    x0, y0, x1, y1 = -0.3, 0.7, 0.4, -0.1  # the point (0, 0): its nearest point is inside the segment
+    a, b, c, d = 0.0 - x0, 0.0 - y0, x1 - x0, y1 - y0
+    for dot, len_sq in (("A", "C"), ("B", "D")):
+        s = c_fma(a, c, b * d) if dot == "A" else c_fma(b, d, a * c)
+        n = c_fma(c, c, d * d) if len_sq == "C" else c_fma(d, d, c * c)
+        assert 0 < s / n < 1
+        want = c_hypot(c_fma(s / n, c, x0) - 0.0, c_fma(s / n, d, y0) - 0.0)
+        arith = LayersArithmetic(frozenset({"distance_to_line"}), dot, len_sq)
+        assert distance_to_line(0.0, 0.0, x0, y0, x1, y1, arith) == want
+    assert distance_to_line(0.0, 0.0, x0, y0, x1, y1) == c_hypot(x0 + (a * c + b * d) / (c * c + d * d) * c,
+                                                                 y0 + (a * c + b * d) / (c * c + d * d) * d)
+
+
+@pytest.mark.parametrize("drop", ["partial", "no site", "no line", "untold"])
+def test_layer_arithmetic_the_model_cannot_express_is_named(tmp_path, drop):
+    from navfn_smt.oracle.arithmetic import layers_of_build, layers_record
+
+    items, untraced = _distance_to_line_code(), 0
+    if drop == "partial":
+        items = items[:-2]
+    elif drop == "no site":
+        items.append(("costmap_math.cpp", 11, "fmadd\td0, d1, d2, d3"))
+    elif drop == "no line":
+        untraced = 1
+    else:  # the dot's multiplicands written by no line that assigns A, B, C or D
+        items = [i for i in items if i[1] not in (3, 4, 5, 6)]
+    doc = layers_record(_layers_dis(tmp_path, items, untraced))
+    says = {"partial": "distance_to_line fused on costmap_math.cpp lines [7, 8] but not on [9, 10]",
+            "no site": "costmap_math.cpp:11 fused `double other = a * b + c;`", "no line": "without a source line",
+            "untold": "distanceToLine's dot: which product was fused could not be told"}[drop]
+    assert any(says in p for p in doc["unexpressible"]), doc["unexpressible"]
+    bad = {"arithmetic": KNOWN["aarch64"].as_dict(), "layers_arithmetic": doc}
+    assert layers_of_build(bad)[0] is None and "cannot express" in layers_of_build(bad)[1]

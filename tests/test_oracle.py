@@ -454,7 +454,8 @@ def target_builds(nav2_src, tmp_path_factory) -> dict:
             tc.runner()
         except NavfnInputError as e:
             pytest.skip(str(e))
-        programs = ("navfn-plain", "navfn-traced", *(("navfn-plugin",) if name == "aarch64" else ()))
+        programs = ("navfn-plain", "navfn-traced", *(("navfn-plugin",) if name == "aarch64" else ()),
+                    *(("costmap-layers",) if name == "x86-64-v3" else ()))
         out[name] = (build(nav2_src / "rolling", root / name, programs=programs, tc=tc), root / name)
     return out
 
@@ -593,6 +594,24 @@ def test_each_call_of_the_plugins_squared_distance_is_compared_with_the_square_i
         assert found.dy_first == {"tolerance"}
         assert run_plugin_live(configs, oracle, arith=found).as_dict()["failed"] == 0
         assert run_plugin_live(configs, oracle, arith=replace(found, dy_first=frozenset())).as_dict()["failed"] == 2
+
+
+def test_the_layers_model_in_the_arithmetic_found_agrees_with_the_fused_layers(target_builds):
+    """Rolling's costmap layers built for x86-64-v3: distanceToLine (the inscribed radius) and the
+    cost table's index are found fused, with A * C and C * C the products rounded once; the model
+    computing so agrees with the layers on generated maps and parameters; computing as x86-64's
+    layers do, it does not."""
+    from navfn_smt.difftest.layers_live import generated_configs, run_layers_live
+    from navfn_smt.oracle.client import LayersOracle
+    from navfn_smt.spec.arithmetic import LAYERS_X86_64
+
+    doc, folder = target_builds["x86-64-v3"]
+    assert doc["layers_arithmetic"]["fused"] == ["distance_to_line", "lut_index"]
+    assert doc["layers_arithmetic"]["orders"] == {"dot": "A", "len_sq": "C"}
+    with LayersOracle(folder) as oracle:
+        found = oracle.layers_arithmetic()
+        assert run_layers_live(generated_configs("rolling", 40, 0), oracle, arith=found).as_dict()["failed"] == 0
+        assert run_layers_live(generated_configs("rolling", 40, 0), oracle, arith=LAYERS_X86_64).as_dict()["failed"] > 0
 
 
 def test_the_conversion_probe_answers_as_the_spec_converts(target_builds):

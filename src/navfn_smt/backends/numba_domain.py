@@ -235,7 +235,7 @@ def _div64(self, a, b):
 
 
 @intrinsic
-def _fma_llvm(typingctx, a, b, c):
+def fma_llvm(typingctx, a, b, c):
     """LLVM's ``llvm.fma`` on three floats of one type: ``a * b + c`` rounded once."""
     if not (a == b == c and isinstance(a, types.Float)):
         return None
@@ -250,11 +250,11 @@ def _fma_llvm(typingctx, a, b, c):
 
 
 def _fma(self, a, b, c):
-    return _fma_llvm(F32(a), F32(b), F32(c))
+    return fma_llvm(F32(a), F32(b), F32(c))
 
 
 def _fma64(self, a, b, c):
-    return _fma_llvm(F64(a), F64(b), F64(c))
+    return fma_llvm(F64(a), F64(b), F64(c))
 
 
 def _fuses(self, site):  # a constant of the compiled code: whether the build fused ``site``

@@ -114,7 +114,7 @@ def _costmap_level(args) -> int:
     if args.params and not args.map:
         raise NavfnInputError("--params goes with --map")
     with LayersOracle(args.oracle) as oracle:
-        oracle.require_arithmetic()
+        arith = oracle.layers_arithmetic()  # the model computes as the build was found to
         distro = oracle.build["distribution"]
         if args.map:
             cfg, notes = map_config(args.map, args.params, distro)
@@ -123,9 +123,10 @@ def _costmap_level(args) -> int:
                 print(note)
         else:
             configs = generated_configs(distro, args.configs, args.seed)
-        label = f"difftest --level costmap (the layer models against the C++ layers of {distro})"
+        label = (f"difftest --level costmap (the layer models against the C++ layers of {distro}, "
+                 f"{oracle.build.get('target', 'x86-64')}, {arith.name})")
         with progress_bar(1 if args.map else args.configs, label, enabled=not args.quiet) as advance:
-            summary = run_layers_live(configs, oracle, progress=advance).as_dict()
+            summary = run_layers_live(configs, oracle, progress=advance, arith=arith).as_dict()
     return _level_report(args, summary)
 
 

@@ -29,6 +29,7 @@ from ..nav2.costmap import (INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, 
                             build_global_costmap, inflation_types)
 from ..nav2.inflation import SQRT_MODES
 from ..errors import NavfnInputError
+from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..nav2.mapserver import MapServerMap
 
 MAX_DETAILS = 20
@@ -65,14 +66,14 @@ class LayersSummary:
                 "disagreements": self.disagreements}
 
 
-def model_costmap(cfg: LayersConfig, distro: str, sqrt: str = SQRT_MODES[0]):
+def model_costmap(cfg: LayersConfig, distro: str, sqrt: str = SQRT_MODES[0], arith: LayersArithmetic = LAYERS_X86_64):
     """The model's global costmap of ``cfg`` (:func:`~navfn_smt.nav2.costmap.build_global_costmap`
-    on the grid as a map_server map of ``distro``)."""
+    on the grid as a map_server map of ``distro``), in the layers build's arithmetic ``arith``."""
     h, w = cfg.occupancy.shape
     m = MapServerMap(Path("generated"), Path("generated"), cfg.resolution, float(np.float32(cfg.resolution)),
                      (cfg.origin[0], cfg.origin[1], 0.0), w, h, "trinary", False, distro, 0.65, 0.25,
                      cfg.occupancy, None, None)
-    return build_global_costmap(m, cfg.params, distro, sqrt=sqrt)
+    return build_global_costmap(m, cfg.params, distro, sqrt=sqrt, arith=arith)
 
 
 def _first_difference(model, answer) -> Optional[tuple]:
@@ -89,7 +90,7 @@ def _first_difference(model, answer) -> Optional[tuple]:
     return None
 
 
-def compare_config(cfg: LayersConfig, oracle, summary: LayersSummary) -> None:
+def compare_config(cfg: LayersConfig, oracle, summary: LayersSummary, arith: LayersArithmetic = LAYERS_X86_64) -> None:
     distro = summary.distribution
     t0 = time.perf_counter()
     answer = oracle.costmap(cfg.occupancy, cfg.resolution, cfg.origin, cfg.params)
@@ -100,7 +101,7 @@ def compare_config(cfg: LayersConfig, oracle, summary: LayersSummary) -> None:
     summary.outcomes[ran] = summary.outcomes.get(ran, 0) + 1
     has_dt = any(kinds.get(lay.type) == "current" for lay in cfg.params.plugins)
     t1 = time.perf_counter()
-    diffs = {sqrt: _first_difference(model_costmap(cfg, distro, sqrt), answer)
+    diffs = {sqrt: _first_difference(model_costmap(cfg, distro, sqrt, arith), answer)
              for sqrt in (SQRT_MODES if has_dt else SQRT_MODES[:1])}
     summary.model_seconds += time.perf_counter() - t1
     matched = [sqrt for sqrt, d in diffs.items() if d is None]
@@ -119,10 +120,13 @@ def compare_config(cfg: LayersConfig, oracle, summary: LayersSummary) -> None:
                                       "origin": list(cfg.origin)})
 
 
-def run_layers_live(configs, oracle, progress: Optional[Callable[[int], None]] = None) -> LayersSummary:
+def run_layers_live(configs, oracle, progress: Optional[Callable[[int], None]] = None,
+                    arith: Optional[LayersArithmetic] = None) -> LayersSummary:
+    """Every configuration of ``configs`` against the layers build ``oracle``, the model in the
+    arithmetic ``arith`` (None: x86-64's)."""
     summary = LayersSummary(oracle.build["distribution"])
     for cfg in configs:
-        compare_config(cfg, oracle, summary)
+        compare_config(cfg, oracle, summary, arith or LAYERS_X86_64)
         if progress:
             progress(1)
     if "eigen-sqrt" in oracle.build["programs"]:

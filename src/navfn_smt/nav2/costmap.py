@@ -59,6 +59,7 @@ from typing import Mapping, Optional, Union
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..spec.constants import FREE_SPACE, NO_INFORMATION
 from .mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
 from .footprint import robot_footprint
@@ -347,8 +348,10 @@ def build_global_costmap(
     resolution: Optional[float] = None,
     origin: tuple[float, float] = (0.0, 0.0),
     sqrt: str = "eigen-sse-amd",
+    arith: LayersArithmetic = LAYERS_X86_64,
 ) -> GlobalCostmap:
-    """The global costmap's costs after one full update on a static map.
+    """The global costmap's costs after one full update on a static map, in the arithmetic of
+    the layers build ``arith`` (x86-64's by default).
 
     ``source``: a :class:`MapServerMap` (its occupancy goes through the static layer with
     ``params``; resolution and origin are the map's) or a uint8 costmap array taken as the
@@ -365,18 +368,19 @@ def build_global_costmap(
         res, org = source.costmap_resolution, (source.origin[0], source.origin[1])
     else:
         res, org = float(resolution if resolution is not None else params.resolution), origin
-    fp = robot_footprint(params.robot_radius, params.footprint, params.footprint_padding)
+    fp = robot_footprint(params.robot_radius, params.footprint, params.footprint_padding, arith=arith)
     master = np.full(static.shape, NO_INFORMATION if params.track_unknown_space else FREE_SPACE, np.uint8)
     ran, notes = [], list(params.notes)
     for layer in params.plugins:
-        ran.append(_run_layer(layer, master, static, params, distro, res, fp.inscribed_radius, notes, sqrt))
+        ran.append(_run_layer(layer, master, static, params, distro, res, fp.inscribed_radius, notes, sqrt, arith))
     notes += [f"filter '{f}' not modelled (needs a filter mask); skipped" for f in params.filters]
     return GlobalCostmap(static, master, res, org, distro, fp.inscribed_radius, fp.circumscribed_radius,
                          tuple(r for r in ran if r), tuple(notes))
 
 
 def _run_layer(layer: LayerSpec, master, static, params: CostmapParams, distro: str, res: float,
-               inscribed: float, notes: list, sqrt: str = "eigen-sse-amd") -> Optional[str]:
+               inscribed: float, notes: list, sqrt: str = "eigen-sse-amd",
+               arith: LayersArithmetic = LAYERS_X86_64) -> Optional[str]:
     if layer.type in SENSOR_LAYERS:
         notes.append(f"{layer.name} ({layer.type}) needs sensor data; skipped")
         return None
@@ -393,5 +397,5 @@ def _run_layer(layer: LayerSpec, master, static, params: CostmapParams, distro: 
     radius = ip.custom_inscribed_radius if ip.custom_inscribed_radius >= 0.0 else inscribed
     args = (master, res, radius, ip.inflation_radius, ip.cost_scaling_factor, ip.inflate_unknown,
             ip.inflate_around_unknown)
-    master[...] = inflate_current(*args, sqrt=sqrt) if kind == "current" else inflate_legacy(*args)
+    master[...] = inflate_current(*args, sqrt=sqrt, arith=arith) if kind == "current" else inflate_legacy(*args)
     return f"{layer.name} ({kind})"

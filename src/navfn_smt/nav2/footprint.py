@@ -35,7 +35,9 @@ from typing import Optional, Sequence
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..spec.constants import DBL_MAX
+from ..spec.numeric import c_fma
 
 DEFAULT_ROBOT_RADIUS = 0.1  # Costmap2DROS: robot_radius (double); nav2_bringup sets 0.22
 DEFAULT_FOOTPRINT_PADDING = 0.01  # Costmap2DROS: footprint_padding, held as float
@@ -204,12 +206,19 @@ def pad_footprint(points, padding: float) -> list[tuple[float, float]]:
     return [(x + sign0(x) * padding, y + sign0(y) * padding) for x, y in points]
 
 
-def distance_to_line(px, py, x0, y0, x1, y1) -> float:
-    """``distanceToLine`` (costmap_math.cpp), double: the distance to the segment's nearest point."""
+def distance_to_line(px, py, x0, y0, x1, y1, arith: LayersArithmetic = LAYERS_X86_64) -> float:
+    """``distanceToLine`` (costmap_math.cpp), double: the distance to the segment's nearest point;
+    its four multiply-adds rounded once where the build fused them (site ``distance_to_line``),
+    each sum with the product the build fused."""
     a, b = px - x0, py - y0
     c, d = x1 - x0, y1 - y0
-    dot = a * c + b * d
-    len_sq = c * c + d * d
+    fused = arith.fuses("distance_to_line")
+    if fused:
+        dot = c_fma(a, c, b * d) if arith.dot == "A" else c_fma(b, d, a * c)
+        len_sq = c_fma(c, c, d * d) if arith.len_sq == "C" else c_fma(d, d, c * c)
+    else:
+        dot = a * c + b * d
+        len_sq = c * c + d * d
     try:
         param = dot / len_sq
     except ZeroDivisionError:  # C: x/0 -> +-inf, 0/0 -> nan
@@ -218,13 +227,16 @@ def distance_to_line(px, py, x0, y0, x1, y1) -> float:
         xx, yy = x0, y0
     elif param > 1:
         xx, yy = x1, y1
-    else:  # also for a NaN param, as in C
+    elif fused:  # also for a NaN param, as in C
+        xx, yy = c_fma(param, c, x0), c_fma(param, d, y0)
+    else:
         xx, yy = x0 + param * c, y0 + param * d
     return c_hypot(xx - px, yy - py)  # distance(pX, pY, xx, yy) = hypot(x1 - x0, y1 - y0)
 
 
-def min_max_distances(points) -> tuple[float, float]:
-    """``calculateMinAndMaxDistances``: (inscribed, circumscribed) radius, double."""
+def min_max_distances(points, arith: LayersArithmetic = LAYERS_X86_64) -> tuple[float, float]:
+    """``calculateMinAndMaxDistances``: (inscribed, circumscribed) radius, double, in the layers
+    build's arithmetic ``arith``."""
     min_dist, max_dist = DBL_MAX, 0.0
     if len(points) <= 2:
         return min_dist, max_dist
@@ -232,7 +244,7 @@ def min_max_distances(points) -> tuple[float, float]:
     for i in range(n):  # the last iteration is the closing edge (back -> front)
         (x0, y0), (x1, y1) = points[i], points[(i + 1) % n]
         vertex = c_hypot(x0 - 0.0, y0 - 0.0)
-        edge = distance_to_line(0.0, 0.0, x0, y0, x1, y1)
+        edge = distance_to_line(0.0, 0.0, x0, y0, x1, y1, arith)
         min_dist = _std_min(min_dist, _std_min(vertex, edge))
         max_dist = _std_max(max_dist, _std_max(vertex, edge))
     return min_dist, max_dist
@@ -250,13 +262,15 @@ def robot_footprint(
     footprint=None,
     footprint_padding: float = DEFAULT_FOOTPRINT_PADDING,
     strict: bool = True,
+    arith: LayersArithmetic = LAYERS_X86_64,
 ) -> RobotFootprint:
     """The padded footprint and its radii for the costmap parameters, as ``Costmap2DROS`` sets them.
 
     ``footprint``: None, a string (the ROS parameter; ``""`` and ``"[]"`` mean "use the
     radius"), or a sequence of (x, y) pairs taken as ``Point32`` (float32).  A string Nav2
     cannot parse makes Nav2 log an error and use ``robot_radius``; with ``strict`` (the
-    default) it raises :class:`NavfnInputError` instead.
+    default) it raises :class:`NavfnInputError` instead.  The radii are computed in the layers
+    build's arithmetic ``arith``.
     """
     source = "robot_radius"
     points = None
@@ -279,7 +293,7 @@ def robot_footprint(
         points = footprint_from_radius(float(robot_radius))
     padding = float32_padding(footprint_padding)
     padded = pad_footprint(points, padding)
-    inscribed, circumscribed = min_max_distances(padded)
+    inscribed, circumscribed = min_max_distances(padded, arith)
     return RobotFootprint(tuple(padded), inscribed, circumscribed, source, padding)
 
 

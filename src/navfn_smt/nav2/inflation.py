@@ -36,7 +36,9 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from ..backends.numba_domain import fma_llvm
 from ..errors import NavfnInputError
+from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..spec.constants import FREE_SPACE, INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION
 COST_LUT_PRECISION = 100  # InflationLayer: samples of the cost table per cell
 FLT_MAX = np.float32(np.finfo(np.float32).max)  # DistanceTransform::DT_INF
@@ -217,11 +219,12 @@ def distance_map(costmap: np.ndarray, inflate_around_unknown: bool = False, sqrt
 
 
 @njit(cache=True)
-def _apply_inflation(master, dist, cir, lut, inflate_unknown):
+def _apply_inflation(master, dist, cir, lut, inflate_unknown, fused_index):
     """``InflationLayer::applyInflation`` over the whole map, float32 index arithmetic.
 
     A cell farther than ``(float)cell_inflation_radius_`` is skipped; else its cost is
-    ``lut[min(lut_max, (unsigned)(distance * 100 + 0.5f))]``.
+    ``lut[min(lut_max, (unsigned)(distance * 100 + 0.5f))]``, the index's multiply-add rounded
+    once where the build fused it (``fused_index``, site ``lut_index``).
     """
     cir_f = np.float32(cir)
     lut_max = lut.shape[0] - 1
@@ -233,7 +236,7 @@ def _apply_inflation(master, dist, cir, lut, inflate_unknown):
             dc = dist[j, i]
             if dc > cir_f:
                 continue
-            scaled = min(lut_max, int(dc * prec + half))
+            scaled = min(lut_max, int(fma_llvm(dc, prec, half) if fused_index else dc * prec + half))
             master[j, i] = _write_cost(master[j, i], lut[scaled], inflate_unknown)
 
 
@@ -247,8 +250,10 @@ def inflate_current(
     inflate_around_unknown: bool = False,
     enabled: bool = True,
     sqrt: str = "eigen-sse-amd",
+    arith: LayersArithmetic = LAYERS_X86_64,
 ) -> np.ndarray:
-    """``InflationLayer::updateCosts`` (Nav2 >= 1.5.0) over the whole map; returns a new array.
+    """``InflationLayer::updateCosts`` (Nav2 >= 1.5.0) over the whole map, in the layers build's
+    arithmetic ``arith``; returns a new array.
 
     ``resolution``, ``inscribed_radius``, ``inflation_radius`` and ``cost_scaling_factor`` are
     the layer's doubles (defaults: the layer's own, 0.55 m and 10.0).  Nothing happens when
@@ -264,7 +269,7 @@ def inflate_current(
         return master
     lut = cost_lut(cir, float(resolution), float(inscribed_radius), float(cost_scaling_factor))
     dist = distance_map(master, inflate_around_unknown, sqrt)
-    _apply_inflation(master, dist, cir, lut, bool(inflate_unknown))
+    _apply_inflation(master, dist, cir, lut, bool(inflate_unknown), arith.fuses("lut_index"))
     return master
 
 

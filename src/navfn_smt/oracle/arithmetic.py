@@ -28,7 +28,8 @@ import subprocess
 from collections import defaultdict
 from pathlib import Path
 
-from ..spec.arithmetic import (CONVERSIONS, PLUGIN_SITES, Arithmetic, PluginArithmetic, plugin_site_of_line,
+from ..spec.arithmetic import (CONVERSIONS, LAYER_ORDERS, LAYER_SITES, LAYERS_X86_64, PLUGIN_SITES, X86_64,
+                               Arithmetic, LayersArithmetic, PluginArithmetic, layer_site_of_line, plugin_site_of_line,
                                site_of_line, squared_call_of_line)
 from ..spec.numeric import CONVERTERS
 
@@ -128,29 +129,32 @@ def squared_operand_orders(disassembly: str, is_site, lines_of=_source_lines) ->
     return orders
 
 
-def _order(body, lines_of) -> str:
-    """The square fused by the last instruction of ``body`` ((source line, text) pairs)."""
+def _order(body, lines_of, names=("dx", "dy"), square=True) -> str:
+    """Which variable of ``names`` the last instruction of ``body`` ((source line, text) pairs), a
+    fused multiply-add, multiplies: the line that last wrote a multiplicand register assigns it.
+    ``square``: the instruction must square one register (``dx * dx``), else either multiplicand
+    register is followed (``A * C``)."""
     op, args = _operands(body[-1][1])
     if args and args[0].startswith("%"):  # AT&T: vfmadd{132,213,231}sd a, b, c (Intel c, b, a)
         if len(args) != 3:
             return None
         a, b, c = args
         mult = {"132": (c, a), "213": (b, c), "231": (b, a)}.get(re.sub(r"\D", "", op)[:3])
-        if mult is None or mult[0] != mult[1]:
-            return None
-        reg, dest_at = mult[0], -1
+        dest_at = -1
     else:  # arm64: fmadd d, n, m, a
-        if len(args) != 4 or args[1] != args[2]:
-            return None
-        reg, dest_at = args[1], 0
-    for where, text in reversed(body[:-1]):
-        _, ops = _operands(text)
-        if ops and ops[dest_at] == reg:
-            text = lines_of(where[0]) if where[0] is not None else ()
-            if not 0 < where[1] <= len(text):
-                return None
-            m = re.search(r"\b(dx|dy)\s*=", text[where[1] - 1])
-            return m.group(1) if m else None
+        mult = tuple(args[1:3]) if len(args) == 4 else None
+        dest_at = 0
+    if mult is None or (square and mult[0] != mult[1]):
+        return None
+    for reg in dict.fromkeys(r for r in mult if re.fullmatch(r"%?[a-z]+\d*", r)):  # registers, not memory
+        for where, text in reversed(body[:-1]):
+            _, ops = _operands(text)
+            if ops and ops[dest_at] == reg:
+                text = lines_of(where[0]) if where[0] is not None else ()
+                m = re.search(rf"\b({'|'.join(names)})\s*=", text[where[1] - 1]) if 0 < where[1] <= len(text) else None
+                if m:
+                    return m.group(1)
+                break
     return None
 
 
@@ -343,3 +347,86 @@ def of_build(doc: dict):
     if entry.get("unexpressible"):
         return None, "the spec cannot express this build's arithmetic: " + "; ".join(entry["unexpressible"])
     return Arithmetic.from_dict(entry), None
+
+
+def layers_record(disassembly: str) -> dict:
+    """build.json's ``layers_arithmetic`` entry from ``objdump -d -l`` of the costmap layers
+    program (built with ``-g``): the modelled sites of
+    :data:`~navfn_smt.spec.arithmetic.LAYER_SITES` fused, the other sites fused with why their
+    value cannot change the result, which product each of distanceToLine's sums fused (a
+    multiplicand followed back to the line that assigns ``A``, ``B``, ``C`` or ``D``), and what
+    the model cannot express (a fused line that is no site or has no line, a modelled site fused
+    on some of its lines only, a product that cannot be told).  A fused instruction of a
+    compiler's intrinsics header (``fmaintrin.h``) is one the code asks for, not a contraction:
+    Eigen's AVX square root, which the ``eigen-sqrt`` program measures; it is counted apart."""
+    source = functools.lru_cache(maxsize=None)(_source_lines)
+    found, problems, body, products, count, explicit = defaultdict(set), [], [], defaultdict(set), 0, 0
+    for where, _, text in located_binary(disassembly):
+        body.append((where, text.strip()))
+        if not FMA.match(" " + text):
+            continue
+        count += 1
+        if where[0] is None:
+            problems.append("a fused multiply-add without a source line (build with -g)")
+            continue
+        if where[0].name.endswith("intrin.h"):  # an fma the code asks for (Eigen's AVX square root, which
+            explicit += 1                       # the eigen-sqrt program measures), not a contraction
+            continue
+        lines = source(where[0])
+        line = lines[where[1] - 1] if 0 < where[1] <= len(lines) else ""
+        site = layer_site_of_line(where[0].name, line)
+        if site is None:
+            problems.append(f"{where[0].name}:{where[1]} fused `{line.strip() or '?'}`, which is no multiply-add "
+                            f"site of the layers model")
+            continue
+        found[site].add(where)
+        for name, product in LAYER_ORDERS.items():
+            if site == "distance_to_line" and re.search(rf"\b{name}\s*=", line):
+                products[name].add(product.get(_order(body, source, tuple(product), square=False)))
+    fused = set()
+    for site, at in found.items():
+        path = next(iter(at))[0]
+        every = {(path, i + 1) for i, t in enumerate(source(path)) if layer_site_of_line(path.name, t) == site}
+        if LAYER_SITES[site][3] is not None or at == every:
+            fused.add(site)
+        else:
+            problems.append(f"{site} fused on {path.name} lines {sorted(n for _, n in at)} but not on "
+                            f"{sorted(n for _, n in every - at)}")
+    orders = {}
+    if "distance_to_line" in fused:
+        for name in LAYER_ORDERS:
+            if len(products[name]) != 1 or None in products[name]:
+                problems.append(f"distanceToLine's {name}: which product was fused could not be told")
+            else:
+                orders[name] = next(iter(products[name]))
+    return {"fused": sorted(s for s in fused if LAYER_SITES[s][3] is None), "orders": orders,
+            "harmless": {s: LAYER_SITES[s][3] for s in sorted(fused) if LAYER_SITES[s][3] is not None},
+            "fused_instructions": count, "intrinsics": explicit,
+            "sites": {s: [f"{p.name}:{n}" for p, n in sorted(v, key=lambda t: t[1])] for s, v in sorted(found.items())},
+            "unexpressible": list(dict.fromkeys(problems))}
+
+
+def layers_find(tc, program: Path) -> dict:
+    """The costmap layers' arithmetic in the program ``program`` (built with ``-g``) as ``tc``
+    built it (:func:`layers_record`)."""
+    tool = tc.objdump()
+    if shutil.which(tool) is None:
+        raise RuntimeError(f"{tool} is needed to read the costmap layers' machine code (Debian: binutils for the "
+                           f"target)")
+    r = subprocess.run([tool, "-d", "-l", "--no-show-raw-insn", str(program)], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"{tool} could not read {program.name}: {r.stderr.strip()[:300]}")
+    return layers_record(r.stdout)
+
+
+def layers_of_build(doc: dict):
+    """The :class:`LayersArithmetic` a layers build records, or None with why."""
+    entry = doc.get("layers_arithmetic")
+    if entry is None:
+        navfn, _ = of_build(doc)
+        if navfn == X86_64:  # built before the layers' arithmetic was found: x86-64's fuses nothing
+            return LAYERS_X86_64, None
+        return None, "this build does not record its layers' arithmetic (built before navfn-smt found it): build it again"
+    if entry.get("unexpressible"):
+        return None, "the layers model cannot express this build's arithmetic: " + "; ".join(entry["unexpressible"])
+    return LayersArithmetic(frozenset(entry["fused"]), **entry.get("orders", {})), None

@@ -52,7 +52,7 @@ from typing import Optional
 
 from ..errors import NavfnInputError
 from .arithmetic import find as find_arithmetic
-from .arithmetic import plugin_find
+from .arithmetic import layers_find, plugin_find
 from .arithmetic import record as record_arithmetic
 from .library import disassemble, elf_target, fused_lines_of_binary
 from .targets import Toolchain, toolchain
@@ -252,7 +252,7 @@ def _jobs(src: Path, tmp: Path) -> dict:
         ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])
     return {
         "costmap-layers": (layers, [HERE / "ros_stubs", costmap / "include", *eigen_include()], layer_defines,
-                           ["-fopenmp"]),
+                           ["-fopenmp", "-g"]),  # -g: its arithmetic is read from its machine code
         "eigen-sqrt": ([HERE / "eigen_sqrt.cpp"], eigen_include(), [], ["-fopenmp"]),
         "navfn-plain": ([driver, navfn_cpp], includes, defines),
         "navfn-traced": ([driver, traced], includes, [*defines, "NAVFN_SMT_TRACED"]),
@@ -376,6 +376,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
                 sources, includes, defines = jobs["navfn-plugin"][:3]
                 planner_cpp = next(f for f in sources if Path(f).name == "navfn_planner.cpp")
                 plugin_arith = plugin_find(tc, planner_cpp, includes, defines, tmp / "arithmetic")
+            layers_arith = layers_find(tc, tmp / "costmap-layers") if "costmap-layers" in programs else None
         except RuntimeError as e:
             raise NavfnInputError(f"the arithmetic of the {tc.target} build could not be found: {e}") from None
         commit, why = git_commit(src)
@@ -385,6 +386,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             "target": tc.target, "machine": tc.machine(), "compiler": tc.cxx, "compiler_version": tc.version(),
             "flags": tc.all_flags, "runner": runner, "arithmetic": arith,
             **({"plugin_arithmetic": plugin_arith} if plugin_arith is not None else {}),
+            **({"layers_arithmetic": layers_arith} if layers_arith is not None else {}),
             "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs), "skipped": skipped,
             "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src, jobs)},
             "anchor": ANCHOR,

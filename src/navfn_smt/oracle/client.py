@@ -22,7 +22,7 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.planner import PlanResult
 from ..spec.arithmetic import X86_64
-from .arithmetic import of_build, plugin_of_build
+from .arithmetic import layers_of_build, of_build, plugin_of_build
 from .build import load_build
 
 
@@ -209,6 +209,14 @@ class LayersOracle(_Program):
     END = struct.pack("<3i", 0, 0, 0)
     # OpenMP threads that spin between requests take the CPU the model needs meanwhile
     ENV = {"OMP_WAIT_POLICY": "passive"}
+
+    def layers_arithmetic(self):
+        """The :class:`~navfn_smt.spec.arithmetic.LayersArithmetic` the layers build was found to
+        compute in; a clear error when the model cannot express it (or the build does not record it)."""
+        arith, why = layers_of_build(self.build)
+        if arith is None:
+            raise NavfnInputError(f"{self.folder}: {why}")
+        return arith
 
     def costmap(self, occupancy: np.ndarray, resolution: float, origin, params) -> LayersAnswer:
         """The layers of the :class:`~navfn_smt.nav2.costmap.CostmapParams` ``params`` (in order;

@@ -96,6 +96,10 @@ int main()
     node->declare_parameter("map_topic", rclcpp::ParameterValue(std::string("map")));
 
     nav2_costmap_2d::LayeredCostmap layered("map", false, p[0] != 0);
+    // as Costmap2DROS::on_configure: the costmap has its size and resolution before its layers
+    // load (an inflation layer that computes its caches at zero resolution gets an infinite cell
+    // radius: (unsigned) of infinity is 0 on x86-64 but UINT_MAX on arm64, a 4 GB cost table)
+    layered.resizeMap(head[0], head[1], resolution, origin[0], origin[1]);
     TfBuffer tf;
     int32_t status = 0;
     for (size_t i = 0; i < layers.size(); ++i) {

@@ -156,3 +156,75 @@ class PluginArithmetic:
 
 
 PLUGIN_X86_64 = PluginArithmetic()
+
+
+# The multiply-adds of the costmap layers as the layers driver runs them (a static map, a
+# footprint from a radius, no rolling window): site -> (the C++, a pattern of its line, the
+# file, None where the model computes it as found, else why its value cannot change the layers'
+# result).  The reasons are argued; the difftest of fused builds against the model tests them.
+LAYER_SITES = {
+    "distance_to_line": ("distanceToLine: dot = A * C + B * D, len_sq = C * C + D * D, xx = x0 + param * C, "
+                         "yy = y0 + param * D (double): the footprint's inscribed radius",
+                         r"(dot|len_sq)\s*=\s*\w+\s*\*\s*\w+\s*\+|(xx|yy)\s*=\s*[xy]0\s*\+\s*param\s*\*",
+                         "costmap_math.cpp", None),
+    "lut_index": ("InflationLayer::updateCosts: distance_cells * lut_precision + 0.5f (float), the cost table's "
+                  "index (Lyrical, Rolling)", r"distance_cells\s*\*\s*lut_precision\s*\+", "inflation_layer.cpp", None),
+    "map_to_world": ("Costmap2D::mapToWorld: origin + (m + 0.5) * resolution (double)",
+                     r"w[xy]\s*=\s*origin_[xy]_\s*\+\s*\(m[xy]\s*\+\s*0\.5\)\s*\*", "costmap_2d.cpp",
+                     "the static layer's bounds are cell centres, which worldToMapEnforceBounds floors to the same "
+                     "cells fused or not"),
+    "enforce_bounds": ("Costmap2D::worldToMapEnforceBounds: resolution * size + origin (double)",
+                       r"w[xy]\s*>\s*resolution_\s*\*\s*size_[xy]_\s*\+\s*origin_[xy]_", "costmap_2d.cpp",
+                       "compared with bounds half a cell beyond the map or at DBL_MAX: the same outcome fused or not"),
+    "update_origin": ("Costmap2D::updateOrigin: origin + cell * resolution (double)",
+                      r"new_grid_o[xy]\s*=\s*origin_[xy]_\s*\+\s*cell_o[xy]\s*\*", "costmap_2d.cpp",
+                      "a rolling window's: the driver's costmap does not roll"),
+    "rolling_origin": ("LayeredCostmap::updateMap: robot - size / 2 (double)",
+                       r"new_origin_[xy]\s*=\s*robot_[xy]\s*-", "layered_costmap.cpp",
+                       "a rolling window's: the driver's costmap does not roll"),
+    "raytrace_line": ("Costmap2D::raytraceLine: x0 + dx_full / dist * min_length (double), a shortened start",
+                      r"min_[xy]0\s*=\s*\(unsigned int\)\([xy]0\s*\+\s*d[xy]_full\s*/\s*dist\s*\*",
+                      "costmap_2d.hpp", "sensor rays and the static layer's footprint clearing (off by default, and "
+                      "the driver leaves it off): the driver runs neither"),
+    "transform_footprint": ("transformFootprint: x + (fx * cos - fy * sin) (double)",
+                            r"new_(x|y|pt\.[xy])\s*=\s*[xy]\s*\+\s*\(footprint_spec", "footprint.cpp",
+                            "the driver transforms no footprint"),
+}
+# which product distanceToLine's two sums fuse, by a variable it multiplies: dot's A * C ("A")
+# or B * D ("B"), len_sq's C * C ("C") or D * D ("D")
+LAYER_ORDERS = {"dot": {"A": "A", "C": "A", "B": "B", "D": "B"}, "len_sq": {"C": "C", "D": "D"}}
+
+
+def layer_site_of_line(file_name: str, text: str):
+    """The layer site a line of ``file_name`` is, or None."""
+    return next((s for s, (_, pattern, f, _) in LAYER_SITES.items() if f == file_name and re.search(pattern, text)),
+                None)
+
+
+@dataclass(frozen=True)
+class LayersArithmetic:
+    """The arithmetic of a costmap layers build: the modelled sites of :data:`LAYER_SITES` it
+    fused, and which product each of distanceToLine's two sums rounds once (``dot``: ``"A"``
+    for ``fma(A, C, B * D)``, ``"B"`` for ``fma(B, D, A * C)``; ``len_sq``: ``"C"`` or ``"D"``)."""
+
+    fused: frozenset = frozenset()
+    dot: str = "A"
+    len_sq: str = "C"
+
+    def __post_init__(self):
+        modelled = {s for s, v in LAYER_SITES.items() if v[3] is None}
+        if set(self.fused) - modelled or self.dot not in ("A", "B") or self.len_sq not in ("C", "D"):
+            raise ValueError(f"no such layers arithmetic: fused {sorted(self.fused)}, dot {self.dot}, len_sq "
+                             f"{self.len_sq}")
+
+    def fuses(self, site: str) -> bool:
+        return site in self.fused
+
+    @property
+    def name(self) -> str:
+        fused = "+".join(sorted(self.fused)) or "none"
+        orders = f", fma({self.dot}...) and fma({self.len_sq}...)" if "distance_to_line" in self.fused else ""
+        return f"layers fused[{fused}]{orders}"
+
+
+LAYERS_X86_64 = LayersArithmetic()
