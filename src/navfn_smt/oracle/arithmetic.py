@@ -235,14 +235,7 @@ def disassemble(tc, asm: Path) -> str:
     r = subprocess.run([tc.cxx, *tc.all_flags, "-c", str(asm), "-o", str(obj)], capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(f"{asm.name} did not assemble: {r.stderr.strip()[:300]}")
-    tool = tc.objdump()
-    if shutil.which(tool) is None:
-        raise RuntimeError(f"{tool} is needed to tell the calls of the plugin's fused squared_distance apart "
-                           f"(Debian: binutils for the target)")
-    r = subprocess.run([tool, "-d", "-l", "--inlines", "--no-show-raw-insn", str(obj)], capture_output=True, text=True)
-    if r.returncode != 0:
-        raise RuntimeError(f"{tool} could not read {obj.name}: {r.stderr.strip()[:300]}")
-    return r.stdout
+    return objdump(tc.objdump(), obj, "--inlines")
 
 
 def plugin_of_build(doc: dict):
@@ -409,14 +402,19 @@ def layers_record(disassembly: str) -> dict:
 def layers_find(tc, program: Path) -> dict:
     """The costmap layers' arithmetic in the program ``program`` (built with ``-g``) as ``tc``
     built it (:func:`layers_record`)."""
-    tool = tc.objdump()
+    return layers_record(objdump(tc.objdump(), program))
+
+
+def objdump(tool: str, path: Path, *options) -> str:
+    """``tool -d -l`` of ``path``: its machine code with the source line of each instruction
+    (``options``: more of objdump's); a RuntimeError naming what is missing or wrong."""
     if shutil.which(tool) is None:
-        raise RuntimeError(f"{tool} is needed to read the costmap layers' machine code (Debian: binutils for the "
-                           f"target)")
-    r = subprocess.run([tool, "-d", "-l", "--no-show-raw-insn", str(program)], capture_output=True, text=True)
+        raise RuntimeError(f"{tool} is needed to read the machine code of {path.name} (Debian: binutils for its "
+                           f"target, e.g. binutils-aarch64-linux-gnu)")
+    r = subprocess.run([tool, "-d", "-l", "--no-show-raw-insn", *options, str(path)], capture_output=True, text=True)
     if r.returncode != 0:
-        raise RuntimeError(f"{tool} could not read {program.name}: {r.stderr.strip()[:300]}")
-    return layers_record(r.stdout)
+        raise RuntimeError(f"{tool} could not read {path.name}: {r.stderr.strip()[:300]}")
+    return r.stdout
 
 
 def layers_of_build(doc: dict):

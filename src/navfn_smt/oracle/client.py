@@ -45,13 +45,18 @@ class _Program:
         self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      env=env)
 
+    def _found(self, reader):
+        """What ``reader`` (one of oracle.arithmetic's ``*of_build``) finds in this build; a clear
+        error when it finds nothing the models can compute in."""
+        value, why = reader(self.build)
+        if value is None:
+            raise NavfnInputError(f"{self.folder}: {why}")
+        return value
+
     def arithmetic(self):
         """The :class:`~navfn_smt.spec.arithmetic.Arithmetic` the build was found to compute in; a
         clear error when the spec cannot express it (or the build does not record it)."""
-        arith, why = of_build(self.build)
-        if arith is None:
-            raise NavfnInputError(f"{self.folder}: {why}")
-        return arith
+        return self._found(of_build)
 
     def require_arithmetic(self, spec=X86_64) -> None:
         """A clear error unless the build computes in the arithmetic ``spec`` (the models of the
@@ -157,10 +162,7 @@ class PluginOracle(_Program):
     def plugin_arithmetic(self):
         """The :class:`~navfn_smt.spec.arithmetic.PluginArithmetic` the plugin build was found to
         compute in; a clear error when the model cannot express it (or the build does not record it)."""
-        arith, why = plugin_of_build(self.build)
-        if arith is None:
-            raise NavfnInputError(f"{self.folder}: {why}")
-        return arith
+        return self._found(plugin_of_build)
 
     def create_plans(self, cm, params, pairs) -> list[PluginAnswer]:
         """``createPlan(start, goal)`` for every (start, goal) :class:`~navfn_smt.nav2.plugin.Pose`
@@ -213,10 +215,7 @@ class LayersOracle(_Program):
     def layers_arithmetic(self):
         """The :class:`~navfn_smt.spec.arithmetic.LayersArithmetic` the layers build was found to
         compute in; a clear error when the model cannot express it (or the build does not record it)."""
-        arith, why = layers_of_build(self.build)
-        if arith is None:
-            raise NavfnInputError(f"{self.folder}: {why}")
-        return arith
+        return self._found(layers_of_build)
 
     def costmap(self, occupancy: np.ndarray, resolution: float, origin, params) -> LayersAnswer:
         """The layers of the :class:`~navfn_smt.nav2.costmap.CostmapParams` ``params`` (in order;

@@ -16,12 +16,10 @@ is reported as unexpressible: the sites cannot be told.
 
 from __future__ import annotations
 
-import shutil
-import subprocess
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from .arithmetic import FMA, located_binary
+from .arithmetic import FMA, located_binary, objdump
 
 ELF_MACHINES = {62: "x86-64", 183: "aarch64"}  # e_machine -> the target of oracle.targets
 OBJDUMP = {"x86-64": "objdump", "aarch64": "aarch64-linux-gnu-objdump"}
@@ -56,11 +54,7 @@ def fused_lines_of_binary(disassembly: str, source_name: str) -> tuple:
 
 
 def disassemble(lib: Path, target: str) -> str:
-    tool = OBJDUMP.get(target, "objdump")
-    if shutil.which(tool) is None:
-        raise NavfnInputError(f"--library: {tool} is needed to read the library's machine code (Debian: binutils"
-                              f"{'-aarch64-linux-gnu' if target == 'aarch64' else ''})")
-    r = subprocess.run([tool, "-d", "-l", "--no-show-raw-insn", str(lib)], capture_output=True, text=True)
-    if r.returncode != 0:
-        raise NavfnInputError(f"--library {lib}: {tool} could not read it: {r.stderr.strip()[:200]}")
-    return r.stdout
+    try:
+        return objdump(OBJDUMP.get(target, "objdump"), lib)
+    except RuntimeError as e:
+        raise NavfnInputError(f"--library {lib}: {e}") from None
