@@ -158,6 +158,23 @@ def _order(body, lines_of, names=("dx", "dy"), square=True) -> str:
     return None
 
 
+def _whole_sites(found: dict, source, site_of_line, any_part, problems: list) -> set:
+    """The sites of ``found`` (site -> its fused ``(path, line)``) fused on every line of their file
+    that ``site_of_line(file name, text)`` says is the site, or on any part of them where
+    ``any_part(site)`` (the value is the same either way, or the driver cannot feel it); a site
+    fused in part only is appended to ``problems``."""
+    fused = set()
+    for site, at in found.items():
+        path = next(iter(at))[0]
+        every = {(path, i + 1) for i, t in enumerate(source(path)) if site_of_line(path.name, t) == site}
+        if at == every or any_part(site):
+            fused.add(site)
+        else:
+            problems.append(f"{site} fused on {path.name} lines {sorted(n for _, n in at)} but not on "
+                            f"{sorted(n for _, n in every - at)}")
+    return fused
+
+
 def _orders_by_call(disassembly: str, lines: set, source) -> tuple:
     """``({call: order}, problems)``: the square fused in each call of squared_distance
     (:data:`~navfn_smt.spec.arithmetic.SQUARED_CALLS`), from the fused instructions on ``lines``
@@ -189,7 +206,7 @@ def plugin_record(assembly_text: str, disassembly) -> dict:
     only when that site fuses), and what the model cannot express (a fused line of the plugin's
     files that is no site, or a site fused on some of its lines only, unless its value is the
     same either way).  NavFn's own lines (navfn.cpp) are its arithmetic's, found apart."""
-    found, problems, fused = defaultdict(set), [], set()
+    found, problems = defaultdict(set), []
     source = functools.lru_cache(maxsize=None)(_source_lines)  # each file read once per record
     lines = fused_lines_by_file(assembly_text)
     for (path, n), _ in sorted(lines.items(), key=lambda kv: (str(kv[0][0]), kv[0][1])):
@@ -203,14 +220,7 @@ def plugin_record(assembly_text: str, disassembly) -> dict:
                             f"plugin model")
         else:
             found[site].add((path, n))
-    for site, at in found.items():
-        path = next(iter(at))[0]
-        every = {(path, i + 1) for i, t in enumerate(source(path)) if plugin_site_of_line(path.name, t) == site}
-        if at == every or PLUGIN_SITES[site][3]:
-            fused.add(site)
-        else:
-            problems.append(f"{site} fused on {path.name} lines {sorted(n for _, n in at)} but not on "
-                            f"{sorted(n for _, n in every - at)}")
+    fused = _whole_sites(found, source, plugin_site_of_line, lambda site: PLUGIN_SITES[site][3], problems)
     orders = {}
     if "squared_distance" in fused:  # which square each call's inlined copies fused
         orders, why = _orders_by_call(disassembly(), {(p.name, n) for p, n in found["squared_distance"]}, source)
@@ -376,15 +386,7 @@ def layers_record(disassembly: str) -> dict:
         for name, product in LAYER_ORDERS.items():
             if site == "distance_to_line" and re.search(rf"\b{name}\s*=", line):
                 products[name].add(product.get(_order(body, source, tuple(product), square=False)))
-    fused = set()
-    for site, at in found.items():
-        path = next(iter(at))[0]
-        every = {(path, i + 1) for i, t in enumerate(source(path)) if layer_site_of_line(path.name, t) == site}
-        if LAYER_SITES[site][3] is not None or at == every:
-            fused.add(site)
-        else:
-            problems.append(f"{site} fused on {path.name} lines {sorted(n for _, n in at)} but not on "
-                            f"{sorted(n for _, n in every - at)}")
+    fused = _whole_sites(found, source, layer_site_of_line, lambda site: LAYER_SITES[site][3] is not None, problems)
     orders = {}
     if "distance_to_line" in fused:
         for name in LAYER_ORDERS:
