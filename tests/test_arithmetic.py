@@ -471,3 +471,86 @@ def test_layer_arithmetic_the_model_cannot_express_is_named(tmp_path, drop):
     assert any(says in p for p in doc["unexpressible"]), doc["unexpressible"]
     bad = {"arithmetic": KNOWN["aarch64"].as_dict(), "layers_arithmetic": doc}
     assert layers_of_build(bad)[0] is None and "cannot express" in layers_of_build(bad)[1]
+
+
+# --------------------------------------------------------------------------- the C library's hypot
+def test_the_hypot_kernels_differ_and_the_probe_names_only_the_one_that_gives_every_double():
+    """glibc's two hypot kernels part on some probe pairs (so the probe can tell them apart);
+    answers of either are named as it; answers one ulp off on one pair are neither."""
+    import math
+
+    from navfn_smt.spec.libm import HYPOTS, glibc_hypot, kernel_of, probe_inputs
+
+    pairs = probe_inputs()
+    for kernel in HYPOTS:
+        answers = [glibc_hypot(x, y, kernel) for x, y in pairs]
+        found, misses = kernel_of(pairs, answers)
+        assert found == kernel and misses[kernel] == 0
+        assert all(n > 20 for k, n in misses.items() if k != kernel), misses
+        answers[0] = math.nextafter(answers[0], math.inf)
+        assert kernel_of(pairs, answers)[0] is None
+    with pytest.raises(ValueError, match="no hypot kernel"):
+        glibc_hypot(3.0, 4.0, "musl")
+
+
+def test_this_machines_glibc_hypot_is_the_plain_kernel():
+    """On x86-64 (whose glibc has no fused kernel) the C library's hypot is the ``glibc`` kernel
+    on every probe pair; the legacy layers record of a native build takes it."""
+    import platform
+
+    from navfn_smt.oracle.arithmetic import host_hypot, layers_of_build
+    from navfn_smt.spec.numeric import c_hypot
+    from navfn_smt.spec.libm import kernel_of, probe_inputs
+
+    if platform.machine() != "x86_64":
+        pytest.skip("the plain kernel is x86-64 glibc's")
+    pairs = probe_inputs(seed=1)
+    assert kernel_of(pairs, [c_hypot(x, y) for x, y in pairs])[0] == "glibc" == host_hypot()
+    entry = {"fused": [], "orders": {}, "unexpressible": []}
+    assert layers_of_build({"arithmetic": X86_64.as_dict(), "runner": [], "layers_arithmetic": entry})[0].hypot == "glibc"
+    why = layers_of_build({"arithmetic": X86_64.as_dict(), "runner": ["qemu-aarch64"], "layers_arithmetic": entry})[1]
+    assert "hypot" in why and "build it again" in why
+    found = layers_of_build({"arithmetic": X86_64.as_dict(), "layers_arithmetic": {**entry, "hypot": "glibc-fma"}})[0]
+    assert found.hypot == "glibc-fma" and "hypot glibc-fma" in found.name
+
+
+def test_the_aarch64_c_library_computes_hypot_with_the_fused_kernel(tmp_path):
+    """Debian's arm64 glibc, run under qemu by the probe an oracle build runs: the ``glibc-fma``
+    kernel on every probe pair, and not the plain one."""
+    from navfn_smt.oracle.arithmetic import probe_hypot
+    from navfn_smt.spec.libm import kernel_of, probe_inputs
+
+    tc = toolchain("aarch64")
+    try:
+        tc.check()
+        runner = tc.runner()
+    except NavfnInputError as e:
+        pytest.skip(str(e))
+    pairs = probe_inputs()
+    found, misses = kernel_of(pairs, probe_hypot(tc, runner, tmp_path, pairs))
+    assert found == "glibc-fma" and misses["glibc"] > 0
+
+
+def test_the_footprint_radii_follow_the_hypot_kernel_and_astar_distances_do_not():
+    """The footprint's radii are computed with the build's kernel: some generated robot radii give
+    an inscribed radius one ulp apart under the two.  NavFn's A* distance term (``hypot`` of two
+    ints times 50, narrowed to float) is the same float under both for every pair of ints below
+    400, which is why NavFn's spec may keep the host's ``hypot``."""
+    import numpy as np
+
+    from navfn_smt.nav2.footprint import robot_footprint
+    from navfn_smt.spec.arithmetic import LayersArithmetic
+    from navfn_smt.spec.libm import glibc_hypot
+
+    fma = LayersArithmetic(hypot="glibc-fma")
+    radii = np.random.default_rng(0).uniform(0.05, 1.0, 60)
+    apart = sum(robot_footprint(float(r)).inscribed_radius != robot_footprint(float(r), arith=fma).inscribed_radius
+                for r in radii)
+    assert apart > 0
+    doubles = same = 0
+    for i in range(400):
+        for j in range(i + 1):
+            a, b = glibc_hypot(float(i), float(j)), glibc_hypot(float(i), float(j), "glibc-fma")
+            doubles += a != b
+            same += np.float32(a * COST_NEUTRAL) == np.float32(b * COST_NEUTRAL)
+    assert doubles > 0 and same == 400 * 401 // 2

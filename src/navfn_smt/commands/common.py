@@ -85,3 +85,22 @@ def target_arithmetic(target):
     if target not in KNOWN:
         raise NavfnInputError(f"--target {target!r}: no such arithmetic (there are: {', '.join(KNOWN)})")
     return KNOWN[target]
+
+
+def add_toolchain_arguments(parser, library: bool = False) -> None:
+    """``--target``, ``--cxx`` and ``--cxxflags``: the toolchain a command builds Nav2's C++ with."""
+    parser.add_argument("--target", metavar="NAME", help="the machine to build for: x86-64 (default; $CXX or g++), "
+                        "x86-64-v3 (-march=x86-64-v3: FMA), aarch64 (Debian's aarch64-linux-gnu-g++, run under "
+                        "qemu-aarch64); a program for another machine runs under qemu-user")
+    parser.add_argument("--cxx", metavar="CXX", help="your own C++ compiler (its target machine is what it says "
+                        "with -dumpmachine, unless --target names one)")
+    parser.add_argument("--cxxflags", metavar="FLAGS", help="with --cxx: flags after -std=c++17 -O2")
+
+
+def toolchain_of(args):
+    """The :class:`~navfn_smt.oracle.targets.Toolchain` of :func:`add_toolchain_arguments`' options."""
+    import os
+
+    from ..oracle.targets import toolchain
+
+    return toolchain(args.target, args.cxx, args.cxxflags, env_cxx=os.environ.get("CXX"))

@@ -127,7 +127,7 @@ def _costmap_level(args) -> int:
                  f"{oracle.build.get('target', 'x86-64')}, {arith.name})")
         with progress_bar(1 if args.map else args.configs, label, enabled=not args.quiet) as advance:
             summary = run_layers_live(configs, oracle, progress=advance, arith=arith).as_dict()
-    return _level_report(args, summary)
+    return _level_report(args, {**summary, "target": oracle.build.get("target", "x86-64"), "arithmetic": arith.name})
 
 
 def _plugin_level(args) -> int:
@@ -152,7 +152,7 @@ def _plugin_level(args) -> int:
                  f"for {oracle.build.get('target', 'x86-64')}: {arith.name})")
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_plugin_live(configs, oracle, args.backend, progress=advance, arith=arith).as_dict()
-    return _level_report(args, summary)
+    return _level_report(args, {**summary, "target": oracle.build.get("target", "x86-64"), "arithmetic": arith.name})
 
 
 def register(sub) -> None:

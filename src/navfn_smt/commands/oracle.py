@@ -10,12 +10,10 @@ DEFAULT_OUT = "build/nav2-oracle"
 
 
 def cmd_oracle_build(args) -> int:
-    import os
-
     from ..oracle.build import build
-    from ..oracle.targets import toolchain
+    from .common import toolchain_of
 
-    tc = toolchain(args.target, args.cxx, args.cxxflags, env_cxx=os.environ.get("CXX"))
+    tc = toolchain_of(args)
     tc = None if args.library and not (args.target or args.cxx) else tc
     doc = build(args.nav2_src, args.out, tc=tc, library=args.library)
     commit = f", commit {doc['git_commit'][:12]}" if doc.get("git_commit") else ""
@@ -30,6 +28,8 @@ def cmd_oracle_build(args) -> int:
 
 def register(sub) -> None:
     """The ``oracle`` command and its ``build`` subcommand."""
+    from .common import add_toolchain_arguments
+
     orc = sub.add_parser("oracle", help="build the user's own Nav2 NavFn (unchanged) to test the spec against")
     osub = orc.add_subparsers(dest="oracle_command", required=True, metavar="SUBCOMMAND")
     b = osub.add_parser("build", help="compile nav2_navfn_planner's NavFn from a navigation2 checkout",
@@ -41,12 +41,7 @@ def register(sub) -> None:
     b.add_argument("nav2_src", metavar="NAV2_SRC",
                    help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
     b.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="the build folder (default: %(default)s)")
-    b.add_argument("--target", metavar="NAME", help="the machine to build for: x86-64 (default; $CXX or g++), "
-                   "x86-64-v3 (-march=x86-64-v3: FMA), aarch64 (Debian's aarch64-linux-gnu-g++, run under "
-                   "qemu-aarch64); a program for another machine runs under qemu-user")
-    b.add_argument("--cxx", metavar="CXX", help="your own C++ compiler (its target machine is what it says with "
-                   "-dumpmachine, unless --target names one)")
-    b.add_argument("--cxxflags", metavar="FLAGS", help="with --cxx: flags after -std=c++17 -O2")
+    add_toolchain_arguments(b)
     b.add_argument("--library", metavar="FILE.so", help="your own NavFn binary: link the driver against this shared "
                    "library (as a package build makes it, -fPIC -O2 -g), built from NAV2_SRC; its target is read from "
                    "the file and its arithmetic from its machine code; only navfn-plain is built")

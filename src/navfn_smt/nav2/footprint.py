@@ -18,14 +18,14 @@ same in Humble through Rolling):
    distance to the origin and the edge's ``distanceToLine`` to the origin.  Fewer than three
    points give ``(DBL_MAX, 0.0)``.
 
-``hypot``, ``cos`` and ``sin`` are the C library's (glibc), called through ctypes / math,
-so the doubles are the ones a Nav2 build on the same libm gets.
+``cos`` and ``sin`` are the C library's (glibc), called through ``math``; they agree between
+x86-64's and arm64's glibc 2.36 on the 16 angles of step 1.  ``hypot`` is glibc's as the
+build's libm computes it, with the kernel the layers build was found to use
+(:mod:`~navfn_smt.spec.libm`, ``LayersArithmetic.hypot``): arm64's differs by an ulp.
 """
 
 from __future__ import annotations
 
-import ctypes
-import ctypes.util
 import math
 import re
 from dataclasses import dataclass
@@ -37,20 +37,17 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..spec.constants import DBL_MAX
+from ..spec.libm import glibc_hypot
 from ..spec.numeric import c_fma
 
 DEFAULT_ROBOT_RADIUS = 0.1  # Costmap2DROS: robot_radius (double); nav2_bringup sets 0.22
 DEFAULT_FOOTPRINT_PADDING = 0.01  # Costmap2DROS: footprint_padding, held as float
 RADIUS_POINTS = 16  # makeFootprintFromRadius: N
 
-_libm = ctypes.CDLL(ctypes.util.find_library("m") or "libm.so.6")
-_libm.hypot.restype = ctypes.c_double
-_libm.hypot.argtypes = (ctypes.c_double, ctypes.c_double)
-
-
-def c_hypot(x: float, y: float) -> float:
-    """C's ``hypot(double, double)`` (glibc's, not Python's own ``math.hypot``)."""
-    return _libm.hypot(x, y)
+def c_hypot(x: float, y: float, arith: LayersArithmetic = LAYERS_X86_64) -> float:
+    """C's ``hypot(double, double)`` as the build's libm computes it (glibc's, with the kernel of
+    ``arith``; not Python's own ``math.hypot``)."""
+    return glibc_hypot(x, y, arith.hypot)
 
 
 def _std_min(a: float, b: float) -> float:
@@ -231,7 +228,7 @@ def distance_to_line(px, py, x0, y0, x1, y1, arith: LayersArithmetic = LAYERS_X8
         xx, yy = c_fma(param, c, x0), c_fma(param, d, y0)
     else:
         xx, yy = x0 + param * c, y0 + param * d
-    return c_hypot(xx - px, yy - py)  # distance(pX, pY, xx, yy) = hypot(x1 - x0, y1 - y0)
+    return c_hypot(xx - px, yy - py, arith)  # distance(pX, pY, xx, yy) = hypot(x1 - x0, y1 - y0)
 
 
 def min_max_distances(points, arith: LayersArithmetic = LAYERS_X86_64) -> tuple[float, float]:
@@ -243,7 +240,7 @@ def min_max_distances(points, arith: LayersArithmetic = LAYERS_X86_64) -> tuple[
     n = len(points)
     for i in range(n):  # the last iteration is the closing edge (back -> front)
         (x0, y0), (x1, y1) = points[i], points[(i + 1) % n]
-        vertex = c_hypot(x0 - 0.0, y0 - 0.0)
+        vertex = c_hypot(x0 - 0.0, y0 - 0.0, arith)
         edge = distance_to_line(0.0, 0.0, x0, y0, x1, y1, arith)
         min_dist = _std_min(min_dist, _std_min(vertex, edge))
         max_dist = _std_max(max_dist, _std_max(vertex, edge))

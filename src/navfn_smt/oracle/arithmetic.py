@@ -31,7 +31,8 @@ from pathlib import Path
 from ..spec.arithmetic import (CONVERSIONS, LAYER_ORDERS, LAYER_SITES, LAYERS_X86_64, PLUGIN_SITES, X86_64,
                                Arithmetic, LayersArithmetic, PluginArithmetic, layer_site_of_line, plugin_site_of_line,
                                site_of_line, squared_call_of_line)
-from ..spec.numeric import CONVERTERS
+from ..spec.libm import HYPOTS, kernel_of, probe_inputs
+from ..spec.numeric import CONVERTERS, c_hypot
 
 HERE = Path(__file__).resolve().parent
 FMA = re.compile(r"^\s*(v?fn?m(add|sub)[\w.]*|fml[as][\w.]*)\s")
@@ -401,10 +402,31 @@ def layers_record(disassembly: str) -> dict:
             "unexpressible": list(dict.fromkeys(problems))}
 
 
-def layers_find(tc, program: Path) -> dict:
+def layers_find(tc, program: Path, runner, folder: Path) -> dict:
     """The costmap layers' arithmetic in the program ``program`` (built with ``-g``) as ``tc``
-    built it (:func:`layers_record`)."""
-    return layers_record(objdump(tc.objdump(), program))
+    built it (:func:`layers_record`), and the kernel of its libm's ``hypot`` (:func:`probe_hypot`)."""
+    doc = layers_record(objdump(tc.objdump(), program))
+    pairs = probe_inputs()
+    kernel, misses = kernel_of(pairs, probe_hypot(tc, runner, folder, pairs))
+    if kernel is None:
+        doc["unexpressible"].append(f"the C library's hypot is neither of glibc's kernels ({', '.join(HYPOTS)}): "
+                                    f"they differ from it on {misses} of {len(pairs)} probe pairs")
+    return {**doc, "hypot": kernel, "hypot_probe": {"pairs": len(pairs), "differing": misses}}
+
+
+def probe_hypot(tc, runner, folder: Path, pairs) -> list:
+    """``std::hypot`` of each pair of ``pairs`` as the toolchain ``tc`` links it, run by
+    ``runner`` (under qemu, the target's own C library); the probe is built in ``folder``."""
+    exe = folder / "libm-probe"
+    r = subprocess.run([tc.cxx, *tc.all_flags, str(HERE / "libm_probe.cpp"), "-o", str(exe)],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"the libm probe did not compile: {r.stderr.strip()[:300]}")
+    data = struct.pack(f"<i{2 * len(pairs)}d", len(pairs), *(v for pair in pairs for v in pair))
+    r = subprocess.run([*runner, str(exe)], input=data, capture_output=True, timeout=300)
+    if r.returncode != 0 or len(r.stdout) != 8 * len(pairs):
+        raise RuntimeError(f"the libm probe failed (exit {r.returncode})")
+    return list(struct.unpack(f"<{len(pairs)}d", r.stdout))
 
 
 def objdump(tool: str, path: Path, *options) -> str:
@@ -424,9 +446,24 @@ def layers_of_build(doc: dict):
     entry = doc.get("layers_arithmetic")
     if entry is None:
         navfn, _ = of_build(doc)
-        if navfn == X86_64:  # built before the layers' arithmetic was found: x86-64's fuses nothing
-            return LAYERS_X86_64, None
+        if navfn == X86_64 and not doc.get("runner") and host_hypot() == LAYERS_X86_64.hypot:
+            return LAYERS_X86_64, None  # built before the layers' arithmetic was found: x86-64's fuses nothing
         return None, "this build does not record its layers' arithmetic (built before navfn-smt found it): build it again"
     if entry.get("unexpressible"):
         return None, "the layers model cannot express this build's arithmetic: " + "; ".join(entry["unexpressible"])
-    return LayersArithmetic(frozenset(entry["fused"]), **entry.get("orders", {})), None
+    hypot = entry.get("hypot")
+    if hypot is None:
+        if doc.get("runner"):
+            return None, ("this build does not record its C library's hypot (built before navfn-smt found it): "
+                          "build it again")
+        hypot = host_hypot()  # built before: a native program calls this machine's libm
+        if hypot is None:
+            return None, "this machine's C library's hypot is neither of glibc's kernels: the model cannot express it"
+    return LayersArithmetic(frozenset(entry["fused"]), hypot=hypot, **entry.get("orders", {})), None
+
+
+@functools.lru_cache(maxsize=None)
+def host_hypot():
+    """The kernel of this machine's libm ``hypot`` (through ctypes), or None when neither."""
+    pairs = probe_inputs()
+    return kernel_of(pairs, [c_hypot(x, y) for x, y in pairs])[0]

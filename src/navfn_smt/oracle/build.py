@@ -376,7 +376,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
                 sources, includes, defines = jobs["navfn-plugin"][:3]
                 planner_cpp = next(f for f in sources if Path(f).name == "navfn_planner.cpp")
                 plugin_arith = plugin_find(tc, planner_cpp, includes, defines, tmp / "arithmetic")
-            layers_arith = layers_find(tc, tmp / "costmap-layers") if "costmap-layers" in programs else None
+            layers_arith = layers_find(tc, tmp / "costmap-layers", runner, tmp / "arithmetic") if "costmap-layers" in programs else None
         except RuntimeError as e:
             raise NavfnInputError(f"the arithmetic of the {tc.target} build could not be found: {e}") from None
         commit, why = git_commit(src)

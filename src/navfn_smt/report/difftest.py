@@ -85,7 +85,9 @@ def closing_line(summary: dict) -> None:
 
 def level_table(summary: dict) -> None:
     """The plugin or costmap level: counts by the C++'s outcome, then the first disagreements."""
-    t = Table(title=f"difftest --level {summary['level']}: the model against the C++ of {summary['distribution']}")
+    build = f" for {summary['target']} ({summary['arithmetic']})" if summary.get("target") else ""
+    t = Table(title=f"difftest --level {summary['level']}: the model against the C++ of {summary['distribution']}"
+                    f"{build}")
     t.add_column("C++ outcome")
     t.add_column("cases", justify="right")
     for outcome, n in summary["outcomes"].items():

@@ -18,6 +18,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from .libm import HYPOTS
+
 
 # site -> (the C++, float or double, a pattern of its navfn.cpp line, lines expected in navfn.cpp)
 SITES = {
@@ -205,17 +207,20 @@ def layer_site_of_line(file_name: str, text: str):
 class LayersArithmetic:
     """The arithmetic of a costmap layers build: the modelled sites of :data:`LAYER_SITES` it
     fused, and which product each of distanceToLine's two sums rounds once (``dot``: ``"A"``
-    for ``fma(A, C, B * D)``, ``"B"`` for ``fma(B, D, A * C)``; ``len_sq``: ``"C"`` or ``"D"``)."""
+    for ``fma(A, C, B * D)``, ``"B"`` for ``fma(B, D, A * C)``; ``len_sq``: ``"C"`` or ``"D"``); and
+    the kernel of its libm's ``hypot`` (``hypot``: one of :data:`~navfn_smt.spec.libm.HYPOTS`)."""
 
     fused: frozenset = frozenset()
     dot: str = "A"
     len_sq: str = "C"
+    hypot: str = "glibc"
 
     def __post_init__(self):
         modelled = {s for s, v in LAYER_SITES.items() if v[3] is None}
-        if set(self.fused) - modelled or self.dot not in ("A", "B") or self.len_sq not in ("C", "D"):
+        if (set(self.fused) - modelled or self.dot not in ("A", "B") or self.len_sq not in ("C", "D")
+                or self.hypot not in HYPOTS):
             raise ValueError(f"no such layers arithmetic: fused {sorted(self.fused)}, dot {self.dot}, len_sq "
-                             f"{self.len_sq}")
+                             f"{self.len_sq}, hypot {self.hypot}")
 
     def fuses(self, site: str) -> bool:
         return site in self.fused
@@ -224,7 +229,8 @@ class LayersArithmetic:
     def name(self) -> str:
         fused = "+".join(sorted(self.fused)) or "none"
         orders = f", fma({self.dot}...) and fma({self.len_sq}...)" if "distance_to_line" in self.fused else ""
-        return f"layers fused[{fused}]{orders}"
+        libm = f", hypot {self.hypot}" if self.hypot != "glibc" else ""
+        return f"layers fused[{fused}]{orders}{libm}"
 
 
 LAYERS_X86_64 = LayersArithmetic()
