@@ -724,3 +724,18 @@ def test_golden_files_recorded_from_arm64_replay_on_the_spec_in_its_arithmetic(t
              for d in discover(ours) for m in MODES]
     assert len(pairs) == 26 and [compare_golden_files(a, b) for a, b in pairs] == [[]] * 26
     assert main(["suite", "record", str(ours), "--target", "aarch64", "--oracle", oracle, "--overwrite"]) == 2
+
+
+def test_nav2_benchmark_plans_with_an_arm64_plugin_in_its_arithmetic(target_builds, tmp_path, capsys):
+    """Rolling's plugin built for arm64: the benchmark's model plans in the arithmetic found in it
+    and agrees with it on every pose; the fix (x86-64's arithmetic only) is left out and said so."""
+    from test_nav2_benchmark import MARGIN, write_map
+
+    _, folder = target_builds["aarch64"]
+    out = tmp_path / "r.json"
+    assert main(["nav2-benchmark", str(write_map(tmp_path)), "--pairs", "4", "--margin", str(MARGIN), "--mode",
+                 "astar", "--oracle", str(folder), "--json", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "NavFn fixed is left out" in text and "the model in aarch64" in text
+    (m,) = json.loads(out.read_text())["maps"]
+    assert [r["planner"] for r in m["rows"]] == ["NavFn original A*"] and m["differences"] == []

@@ -51,19 +51,21 @@ def _check_args(args) -> list[Path]:
     return maps
 
 
-def benchmark_map(map_yaml: Path, args, planners, oracles, distro: str, timing: str):
-    """The benchmark on one map: build its global costmap, draw the pairs, plan them."""
+def benchmark_map(map_yaml: Path, args, planners, oracles, distro: str, timing: str, arith=None, layers_arith=None):
+    """The benchmark on one map: build its global costmap, draw the pairs, plan them; the model
+    in the plugin's arithmetic ``arith`` and the layers' ``layers_arith`` (None: x86-64's)."""
     from ..nav2 import benchmark as B
     from ..nav2.setup import load_setup
     from ..report.tables import progress_bar
 
     t0 = time.perf_counter()
     print(f"nav2-benchmark: building the global costmap of {map_yaml} ...", file=sys.stderr, flush=True)
-    setup = load_setup(map_yaml, args.params or EXAMPLE_PARAMS, distro)
+    setup = load_setup(map_yaml, args.params or EXAMPLE_PARAMS, distro, layers_arith=layers_arith)
     costmap_seconds = time.perf_counter() - t0
     draw = B.draw_pairs(setup.costmap, args.pairs, args.seed, args.max_cost, args.min_distance, args.margin)
     with progress_bar(len(planners) * len(draw.pairs), f"nav2-benchmark {map_yaml.name}") as advance:
-        rows, diffs = B.run_benchmark(setup.costmap, setup.params, draw.pairs, planners, oracles, progress=advance)
+        rows, diffs = B.run_benchmark(setup.costmap, setup.params, draw.pairs, planners, oracles, progress=advance,
+                                      arith=arith)
     cm = setup.costmap
     return B.MapResult(str(map_yaml), (cm.size_x, cm.size_y), cm.resolution, setup.params, draw, rows, diffs,
                        timing, costmap_seconds, time.perf_counter() - t0)
@@ -113,6 +115,22 @@ def _print_map(res, args) -> None:
                   f"global costmap built in {duration(res.costmap_seconds)}, whole map {duration(res.seconds)}")
 
 
+def _layers_arithmetic(build: dict):
+    """The layers' arithmetic of an oracle build, for the global costmap both planners plan on
+    (None, x86-64's, with a note, when the build has no layers program or its arithmetic is
+    not one the model expresses: the C++ plugin is given the model's costmap either way)."""
+    from ..oracle.arithmetic import layers_of_build
+    from ..report.tables import console
+
+    if "costmap-layers" not in build.get("programs", ()):
+        found, why = None, "the build has no costmap-layers program"
+    else:
+        found, why = layers_of_build(build)
+    if found is None:
+        console.print(f"the global costmap is computed in x86-64's layers arithmetic ({why}); both planners plan on it")
+    return found
+
+
 def cmd_nav2_benchmark(args) -> int:
     """Run Nav2's planner benchmark on each map and print one table per map."""
     import contextlib
@@ -126,20 +144,28 @@ def cmd_nav2_benchmark(args) -> int:
     t0 = time.perf_counter()
     results = []
     with contextlib.ExitStack() as stack:
-        oracles, distro = None, "rolling"
+        oracles, distro, arith, layers_arith = None, "rolling", None, None
         timing = "the model's create_plan (jit), wall time per pair; give --oracle DIR for the C++'s"
         if args.oracle:
             from ..oracle.client import PluginOracle
+            from ..spec.arithmetic import X86_64
 
-            oracles = {v: stack.enter_context(PluginOracle(args.oracle, v)) for v in sorted({p.variant for p in planners})}
-            for oracle in oracles.values():
-                oracle.require_arithmetic()
-            build = next(iter(oracles.values())).build
+            first = stack.enter_context(PluginOracle(args.oracle, "original"))
+            arith = first.plugin_arithmetic()  # the model plans as the build was found to compute
+            if arith.navfn != X86_64 and any(p.variant == "fixed" for p in planners):
+                planners = tuple(p for p in planners if p.variant == "original")
+                console.print(f"the fix computes in x86-64's arithmetic only so far, and {args.oracle} computes in "
+                              f"{arith.navfn.name}'s: NavFn fixed is left out")
+            oracles = {"original": first, **{v: stack.enter_context(PluginOracle(args.oracle, v))
+                                             for v in sorted({p.variant for p in planners} - {"original"})}}
+            build = first.build
             distro = build["distribution"]
-            timing = (f"the C++ NavfnPlanner::createPlan ({distro}, {build['compiler']} "
-                      f"{' '.join(build['flags'])}, oracle build {args.oracle}), its own time per pair")
+            layers_arith = _layers_arithmetic(build)
+            timing = (f"the C++ NavfnPlanner::createPlan ({distro}, {build.get('target', 'x86-64')}, "
+                      f"{build['compiler']} {' '.join(build['flags'])}, oracle build {args.oracle}), its own time "
+                      f"per pair; the model in {arith.name}")
         for m in maps:
-            res = benchmark_map(m, args, planners, oracles, distro, timing)
+            res = benchmark_map(m, args, planners, oracles, distro, timing, arith, layers_arith)
             _print_map(res, args)
             results.append(res)
     total = time.perf_counter() - t0

@@ -344,7 +344,7 @@ def _measured(cm: Costmap, poses: np.ndarray, error: Optional[str], seconds: flo
 
 
 def run_benchmark(cm: Costmap, params: PlannerParams, pairs: list, planners=PLANNERS, oracles: Optional[dict] = None,
-                  backend: str = "jit", progress: Optional[Callable[[int], None]] = None
+                  backend: str = "jit", progress: Optional[Callable[[int], None]] = None, arith=None
                   ) -> tuple[list, list]:
     """Every planner of ``planners`` on every pair of ``pairs``: (``[PlannerResult]``,
     ``[Difference]``).  Pair by pair, each planner in turn on the pair (so a change of the
@@ -354,7 +354,9 @@ def run_benchmark(cm: Costmap, params: PlannerParams, pairs: list, planners=PLAN
     ``oracles`` maps a variant to a running C++ plugin (``PluginOracle``) of that variant: each
     pair is then planned by the model and by the C++ (one request per pair, whose
     ``planning_seconds`` is the pair's planning time), the C++'s poses are the result and every
-    difference from the model's is returned.  ``progress(1)`` after every plan."""
+    difference from the model's is returned.  ``progress(1)`` after every plan.  ``arith``: the
+    model plans as a build of that :class:`~navfn_smt.spec.arithmetic.PluginArithmetic` (None:
+    x86-64's), the oracles' own."""
     configured = []
     for planner in planners:
         oracle = (oracles or {}).get(planner.variant)
@@ -363,7 +365,7 @@ def run_benchmark(cm: Costmap, params: PlannerParams, pairs: list, planners=PLAN
         p = replace(params, variant=planner.variant, use_astar=planner.use_astar)
         configured.append((planner, p, oracle))
         if pairs:  # warm-up, untimed
-            create_plan(cm, pairs[0].start, pairs[0].goal, p, backend)
+            create_plan(cm, pairs[0].start, pairs[0].goal, p, backend, arith)
             if oracle is not None:
                 oracle.create_plans(cm, p, [(pairs[0].start, pairs[0].goal)])
     rows = [PlannerResult(planner) for planner in planners]
@@ -371,7 +373,7 @@ def run_benchmark(cm: Costmap, params: PlannerParams, pairs: list, planners=PLAN
     for k, pair in enumerate(pairs):
         for row, (planner, p, oracle) in zip(rows, configured):
             t0 = time.perf_counter()
-            run = create_plan(cm, pair.start, pair.goal, p, backend)
+            run = create_plan(cm, pair.start, pair.goal, p, backend, arith)
             model_seconds = time.perf_counter() - t0
             mine = poses_array(run.poses)
             if oracle is None:

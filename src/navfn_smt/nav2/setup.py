@@ -100,7 +100,8 @@ def _read_npy(p: Path) -> np.ndarray:
 
 
 def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
-               overrides: Optional[dict] = None, resolution: Optional[float] = None, origin=(0.0, 0.0)) -> Setup:
+               overrides: Optional[dict] = None, resolution: Optional[float] = None, origin=(0.0, 0.0),
+               layers_arith=None) -> Setup:
     """Map + params file -> :class:`Setup`; ``overrides`` replace plugin parameters.
 
     ``map_yaml`` may also be a costmap given directly (:data:`COSTMAP_FILES`, with ``resolution``
@@ -109,7 +110,8 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
     Without a params file the plugin has Nav2's default parameters and the costmap is the map's
     static layer alone; a params file without a ``global_costmap`` section gives Nav2's code
     defaults for the costmap (static, obstacle and inflation layers; the obstacle layer is
-    skipped).
+    skipped).  ``layers_arith``: the layers compute as a build of that
+    :class:`~navfn_smt.spec.arithmetic.LayersArithmetic` does (None: x86-64's).
     """
     from . import costmap as layers
 
@@ -142,7 +144,7 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
                      "(nav2_bringup's track_unknown_space: true; pass --params for the inflation layer)")
         return Setup(m, costmap_from_map(m), params, ["static_layer (static)"], notes)
     m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro)
-    gc = layers.build_global_costmap(m, cparams, distro)
+    gc = layers.build_global_costmap(m, cparams, distro, **({"arith": layers_arith} if layers_arith else {}))
     return Setup(m, costmap_from_map(m, gc.costmap), params, list(gc.layers_run), notes + list(gc.notes))
 
 
