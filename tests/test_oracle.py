@@ -739,3 +739,26 @@ def test_nav2_benchmark_plans_with_an_arm64_plugin_in_its_arithmetic(target_buil
     assert "NavFn fixed is left out" in text and "the model in aarch64" in text
     (m,) = json.loads(out.read_text())["maps"]
     assert [r["planner"] for r in m["rows"]] == ["NavFn original A*"] and m["differences"] == []
+
+
+@pytest.mark.parametrize("behaviour", ["silent", "exits"])
+def test_a_program_that_does_not_answer_is_stopped_and_named(tmp_path, monkeypatch, behaviour):
+    """A build's program that sends nothing (a loop, or a request it cannot finish under qemu) is
+    stopped after ``ANSWER_SECONDS`` with an error naming it; one that ends is named too."""
+    import time
+
+    import numpy as np
+
+    from navfn_smt.errors import NavfnInputError
+    from navfn_smt.oracle.client import _Program
+
+    (tmp_path / "build.json").write_text(json.dumps({"programs": ["navfn-traced"]}))
+    program = tmp_path / "navfn-traced"
+    program.write_text("#!/bin/sh\nsleep 60\n" if behaviour == "silent" else "#!/bin/sh\nexit 3\n")
+    program.chmod(0o755)
+    monkeypatch.setattr(_Program, "ANSWER_SECONDS", 1.0)
+    t0 = time.monotonic()
+    with Oracle(tmp_path) as oracle:
+        with pytest.raises(NavfnInputError, match="sent nothing for 1 s" if behaviour == "silent" else "stopped answering"):
+            oracle.plan(np.full((3, 3), 50, np.uint8), [(0, 0, 2, 2)], True)
+    assert time.monotonic() - t0 < 30

@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 import os
+import select
 import struct
 import subprocess
 from dataclasses import dataclass
@@ -32,6 +33,10 @@ class _Program:
     program = ""
     END = struct.pack("<4i", 0, 0, 0, 0)
     ENV: dict = {}
+    # the longest wait for the next bytes of an answer: a program that loops (or a request a
+    # machine cannot finish, as a 4 GB table under qemu once was) is stopped and named, not
+    # waited for; far above the slowest answer measured (a 1000x1000 map, Dijkstra, under qemu)
+    ANSWER_SECONDS = 600.0
 
     def __init__(self, folder):
         self.folder = Path(folder)
@@ -43,7 +48,8 @@ class _Program:
         # a program built for another machine runs under qemu-user (the build's runner)
         command = [*self.build.get("runner", []), str(self.folder / self.program)]
         self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     env=env)
+                                     env=env, bufsize=0)
+        self._pending, self._at = b"", 0  # bytes read from the pipe, and how many of them are taken
 
     def _found(self, reader):
         """What ``reader`` (one of oracle.arithmetic's ``*of_build``) finds in this build; a clear
@@ -90,11 +96,27 @@ class _Program:
         self.close()
 
     def _read(self, n: int) -> bytes:
-        data = self.proc.stdout.read(n) if n else b""
-        if len(data) != n:
-            raise NavfnInputError(f"{self.folder}: the C++ {self.program} stopped answering (exit status "
-                                  f"{self.proc.poll()}); is the build folder intact?")
-        return data
+        """The next ``n`` bytes of the program's answers; a clear error when it ends first, or
+        sends nothing for :attr:`ANSWER_SECONDS` (then it is stopped)."""
+        have = len(self._pending) - self._at
+        if have >= n:
+            self._at += n
+            return self._pending[self._at - n:self._at]
+        parts, fd = [self._pending[self._at:]], self.proc.stdout.fileno()
+        while have < n:
+            if not select.select([fd], [], [], self.ANSWER_SECONDS)[0]:
+                self.proc.kill()
+                raise NavfnInputError(f"{self.folder}: the C++ {self.program} sent nothing for "
+                                      f"{self.ANSWER_SECONDS:g} s, so it was stopped (a request it cannot finish, or "
+                                      f"a loop)")
+            chunk = os.read(fd, max(n - have, 1 << 16))
+            if not chunk:
+                raise NavfnInputError(f"{self.folder}: the C++ {self.program} stopped answering (exit status "
+                                      f"{self.proc.poll()}); is the build folder intact?")
+            parts.append(chunk)
+            have += len(chunk)
+        self._pending, self._at = b"".join(parts), n
+        return self._pending[:n]
 
 
 VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded", "fixed": "navfn-fixed"}
