@@ -741,10 +741,11 @@ def test_nav2_benchmark_plans_with_an_arm64_plugin_in_its_arithmetic(target_buil
     assert [r["planner"] for r in m["rows"]] == ["NavFn original A*"] and m["differences"] == []
 
 
-@pytest.mark.parametrize("behaviour", ["silent", "exits"])
+@pytest.mark.parametrize("behaviour", ["silent", "gone", "ends"])
 def test_a_program_that_does_not_answer_is_stopped_and_named(tmp_path, monkeypatch, behaviour):
     """A build's program that sends nothing (a loop, or a request it cannot finish under qemu) is
-    stopped after ``ANSWER_SECONDS`` with an error naming it; one that ends is named too."""
+    stopped after ``ANSWER_SECONDS`` with an error naming it; one that has ended before the
+    request (a closed pipe) or ends after reading it is named too, never a traceback."""
     import time
 
     import numpy as np
@@ -754,11 +755,16 @@ def test_a_program_that_does_not_answer_is_stopped_and_named(tmp_path, monkeypat
 
     (tmp_path / "build.json").write_text(json.dumps({"programs": ["navfn-traced"]}))
     program = tmp_path / "navfn-traced"
-    program.write_text("#!/bin/sh\nsleep 60\n" if behaviour == "silent" else "#!/bin/sh\nexit 3\n")
+    # the request below is 41 bytes: 4 ints, 9 costs, one case of 4 ints
+    body = {"silent": "sleep 60", "gone": "exit 3", "ends": "head -c 41 > /dev/null; exit 3"}[behaviour]
+    program.write_text(f"#!/bin/sh\n{body}\n")
     program.chmod(0o755)
     monkeypatch.setattr(_Program, "ANSWER_SECONDS", 1.0)
     t0 = time.monotonic()
     with Oracle(tmp_path) as oracle:
-        with pytest.raises(NavfnInputError, match="sent nothing for 1 s" if behaviour == "silent" else "stopped answering"):
+        if behaviour == "gone":
+            oracle.proc.wait(timeout=30)  # its end of the pipe closed before the request is written
+        says = "sent nothing for 1 s" if behaviour == "silent" else r"stopped answering \(exit status 3\)"
+        with pytest.raises(NavfnInputError, match=says):
             oracle.plan(np.full((3, 3), 50, np.uint8), [(0, 0, 2, 2)], True)
     assert time.monotonic() - t0 < 30

@@ -87,7 +87,7 @@ def target_arithmetic(target):
     return KNOWN[target]
 
 
-def add_toolchain_arguments(parser, library: bool = False) -> None:
+def add_toolchain_arguments(parser) -> None:
     """``--target``, ``--cxx`` and ``--cxxflags``: the toolchain a command builds Nav2's C++ with."""
     parser.add_argument("--target", metavar="NAME", help="the machine to build for: x86-64 (default; $CXX or g++), "
                         "x86-64-v3 (-march=x86-64-v3: FMA), aarch64 (Debian's aarch64-linux-gnu-g++, run under "

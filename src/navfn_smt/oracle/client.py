@@ -95,6 +95,23 @@ class _Program:
     def __exit__(self, *exc):
         self.close()
 
+    def _stopped(self) -> NavfnInputError:
+        """The error for a program that has ended (or closed its answers) mid-request."""
+        try:
+            self.proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            pass
+        return NavfnInputError(f"{self.folder}: the C++ {self.program} stopped answering (exit status "
+                               f"{self.proc.poll()}); is the build folder intact?")
+
+    def _send(self, request: bytes) -> None:
+        """One request to the program; a clear error when it has ended (a closed pipe)."""
+        try:
+            self.proc.stdin.write(request)
+            self.proc.stdin.flush()
+        except OSError:  # BrokenPipeError: the program is gone
+            raise self._stopped() from None
+
     def _read(self, n: int) -> bytes:
         """The next ``n`` bytes of the program's answers; a clear error when it ends first, or
         sends nothing for :attr:`ANSWER_SECONDS` (then it is stopped)."""
@@ -111,8 +128,7 @@ class _Program:
                                       f"a loop)")
             chunk = os.read(fd, max(n - have, 1 << 16))
             if not chunk:
-                raise NavfnInputError(f"{self.folder}: the C++ {self.program} stopped answering (exit status "
-                                      f"{self.proc.poll()}); is the build folder intact?")
+                raise self._stopped()
             parts.append(chunk)
             have += len(chunk)
         self._pending, self._at = b"".join(parts), n
@@ -139,8 +155,7 @@ class Oracle(_Program):
         costs = np.ascontiguousarray(costs, dtype=np.uint8)
         ny, nx = costs.shape
         cases = np.ascontiguousarray(cases, dtype="<i4").reshape(-1, 4)
-        self.proc.stdin.write(struct.pack("<4i", nx, ny, len(cases), int(astar)) + costs.tobytes() + cases.tobytes())
-        self.proc.stdin.flush()
+        self._send(struct.pack("<4i", nx, ny, len(cases), int(astar)) + costs.tobytes() + cases.tobytes())
         out = []
         for sx, sy, _, _ in cases.tolist():
             reached, cycles, npath, ntrace = struct.unpack("<4i", self._read(16))
@@ -195,8 +210,7 @@ class PluginOracle(_Program):
         head = struct.pack("<3i4d4i", cm.size_x, cm.size_y, len(pairs), cm.origin_x, cm.origin_y, cm.resolution,
                            params.tolerance, int(params.use_astar), int(params.allow_unknown),
                            int(params.max_cycles_factor), int(params.use_final_approach_orientation))
-        self.proc.stdin.write(head + costs.tobytes() + poses.tobytes())
-        self.proc.stdin.flush()
+        self._send(head + costs.tobytes() + poses.tobytes())
         out = []
         for _ in pairs:
             outcome, npose, nlog, nmsg = struct.unpack("<4i", self._read(16))
@@ -257,8 +271,7 @@ class LayersOracle(_Program):
             out.append(struct.pack("<4i3d", kind, int(enabled), int(bool(ip and ip.inflate_unknown)),
                                    int(bool(ip and ip.inflate_around_unknown)), ip.inflation_radius if ip else 0.0,
                                    ip.cost_scaling_factor if ip else 0.0, ip.custom_inscribed_radius if ip else -1.0))
-        self.proc.stdin.write(b"".join(out) + occ.tobytes())
-        self.proc.stdin.flush()
+        self._send(b"".join(out) + occ.tobytes())
         sx, sy, status = struct.unpack("<3i", self._read(12))
         costs = np.frombuffer(self._read(sx * sy), dtype=np.uint8).reshape(sy, sx).copy()
         radii = struct.unpack("<2d", self._read(16))
@@ -273,6 +286,5 @@ class EigenSqrt(_Program):
 
     def sqrt(self, values: np.ndarray) -> np.ndarray:
         x = np.ascontiguousarray(values, dtype="<f4").ravel()
-        self.proc.stdin.write(struct.pack("<i", len(x)) + x.tobytes())
-        self.proc.stdin.flush()
+        self._send(struct.pack("<i", len(x)) + x.tobytes())
         return np.frombuffer(self._read(4 * len(x)), dtype="<f4").copy()
