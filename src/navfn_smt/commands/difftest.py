@@ -94,10 +94,12 @@ def _level(args) -> int:
     return _costmap_level(args)
 
 
-def _level_report(args, summary: dict) -> int:
-    """The level's table, its JSON with ``--json``, exit 1 on any disagreement."""
+def _level_report(args, summary: dict, oracle, arith) -> int:
+    """The level's table, its JSON with ``--json`` (both name the build's target and the
+    arithmetic ``arith`` the model computed in), exit 1 on any disagreement."""
     from ..report import difftest as report
 
+    summary = {**summary, "target": oracle.build.get("target", "x86-64"), "arithmetic": arith.name}
     report.level_table(summary)
     if args.json:
         report.write_level_json(args.json, summary)
@@ -127,7 +129,7 @@ def _costmap_level(args) -> int:
                  f"{oracle.build.get('target', 'x86-64')}, {arith.name})")
         with progress_bar(1 if args.map else args.configs, label, enabled=not args.quiet) as advance:
             summary = run_layers_live(configs, oracle, progress=advance, arith=arith).as_dict()
-    return _level_report(args, {**summary, "target": oracle.build.get("target", "x86-64"), "arithmetic": arith.name})
+    return _level_report(args, summary, oracle, arith)
 
 
 def _plugin_level(args) -> int:
@@ -152,7 +154,7 @@ def _plugin_level(args) -> int:
                  f"for {oracle.build.get('target', 'x86-64')}: {arith.name})")
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_plugin_live(configs, oracle, args.backend, progress=advance, arith=arith).as_dict()
-    return _level_report(args, {**summary, "target": oracle.build.get("target", "x86-64"), "arithmetic": arith.name})
+    return _level_report(args, summary, oracle, arith)
 
 
 def register(sub) -> None:

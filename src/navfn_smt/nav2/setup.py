@@ -113,6 +113,7 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
     skipped).  ``layers_arith``: the layers compute as a build of that
     :class:`~navfn_smt.spec.arithmetic.LayersArithmetic` does (None: x86-64's).
     """
+    from ..spec.arithmetic import LAYERS_X86_64
     from . import costmap as layers
 
     params = planner_params(params_file) if params_file else PlannerParams()
@@ -144,7 +145,7 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
                      "(nav2_bringup's track_unknown_space: true; pass --params for the inflation layer)")
         return Setup(m, costmap_from_map(m), params, ["static_layer (static)"], notes)
     m = load_map_yaml(Path(map_yaml), allow_outside, distro=distro)
-    gc = layers.build_global_costmap(m, cparams, distro, **({"arith": layers_arith} if layers_arith else {}))
+    gc = layers.build_global_costmap(m, cparams, distro, arith=layers_arith or LAYERS_X86_64)
     return Setup(m, costmap_from_map(m, gc.costmap), params, list(gc.layers_run), notes + list(gc.notes))
 
 

@@ -292,19 +292,26 @@ def conversion(values) -> str:
     return next((name for name, want in EXPECTED.items() if list(values) == want), None)
 
 
+def _run_probe(tc, runner, folder: Path, name: str, count: int, payload: bytes, fmt_out: str, timeout: float) -> list:
+    """``oracle/{name}_probe.cpp`` built in ``folder`` by the toolchain ``tc`` and run by ``runner``
+    on ``count`` (an int32) then ``payload``; its ``count`` answers, each packed as ``fmt_out``."""
+    exe = folder / f"{name}-probe"
+    r = subprocess.run([tc.cxx, *tc.all_flags, str(HERE / f"{name}_probe.cpp"), "-o", str(exe)],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"the {name} probe did not compile: {r.stderr.strip()[:300]}")
+    r = subprocess.run([*runner, str(exe)], input=struct.pack("<i", count) + payload, capture_output=True,
+                       timeout=timeout)
+    if r.returncode != 0 or len(r.stdout) != struct.calcsize(f"<{count}{fmt_out}"):
+        raise RuntimeError(f"the {name} probe failed (exit {r.returncode})")
+    return list(struct.unpack(f"<{count}{fmt_out}", r.stdout))
+
+
 def probe_conversion(tc, runner, folder: Path) -> list:
     """``static_cast<int>`` of :data:`PROBE_INPUTS` as the toolchain ``tc`` compiles it, run by
     ``runner``; the probe is built in ``folder``."""
-    exe = folder / "conversion-probe"
-    cmd = [tc.cxx, *tc.all_flags, str(HERE / "conversion_probe.cpp"), "-o", str(exe)]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        raise RuntimeError(f"the conversion probe did not compile: {r.stderr.strip()[:300]}")
-    data = struct.pack(f"<i{len(PROBE_INPUTS)}f", len(PROBE_INPUTS), *PROBE_INPUTS)
-    r = subprocess.run([*runner, str(exe)], input=data, capture_output=True, timeout=120)
-    if r.returncode != 0 or len(r.stdout) != 4 * len(PROBE_INPUTS):
-        raise RuntimeError(f"the conversion probe failed (exit {r.returncode})")
-    return list(struct.unpack(f"<{len(PROBE_INPUTS)}i", r.stdout))
+    n = len(PROBE_INPUTS)
+    return _run_probe(tc, runner, folder, "conversion", n, struct.pack(f"<{n}f", *PROBE_INPUTS), "i", 120)
 
 
 def assembly(tc, source: Path, includes, defines, folder: Path) -> str:
@@ -417,16 +424,8 @@ def layers_find(tc, program: Path, runner, folder: Path) -> dict:
 def probe_hypot(tc, runner, folder: Path, pairs) -> list:
     """``std::hypot`` of each pair of ``pairs`` as the toolchain ``tc`` links it, run by
     ``runner`` (under qemu, the target's own C library); the probe is built in ``folder``."""
-    exe = folder / "libm-probe"
-    r = subprocess.run([tc.cxx, *tc.all_flags, str(HERE / "libm_probe.cpp"), "-o", str(exe)],
-                       capture_output=True, text=True)
-    if r.returncode != 0:
-        raise RuntimeError(f"the libm probe did not compile: {r.stderr.strip()[:300]}")
-    data = struct.pack(f"<i{2 * len(pairs)}d", len(pairs), *(v for pair in pairs for v in pair))
-    r = subprocess.run([*runner, str(exe)], input=data, capture_output=True, timeout=300)
-    if r.returncode != 0 or len(r.stdout) != 8 * len(pairs):
-        raise RuntimeError(f"the libm probe failed (exit {r.returncode})")
-    return list(struct.unpack(f"<{len(pairs)}d", r.stdout))
+    payload = struct.pack(f"<{2 * len(pairs)}d", *(v for pair in pairs for v in pair))
+    return _run_probe(tc, runner, folder, "libm", len(pairs), payload, "d", 300)
 
 
 def objdump(tool: str, path: Path, *options) -> str:

@@ -65,9 +65,9 @@ class _Program:
         return self._found(of_build)
 
     def require_arithmetic(self, spec=X86_64) -> None:
-        """A clear error unless the build computes in the arithmetic ``spec`` (the models of the
-        plugin and the costmap, which compute in x86-64's only): a build is never compared in
-        an arithmetic it does not have."""
+        """A clear error unless the build computes in the arithmetic ``spec`` (the fix, whose spec
+        computes in x86-64's only so far): a build is never compared in an arithmetic it does
+        not have."""
         arith = self.arithmetic()
         if arith != spec:
             fused = ", ".join(sorted(arith.fused)) or "none"
