@@ -21,6 +21,7 @@ from navfn_smt.backends import BACKENDS, get_backend
 from navfn_smt.errors import NavfnInputError
 from navfn_smt.spec.arithmetic import KNOWN
 from navfn_smt.spec.extraction import ExtractionExit, UndefinedBehaviour
+from navfn_smt.under_test import PlannerUnderTest
 
 OTHERS = [b for b in BACKENDS if b != "reference"]
 
@@ -57,9 +58,14 @@ def planning_cases(draw):
     return costs, start, goal, draw(st.booleans())
 
 
+def _planner(arith) -> PlannerUnderTest:
+    """NavFn as shipped, in the arithmetic ``arith`` (None: x86-64's)."""
+    return PlannerUnderTest() if arith is None else PlannerUnderTest(arithmetic=arith)
+
+
 def _plan(backend: str, costs, start, goal, astar, capacity=None, arith=None):
     try:
-        return get_backend(backend, arith=arith).prepare(costs, capacity).run(start, goal, astar, trace=True)
+        return get_backend(backend, _planner(arith)).prepare(costs, capacity).run(start, goal, astar, trace=True)
     except UndefinedBehaviour:
         return "undefined"
 
@@ -127,7 +133,7 @@ def test_backend_agrees_with_reference_at_small_capacity(backend, case, capacity
 
 def _extract(backend: str, costs, potential, start, goal, n, arith=None):
     try:
-        exit_, path = get_backend(backend, arith=arith).prepare(costs).extract(potential, start, goal, n)
+        exit_, path = get_backend(backend, _planner(arith)).prepare(costs).extract(potential, start, goal, n)
         return exit_, _bits(path)
     except UndefinedBehaviour:
         return "undefined"

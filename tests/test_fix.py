@@ -17,6 +17,7 @@ from navfn_smt.cli import main
 from navfn_smt.errors import NavfnInputError
 from navfn_smt.maps.regions import reaches, regions
 from navfn_smt.maps.suite import load_map
+from navfn_smt.under_test import FIXED, PlannerUnderTest
 from navfn_smt.spec import fix as F
 from navfn_smt.spec.constants import COST_OBS, POT_HIGH
 from navfn_smt.spec.costs import add_border
@@ -128,7 +129,7 @@ def test_every_backend_with_the_fix_equals_the_spec_bit_for_bit(backend):
     """The conformance test of the fixed variant: the backend's planner with the fix (the JIT's
     compiled propagate_on) against spec.planner.plan(variant="fixed"), every field."""
     for costs, pairs in _maps(1, 25):
-        planner = get_backend(backend, "fixed").prepare(costs)
+        planner = get_backend(backend, FIXED).prepare(costs)
         cols = planner.run_batch(np.array([(*s, *g) for s, g in pairs]), True)
         for i, (s, g) in enumerate(pairs):
             want = plan(costs, s, g, True, variant="fixed")
@@ -172,7 +173,7 @@ def test_the_symbolic_encoding_with_the_fix_equals_the_spec():
 
 def test_a_variant_that_is_not_one_is_refused():
     with pytest.raises(NavfnInputError, match="unknown variant 'patched'"):
-        get_backend("jit", "patched")
+        PlannerUnderTest("patched")
     with pytest.raises(NavfnInputError, match="cycle limit of at least 1"):
         plan(np.full((3, 3), 50, np.uint8), (0, 0), (2, 2), True, cycles=0, variant="fixed")
 
@@ -247,7 +248,7 @@ def test_the_patched_cpp_equals_the_fixed_spec_and_the_original_where_it_plans(b
     assert doc["fix_patch"]["file"] == f"{distro}.patch"
     for suite in (EXAMPLE, CX):
         with Oracle(folder, variant="fixed") as oracle:
-            s = run_live(suite, ("astar", "dijkstra"), "jit", oracle, variant="fixed").as_dict()
+            s = run_live(suite, ("astar", "dijkstra"), "jit", oracle, planner=FIXED).as_dict()
         assert s["failed"] == 0 and s["passed"] > 0, s
     # where the original C++ plans, the patched C++ returns the same path, potential and trace
     sm = load_map(CX / "cost-astar-7x7")

@@ -521,12 +521,14 @@ def test_a_build_in_another_arithmetic_runs_under_qemu_and_is_compared_in_its_ow
     # the compiled backend computes in the build's arithmetic; the fix not yet: refused, not compared wrongly
     assert main(["difftest", "--oracle", str(folder), "--quiet"]) == 0
     assert "4396 passed, 0 failed" in capsys.readouterr().out
-    from navfn_smt.backends import get_backend
     from navfn_smt.errors import NavfnInputError
     from navfn_smt.spec.arithmetic import KNOWN
+    from navfn_smt.under_test import PlannerUnderTest
 
     with pytest.raises(NavfnInputError, match="aarch64 arithmetic"):
-        get_backend("jit", "fixed", KNOWN["aarch64"])
+        PlannerUnderTest("fixed", KNOWN["aarch64"])
+    with pytest.raises(NavfnInputError, match="aarch64 arithmetic"):
+        PlannerUnderTest.of_build(folder, "fixed")
 
 
 @pytest.mark.parametrize("name", TARGET_BUILDS)
@@ -535,12 +537,12 @@ def test_the_spec_in_the_arithmetic_found_agrees_with_each_build_live(target_bui
     both modes, white-box (path, potential, trace, cycles, updates), bit for bit; the reference
     spec itself for arm64, the compiled backend (held to it by tests/test_backend_conformance.py
     in each arithmetic) for the others."""
-    from navfn_smt.oracle.arithmetic import of_build
+    from navfn_smt.under_test import PlannerUnderTest
 
     doc, folder = target_builds[name]
     backend = "reference" if name == "aarch64" else "jit"
     with Oracle(folder) as oracle:
-        s = run_live(EXAMPLE, MODES, backend, oracle, arith=of_build(doc)[0]).as_dict()
+        s = run_live(EXAMPLE, MODES, backend, oracle, planner=PlannerUnderTest.of_build(folder)).as_dict()
     assert s["failed"] == 0 and s["passed"] == 4396, s["disagreements"][:1]
 
 
@@ -553,12 +555,13 @@ def test_an_arithmetic_wrong_on_purpose_is_caught_by_the_difftest(target_builds,
     from dataclasses import replace
 
     from navfn_smt.spec.arithmetic import KNOWN
+    from navfn_smt.under_test import PlannerUnderTest
 
     arm = KNOWN["aarch64"]
     bad = (replace(arm, conversion="indefinite") if wrong == "conversion"
            else replace(arm, fused=arm.fused - {wrong}))
     with Oracle(target_builds["aarch64"][1]) as oracle:
-        s = run_live(EXAMPLE, MODES, "jit", oracle, arith=bad).as_dict()
+        s = run_live(EXAMPLE, MODES, "jit", oracle, planner=PlannerUnderTest(arithmetic=bad)).as_dict()
     assert s["failed"] > 0, wrong
 
 

@@ -214,7 +214,7 @@ def test_a_hunts_clock_starts_once_its_planner_is_compiled(monkeypatch):
 
     monkeypatch.setattr(H, "_compile", slow)
     f = H.hunt("incomplete", "dijkstra", (8, 8), 2.0, seed=0, shrink_result=False)
-    assert seen == [("incomplete", "dijkstra", H.DEFAULT_COSTS, "original")]
+    assert seen == [("incomplete", "dijkstra", H.DEFAULT_COSTS, H.ORIGINAL)]
     assert f is not None and f.evaluations > 0
     f, tried = H.hunt_smallest("incomplete", "dijkstra", (6, 6), 2.0, seed=0)
     assert len(seen) == 2 and sum(t["evaluations"] for t in tried) > 0

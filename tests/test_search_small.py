@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from navfn_smt.under_test import ORIGINAL
 from navfn_smt.backends import get_backend
 from navfn_smt.check import properties as P
 from navfn_smt.cli import main
@@ -78,10 +79,10 @@ def test_unreached_guide_counts_the_specs_cycles(astar):
 def test_the_guide_lets_the_climb_find_what_the_screen_alone_does_not():
     """On 5x7 maps the climb on the guide finds an unreached start; with the screen alone (0 on
     every map until the first counterexample) the same budget finds none."""
-    guided = Climb("unreached", "dijkstra", (5, 7), (50, 253), 0, "original", 0.0)
+    guided = Climb("unreached", "dijkstra", (5, 7), (50, 253), 0, ORIGINAL, 0.0)
     guided.advance(6000, math.inf, lambda line: None)
     assert guided.best is not None and guided.evaluations <= 6000
-    blind = Climb("unreached", "dijkstra", (5, 7), (50, 253), 0, "original", 0.0)
+    blind = Climb("unreached", "dijkstra", (5, 7), (50, 253), 0, ORIGINAL, 0.0)
     blind.cl.kind = KD.Kind(**{**KD.KINDS["unreached"].__dict__, "guide": None})
     blind.advance(6000, math.inf, lambda line: None)
     assert blind.best is None
@@ -138,7 +139,7 @@ def test_cost_climb_plans_mutants_on_its_focus_and_reports_the_score_of_every_pa
     pair: a score seen on the focus alone never becomes the best."""
     from navfn_smt.search.hunt import FOCUS
 
-    c = Climb("cost", "dijkstra", (5, 7), (50, 253), 4, "original", 0.0)
+    c = Climb("cost", "dijkstra", (5, 7), (50, 253), 4, ORIGINAL, 0.0)
     c.advance(3000, math.inf, lambda line: None)
     pairs = len(c.cl.pairs)
     assert FOCUS < pairs and c.cl.plans < c.evaluations * pairs / 2
@@ -156,8 +157,8 @@ def test_compiled_cost_steps_climb_as_the_python_step_map_for_map(mode, seed, si
     the same climb: the same draws, the same current map, stale count, evaluations, plans,
     improvements and best map.  A compiled step that kept a different mutant, scored a gap
     differently or drew one number more would part the two climbs within a few maps."""
-    a = Climb("cost", mode, size, (50, 253), seed, "original", 0.0)
-    b = Climb("cost", mode, size, (50, 253), seed, "original", 0.0, compiled=False)
+    a = Climb("cost", mode, size, (50, 253), seed, ORIGINAL, 0.0)
+    b = Climb("cost", mode, size, (50, 253), seed, ORIGINAL, 0.0, compiled=False)
     assert a.compiled is not None and b.compiled is None
     for until in (1, 2, 700, 4000, 9000):  # stops between chunks, at restarts and mid-plateau
         a.advance(until, math.inf, lambda line: None)

@@ -24,6 +24,7 @@ from .errors import NavfnInputError
 from .inputs import check_cells
 from .maps.suite import discover, load_map, modes_of
 from .spec.constants import COST_OBS
+from .under_test import FIXED, ORIGINAL
 from .report.tables import progress_bar, progress_counts
 
 SEED = 12345
@@ -46,15 +47,16 @@ def backends_of(choice: str) -> tuple[str, ...]:
     return tuple(BACKENDS) if choice == "all" else (choice,)
 
 
-def bench_suite(suite: Path, backend: str, mode: str) -> list[dict]:
-    """Time every case of ``suite`` per backend and mode; one row of figures each."""
+def bench_suite(suite: Path, backend: str, mode: str, planner=None) -> list[dict]:
+    """Time every case of ``suite`` per backend and mode, planning as the planner under test
+    ``planner`` (None: NavFn as shipped, in x86-64's arithmetic); one row of figures each."""
     maps = [load_map(d, suite) for d in discover(suite)]
     ncases = sum(len(m.cases) for m in maps)
     rows = []
     for b in backends_of(backend):
         for md in modes_of(mode):
             astar = md == "astar"
-            runners = [get_backend(b).prepare(m.costs) for m in maps]
+            runners = [get_backend(b, planner).prepare(m.costs) for m in maps]
             if b == "jit":  # warm-up: compile or load the cache before timing
                 runners[0].run_batch(maps[0].cases[:1], astar)
             elapsed = 0.0
@@ -74,15 +76,16 @@ def bench_suite(suite: Path, backend: str, mode: str) -> list[dict]:
     return rows
 
 
-def bench_oracle(suite: Path, oracle, mode: str) -> list[dict]:
+def bench_oracle(suite: Path, oracle, mode: str, planner) -> list[dict]:
     """The C++ NavFn (``oracle``: a running plain build) and the JIT on every case of ``suite``,
     map by map in the same run: the C++'s own planning time (its driver's clock, pipes aside),
-    the whole calls (planning and the answers' transfer) and the JIT's batch time, the JIT in
-    the arithmetic found in the build (as ``difftest --oracle`` compares them)."""
+    the whole calls (planning and the answers' transfer) and the JIT's batch time, the JIT
+    planning as ``planner``, the planner under test read from the build (as ``difftest --oracle``
+    compares them)."""
     maps = [load_map(d, suite) for d in discover(suite)]
     ncases = sum(len(m.cases) for m in maps)
-    arith = oracle.arithmetic()
-    planners = [get_backend("jit", arith=arith).prepare(m.costs) for m in maps]
+    arith = planner.navfn_arithmetic()
+    planners = [planner.backend("jit").prepare(m.costs) for m in maps]
     rows = []
     for md in modes_of(mode):
         astar = md == "astar"
@@ -117,7 +120,7 @@ def bench_fix(suite: Path, folder, mode: str, repeat: int = 3) -> list[dict]:
             for m in maps:
                 plans = get_backend("jit").prepare(m.costs).run_batch(m.cases, astar)["exit"] == 0
                 work.append((m, m.cases[plans]))
-            jit = {v: [get_backend("jit", v).prepare(m.costs) for m, _ in work] for v in ("original", "fixed")}
+            jit = {p.variant: [p.backend("jit").prepare(m.costs) for m, _ in work] for p in (ORIGINAL, FIXED)}
             for v in jit:
                 jit[v][0].run_batch(work[0][1][:1], astar)  # compile or load the cache before timing
             best = {k: float("inf") for k in ("cpp_original", "cpp_fixed", "jit_original", "jit_fixed")}
@@ -253,10 +256,10 @@ def bench_climb(maps: int = CLIMB_MAPS, modes: str = "both", seed: int = 0) -> l
         raise NavfnInputError(f"--climb {maps}: at least one map")
     rows = []
     for md in modes_of(modes):
-        Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0).advance(300, math.inf, lambda line: None)
+        Climb("cost", md, CLIMB_SIZE, (50, 253), seed, ORIGINAL, 0.0).advance(300, math.inf, lambda line: None)
         ends = []
         for compiled in (True, False):
-            c = Climb("cost", md, CLIMB_SIZE, (50, 253), seed, "original", 0.0, compiled=compiled)
+            c = Climb("cost", md, CLIMB_SIZE, (50, 253), seed, ORIGINAL, 0.0, compiled=compiled)
             t0 = time.perf_counter()
             c.advance(maps, math.inf, lambda line: None)
             sec = time.perf_counter() - t0

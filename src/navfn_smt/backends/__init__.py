@@ -9,8 +9,9 @@ its arrays (nothing in it changes when it plans again; ``path_cycles`` and ``cyc
 replace NavFn's budgets ``4 * nx`` and ``max(nx * ny / 20, nx + ny)``); ``planner.extract(potential,
 start, goal, path_cycles)`` runs calcPath alone; ``planner.run_batch(cases, astar)``
 plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
-``get_backend(name, variant="fixed")`` gives the same backend with the fix of
-:mod:`navfn_smt.spec.fix` (:class:`FixedMapPlanner`).
+``get_backend(name, planner)`` gives the backend planning as a planner under test
+(:class:`~navfn_smt.under_test.PlannerUnderTest`): in its arithmetic, and with the fix of
+:mod:`navfn_smt.spec.fix` (:class:`FixedMapPlanner`) when its variant is ``fixed``.
 """
 
 from __future__ import annotations
@@ -278,15 +279,13 @@ class _Fixed:
         return FixedMapPlanner(self.inner.prepare(costs, capacity))
 
 
-def get_backend(name: str, variant: str = F.DEFAULT_VARIANT, arith=None) -> Backend:
-    """The backend ``name``; with ``variant="fixed"`` its planners carry the fix; ``arith``: the
-    :class:`~navfn_smt.spec.arithmetic.Arithmetic` of the build it plans as (None: x86-64's).
-    Both backends compute in any arithmetic; the fix so far in x86-64's only."""
-    from ..spec.arithmetic import X86_64
-
+def get_backend(name: str, planner=None) -> Backend:
+    """The backend ``name`` planning as the planner under test ``planner`` does
+    (:class:`~navfn_smt.under_test.PlannerUnderTest`; None: NavFn as shipped, in x86-64's
+    arithmetic): in its arithmetic, with the fix when its variant is ``fixed``."""
     if name not in _BACKENDS:
         raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})")
-    if arith is not None and arith != X86_64 and F.check_variant(variant) == "fixed":
-        raise NavfnInputError(f"the fix computes in x86-64 arithmetic only so far, not in the {arith.name} arithmetic")
-    backend = _BACKENDS[name](arith)
-    return _Fixed(backend) if F.check_variant(variant) == "fixed" else backend
+    if planner is None:
+        return _BACKENDS[name](None)
+    backend = _BACKENDS[name](planner.navfn_arithmetic())
+    return _Fixed(backend) if planner.variant == "fixed" else backend

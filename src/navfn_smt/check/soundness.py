@@ -18,6 +18,7 @@ import numpy as np
 
 from ..spec.constants import COST_OBS, POT_HIGH
 from ..spec.extraction import ExtractionExit, exit_code
+from ..under_test import PlannerUnderTest
 
 COSTS = (50, 51, 100, 200, 253)  # the reduced set: the ends of 50..253, a neighbour of the low end, two between
 SWEPT = ("complete", "start-reached", "no-path-before-start-potential")
@@ -89,7 +90,7 @@ def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), variant: str = "or
     every interior start and goal, each mode (``True``: A*)."""
     from ..backends import get_backend
 
-    backend = get_backend("jit", variant)
+    backend = get_backend("jit", PlannerUnderTest(variant))
     inner, pairs = _cells(nx, ny)
     out = Sweep((nx, ny), tuple(costs), variant)
     for k, combo in enumerate(itertools.product(tuple(costs) + (COST_OBS,), repeat=len(inner))):
@@ -107,7 +108,7 @@ def sample(nx: int, ny: int, maps: int, seed: int = 0, lo: int = 50, hi: int = C
     over its cost set, this covers the whole cost range thinly."""
     from ..backends import get_backend
 
-    backend = get_backend("jit", variant)
+    backend = get_backend("jit", PlannerUnderTest(variant))
     inner, pairs = _cells(nx, ny)
     rng = np.random.default_rng(seed)
     out = Sweep((nx, ny), (lo, hi), variant)

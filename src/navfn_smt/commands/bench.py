@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..errors import NavfnInputError
-from .common import MODE_HELP, check_files, suite_or_example
+from .common import MODE_HELP, TARGET_HELP, check_files, planner_of, suite_or_example
 
 
 def cmd_bench(args) -> int:
@@ -48,6 +48,7 @@ def cmd_bench(args) -> int:
         return 0
     suite = suite_or_example(args.suite)
     check_files(args.json)
+    planner = planner_of(args)
     if args.variant == "fixed":
         if not args.oracle:
             raise NavfnInputError("bench --variant fixed times the C++ as shipped and as patched: give --oracle DIR")
@@ -63,12 +64,12 @@ def cmd_bench(args) -> int:
         from ..oracle.client import Oracle
 
         with Oracle(args.oracle, traced=False) as oracle:
-            rows = bench_oracle(suite, oracle, args.mode)
-            report.oracle_table(suite, oracle.build["distribution"], rows)
+            rows = bench_oracle(suite, oracle, args.mode, planner)
+            report.oracle_table(suite, planner.distribution, rows)
         if args.json:
             report.write_suite_json(args.json, suite, rows)
         return 0
-    rows = bench_suite(suite, args.backend, args.mode)
+    rows = bench_suite(suite, args.backend, args.mode, planner)
     report.suite_table(suite, rows)
     if args.json:
         report.write_suite_json(args.json, suite, rows)
@@ -93,6 +94,7 @@ def register(sub) -> None:
     be.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT,
                     help="fixed: with --oracle, time the cases the original plans on the C++ as shipped and as "
                     "patched with the fix, and on the JIT without and with it (--repeat times, best kept)")
+    be.add_argument("--target", metavar="NAME", help=TARGET_HELP + " (a suite's timing)")
     be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
     be.add_argument("--sweep", nargs="?", type=int, const=400, metavar="N",
                     help="instead, time the whole-map sweep (every free cell a goal of one robot pose) on a "

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from ..errors import NavfnInputError
 from ..fileio import check_writable_dir
-from .common import MODE_HELP, check_files, check_positive, vars_of
+from .common import MODE_HELP, add_planner_arguments, check_files, check_positive, planner_of, vars_of
 
 SEARCH_TIMEOUT = 60.0  # seconds per query of a search: what stays undecided is split, then unknown
 # seconds per query of a replay, ten times a search's: each query was decided once, and the
@@ -37,6 +37,7 @@ def cmd_check(args) -> int:
     if unknown:
         raise NavfnInputError(f"check: unknown property {unknown[0]!r} (choose from {', '.join(CR.CHECKABLE)}, all)")
     names = CR.CHECKABLE if "all" in args.property else tuple(dict.fromkeys(args.property))
+    planner = planner_of(args)  # NavFn as shipped or fixed, in x86-64's arithmetic (the encodings' so far)
     from ..search.hunt import parse_costs
 
     lo, hi = parse_costs(args.costs)
@@ -63,7 +64,7 @@ def cmd_check(args) -> int:
         results, skipped = CR.check_sizes(names, sizes, modes, lo, hi, args.semantics, args.timeout, eng, args.start,
                                           args.goal, args.ends, args.exhaustive, args.budget,
                                           smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0,
-                                          variant=args.variant, certify=_certify(args, lo, hi, modes),
+                                          variant=planner.variant, certify=_certify(args, planner, lo, hi, modes),
                                           journal=args.journal)
     finally:
         report.stop_progress()
@@ -80,20 +81,20 @@ def cmd_check(args) -> int:
                     args.out, np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]),
                     cx["mode"] == "astar", r.property, {"reason": cx["reason"], "exit": cx["exit"]},
                     extra={"found_by": "check", "size_proved_below": CR.proved_sizes(results, r.property),
-                           "variant": args.variant}))
-    induction = {n: CR.induction(n, timeout=args.timeout, variant=args.variant)
-                 for n in names if n in CR.inductive(args.variant)}
+                           "variant": planner.variant}))
+    induction = {n: CR.induction(n, timeout=args.timeout, variant=planner.variant)
+                 for n in names if n in CR.inductive(planner.variant)}
     if args.json:
         report.write_json(args.json, {
             "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": args.semantics,
-            "variant": args.variant,
+            "variant": planner.variant,
             "ends": args.ends,
             "results": [report.row(r) for r in results], "sizes_not_reached": skipped,
             "largest_size_proved": {n: CR.largest_proved(results, n) for n in names},
             "smallest_counterexample": {n: CR.smallest_counterexample(results, n) for n in names},
             "every_size_by_induction": induction,
             "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names
-                              if n in CR.NOT_INDUCTIVE and n not in CR.inductive(args.variant)},
+                              if n in CR.NOT_INDUCTIVE and n not in CR.inductive(planner.variant)},
             "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})
     for n, ind in induction.items():
         print(f"{n}: every map size by induction: {ind['status']} ("
@@ -110,7 +111,7 @@ def cmd_check(args) -> int:
     return 0 if all(r.status == "proved" for r in results) else 1
 
 
-def _certify(args, lo: int, hi: int, modes):
+def _certify(args, planner, lo: int, hi: int, modes):
     """The callback that writes a proved size's certificate under ``--certificates DIR``."""
     if not args.certificates:
         return None
@@ -125,7 +126,7 @@ def _certify(args, lo: int, hi: int, modes):
         certificate.write(path, {
             "size": [nx, ny], "properties": explored, "costs": [lo, hi], "modes": ["astar" if m else "dijkstra"
                                                                                   for m in modes],
-            "variant": args.variant, "ends": args.ends, "total": r.cases, "outside": r.outside,
+            "variant": planner.variant, "ends": args.ends, "total": r.cases, "outside": r.outside,
             "verdicts": {n: g.status for n, g in got.items()},
             "witnesses": {n: g.counterexample for n, g in got.items() if g.status == "refuted"},
             "induction": {n: g.method for n, g in got.items() if g.method != "exploration"}}, entries)
@@ -264,7 +265,6 @@ def register(sub) -> None:
     from ..check.bounded import CHECKABLE as CHECK_PROPERTIES
     from ..maps.suite import MODE_CHOICES
     from ..engine import add_arguments as add_engine_arguments
-    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
 
     ck = sub.add_parser("check", help="prove or refute a whole-planner property on every map of a size "
                         "(bounded: symbolic costs, enumerated layouts, start and goal)")
@@ -278,7 +278,7 @@ def register(sub) -> None:
                      help="every size up to W x H, smallest interior first, until --budget runs out; "
                      "a refuted property stops at its smallest counterexample")
     ck.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
-    ck.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
+    add_planner_arguments(ck, arithmetic=False)
     ck.add_argument("--costs", default="50..253", metavar="LO..HI",
                     help="range of every passable cell's cost (50..253: what setCostmap produces; at least 1: a cost "
                     "of 0 makes a NaN possible, where the intervals are unsound); lethal cells are enumerated")

@@ -52,34 +52,37 @@ def _summary_step(steps: _Steps, name: str, run) -> None:
     steps.add(name, time.perf_counter() - t0, failure=text if s["failed"] else None, out=text)
 
 
-def _navfn(args, folder: Path, unbounded: bool):
+def _navfn(args, planner, unbounded: bool):
     from ..difftest.live import run_live
     from ..maps.suite import MODES
     from ..oracle.client import Oracle
     from .common import suite_or_example
 
-    with Oracle(folder, variant="unbounded" if unbounded else "traced") as oracle:
+    planner.navfn_arithmetic()  # a clear failure of the step when the spec cannot express it
+    with Oracle(planner.build, variant="unbounded" if unbounded else "traced") as oracle:
         return run_live(suite_or_example(args.suite), MODES, "jit", oracle, unbounded=unbounded,
-                        arith=oracle.arithmetic()).as_dict()
+                        planner=planner).as_dict()
 
 
-def _plugin(args, folder: Path):
+def _plugin(args, planner):
     from ..difftest.plugin_live import generated_configs, run_plugin_live
     from ..oracle.client import PluginOracle
 
-    with PluginOracle(folder) as oracle:
-        return run_plugin_live(generated_configs(oracle.build["distribution"], args.configs, args.seed),
-                               oracle, arith=oracle.plugin_arithmetic()).as_dict()
+    arith = planner.plugin_arithmetic()
+    with PluginOracle(planner.build) as oracle:
+        return run_plugin_live(generated_configs(planner.distribution, args.configs, args.seed),
+                               oracle, arith=arith).as_dict()
 
 
-def _costmap(args, folder: Path):
+def _costmap(args, planner):
     from ..difftest.layers_live import generated_configs, run_layers_live
     from ..oracle.client import LayersOracle
     from ..report.difftest import cpu_sqrt_line
 
-    with LayersOracle(folder) as oracle:
-        s = run_layers_live(generated_configs(oracle.build["distribution"], args.configs, args.seed),
-                            oracle, arith=oracle.layers_arithmetic()).as_dict()
+    arith = planner.layers_arithmetic()
+    with LayersOracle(planner.build) as oracle:
+        s = run_layers_live(generated_configs(planner.distribution, args.configs, args.seed),
+                            oracle, arith=arith).as_dict()
     if s["cpu_sqrt"]:
         print("  " + cpu_sqrt_line(s["cpu_sqrt"]))
     return s
@@ -102,8 +105,8 @@ def _prove(args, steps: _Steps, junit: Path) -> None:
 
 def cmd_ci(args) -> int:
     """Build, difftest every level, prove; one JUnit file; exit 1 on any disagreement."""
-    from ..oracle.arithmetic import of_build
     from ..oracle.build import build
+    from ..under_test import PlannerUnderTest
     from ..report.ci import write_junit
     from ..spec.arithmetic import X86_64
     from .common import toolchain_of
@@ -116,15 +119,15 @@ def cmd_ci(args) -> int:
     steps = _Steps()
     t0 = time.perf_counter()
     doc = build(args.nav2_src, out / "oracle", tc=toolchain_of(args))
-    arith, why = of_build(doc)
-    steps.add("build", time.perf_counter() - t0, out=f"{doc['distribution']} for {doc['target']} "
-              f"({arith.name if arith else why}): {', '.join(doc['programs'])}")
-    folder = out / "oracle"
-    _summary_step(steps, "difftest navfn", lambda: _navfn(args, folder, False))
-    _summary_step(steps, "difftest navfn unbounded", lambda: _navfn(args, folder, True))
-    _summary_step(steps, "difftest plugin", lambda: _plugin(args, folder))
+    planner = PlannerUnderTest.of_build(out / "oracle")  # the build's, its arithmetic as found in it
+    arith = planner.arithmetic
+    steps.add("build", time.perf_counter() - t0, out=f"{planner.distribution} for {planner.target} "
+              f"({arith.name if arith else planner.unexpressible}): {', '.join(doc['programs'])}")
+    _summary_step(steps, "difftest navfn", lambda: _navfn(args, planner, False))
+    _summary_step(steps, "difftest navfn unbounded", lambda: _navfn(args, planner, True))
+    _summary_step(steps, "difftest plugin", lambda: _plugin(args, planner))
     if "costmap-layers" in doc["programs"]:
-        _summary_step(steps, "difftest costmap", lambda: _costmap(args, folder))
+        _summary_step(steps, "difftest costmap", lambda: _costmap(args, planner))
     else:
         steps.add("difftest costmap", 0.0, skipped=doc.get("skipped", {}).get("costmap-layers", "not built"))
     prove_junit = out / "prove-junit.xml" if not args.no_prove and arith == X86_64 else None

@@ -75,16 +75,43 @@ def page_sources(check_reports, split_dir, files=None) -> dict:
             "declared": declared, "known": known}
 
 
-def target_arithmetic(target):
-    """The arithmetic ``--target NAME`` names (None: none given, x86-64's, the golden files' of
-    the shared suite); an unknown name is a clear error."""
-    from ..spec.arithmetic import KNOWN
+TARGET_HELP = ("the arithmetic of a build for this machine, in which the spec computes: x86-64 (default: the "
+               "golden files'), x86-64-v3 or aarch64 (docs/toolchains.md)")
 
-    if target is None:
-        return None
-    if target not in KNOWN:
-        raise NavfnInputError(f"--target {target!r}: no such arithmetic (there are: {', '.join(KNOWN)})")
-    return KNOWN[target]
+
+ORACLE_PLAN_HELP = ("plan as the build in DIR computes (navfn-smt oracle build): its distribution and the "
+                    "arithmetic found in it")
+
+
+def add_planner_arguments(parser, arithmetic: bool = True, variant_help: str = "", oracle_help: str = "") -> None:
+    """The options that name the planner under test: ``--variant``, and with ``arithmetic``
+    ``--target NAME``, and with ``oracle_help`` ``--oracle DIR`` (commands that compare with a
+    build add their own ``--oracle``, which names the planner the same way)."""
+    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
+
+    parser.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP + variant_help)
+    if arithmetic:
+        parser.add_argument("--target", metavar="NAME", help=TARGET_HELP)
+    if oracle_help:
+        parser.add_argument("--oracle", metavar="DIR", help=oracle_help)
+
+
+def planner_of(args, variant=None):
+    """The planner under test (:class:`~navfn_smt.under_test.PlannerUnderTest`) a command's
+    options name, made once: ``--variant`` (or ``variant``), ``--target NAME`` or ``--oracle DIR``
+    (whose build.json gives its distribution and arithmetic), ``--distro`` where the command
+    has it; contradicting options are a clear error."""
+    from ..under_test import PlannerUnderTest
+
+    variant = variant or getattr(args, "variant", None) or "original"
+    target, oracle = getattr(args, "target", None), getattr(args, "oracle", None)
+    distro = getattr(args, "distro", None)
+    if oracle:
+        if target:
+            raise NavfnInputError(f"--target {target} and --oracle DIR exclude each other: a build's arithmetic "
+                                  f"is found in the build (its build.json names its target)")
+        return PlannerUnderTest.of_build(oracle, variant, distro)
+    return PlannerUnderTest.of_target(target, variant, distro)
 
 
 def add_toolchain_arguments(parser) -> None:

@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 
 from ..errors import NavfnInputError
+from .common import add_planner_arguments, planner_of
 
 
 def _check_outputs(args) -> None:
@@ -73,7 +74,7 @@ def cmd_diagnose(args) -> int:
         return _sweep(args, start)
     goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
     setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
-                        tuple(args.origin), args.variant)
+                        tuple(args.origin), planner_of(args).variant)
     t0 = time.perf_counter()
     results = []
     batch = len(goals) > 1 or bool(args.goals)
@@ -104,7 +105,7 @@ def _sweep(args, start) -> int:
 
     n = None if args.sweep == "all" else _sample_size(args.sweep)
     setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
-                        tuple(args.origin), args.variant)
+                        tuple(args.origin), planner_of(args).variant)
     cm = setup.costmap
     from ..report.tables import progress_bar
     from ..diagnose.sweep import select_goals
@@ -144,7 +145,6 @@ def _sample_size(v) -> int:
 def register(sub) -> None:
     from ..backends import BACKENDS
     from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
-    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
 
     d = sub.add_parser("diagnose", help="explain why a Nav2 NavFn plan fails and what fixes it")
     d.add_argument("map", help="a map_server YAML map, or a costmap file (.npy, .pgm) with --resolution")
@@ -169,7 +169,7 @@ def register(sub) -> None:
                    help=f"Nav2 distribution whose map loading and costmap rules apply ({', '.join(DISTROS)})")
     d.add_argument("--allow-outside", action="store_true",
                    help="let the map YAML name an image outside its own folder")
-    d.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
+    add_planner_arguments(d, arithmetic=False)
     d.add_argument("--backend", choices=BACKENDS, default="jit",
                    help="planner implementation: the numba JIT or the reference spec")
     d.add_argument("--json", metavar="FILE", help="write the machine-readable report (docs/diagnose.md)")

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..errors import NavfnInputError
-from .common import BACKEND_HELP, MODE_HELP, check_files, suite_or_example, target_arithmetic
+from .common import BACKEND_HELP, MODE_HELP, add_planner_arguments, check_files, planner_of, suite_or_example
 
 
 def cmd_difftest(args) -> int:
@@ -28,17 +28,14 @@ def cmd_difftest(args) -> int:
         raise NavfnInputError("--variant fixed and --unbounded exclude each other (no C++ build has both)")
     suite, modes = suite_or_example(args.suite), modes_of(args.mode)
     eng = engine(args.jobs, args.scheduler)
+    planner = planner_of(args)
     if args.oracle:
-        if args.target:
-            raise NavfnInputError("--target names the arithmetic of golden files; with --oracle DIR the build's "
-                                  "own arithmetic is used (found in the build)")
-        return _live(args, suite, modes)
-    arith = target_arithmetic(args.target)
+        return _live(args, suite, modes, planner)
     total = count_cases(suite, modes)
-    label = f"difftest {suite} ({args.backend}{f', {arith.name} arithmetic' if arith else ''})"
+    label = f"difftest {suite} ({args.backend}{f', {planner.arithmetic.name} arithmetic' if args.target else ''})"
     with progress_bar(total, label, enabled=not args.quiet) as advance:
         summary = run_suite(suite, modes, args.backend, eng=eng, total=total,
-                            progress=lambda o: advance(o.cases), arith=arith).as_dict()
+                            progress=lambda o: advance(o.cases), planner=planner).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
@@ -46,7 +43,7 @@ def cmd_difftest(args) -> int:
     return 0 if summary["failed"] == 0 else 1
 
 
-def _live(args, suite, modes) -> int:
+def _live(args, suite, modes, planner) -> int:
     """``--oracle DIR``: the spec against the C++ NavFn built in DIR, live, every case."""
     from ..difftest.live import run_live
     from ..difftest.runner import case_count
@@ -56,31 +53,23 @@ def _live(args, suite, modes) -> int:
     from ..report.tables import progress_bar
 
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
-    program = "unbounded" if args.unbounded else "fixed" if args.variant == "fixed" else "traced"
-    library = _library_build(args.oracle) if program == "traced" else ""
+    program = "unbounded" if args.unbounded else "fixed" if planner.variant == "fixed" else "traced"
+    library = (planner.doc.get("library") or {}).get("file", "") if program == "traced" else ""
     if library:
         program = "plain"  # a library build: the library's own code, without the white-box trace
         print(f"{args.oracle} links a NavFn library ({library}): compared without the white-box trace (path, "
               f"potential, start reached)")
+    planner.navfn_arithmetic()  # the spec computes in the build's arithmetic, found in the build
     with Oracle(args.oracle, variant=program) as oracle:
-        arith = oracle.arithmetic()  # the spec computes in the build's arithmetic, found in the build
-        label = (f"difftest {suite} ({args.backend}, {args.variant}, against the C++ of "
-                 f"{oracle.build['distribution']} for {oracle.build.get('target', 'x86-64')}, {arith.name} arithmetic)")
+        label = f"difftest {suite} ({args.backend}, {planner.label})"
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_live(suite, modes, args.backend, oracle, progress=lambda o: advance(o.cases),
-                               unbounded=args.unbounded, variant=args.variant, arith=arith).as_dict()
+                               unbounded=args.unbounded, planner=planner).as_dict()
     report.table(summary)
     if args.json:
         report.write_json(args.json, suite, args.backend, modes, summary)
     report.closing_line(summary)
     return 0 if summary["failed"] == 0 else 1
-
-
-def _library_build(folder) -> str:
-    """The library a build folder's navfn-plain links (``oracle build --library``), or ''."""
-    from ..oracle.build import load_build
-
-    return (load_build(folder).get("library") or {}).get("file", "")
 
 
 def _level(args) -> int:
@@ -89,24 +78,25 @@ def _level(args) -> int:
         raise NavfnInputError(f"--level {args.level} runs against the C++: give --oracle DIR (navfn-smt oracle build)")
     if args.suite:
         raise NavfnInputError(f"--level {args.level} generates its own cases (or takes --map): no suite")
+    planner = planner_of(args)
     if args.level == "plugin":
-        return _plugin_level(args)
-    return _costmap_level(args)
+        return _plugin_level(args, planner)
+    return _costmap_level(args, planner)
 
 
-def _level_report(args, summary: dict, oracle, arith) -> int:
+def _level_report(args, summary: dict, planner, arith) -> int:
     """The level's table, its JSON with ``--json`` (both name the build's target and the
     arithmetic ``arith`` the model computed in), exit 1 on any disagreement."""
     from ..report import difftest as report
 
-    summary = {**summary, "target": oracle.build.get("target", "x86-64"), "arithmetic": arith.name}
+    summary = {**summary, "target": planner.target, "arithmetic": arith.name}
     report.level_table(summary)
     if args.json:
         report.write_level_json(args.json, summary)
     return 0 if summary["failed"] == 0 else 1
 
 
-def _costmap_level(args) -> int:
+def _costmap_level(args, planner) -> int:
     from ..difftest.layers_live import generated_configs, map_config, run_layers_live
     from ..oracle.client import LayersOracle
     from ..report.tables import progress_bar
@@ -115,9 +105,9 @@ def _costmap_level(args) -> int:
         raise NavfnInputError("--sweep is for --level plugin")
     if args.params and not args.map:
         raise NavfnInputError("--params goes with --map")
+    arith = planner.layers_arithmetic()  # the model computes as the build was found to
+    distro = planner.distribution
     with LayersOracle(args.oracle) as oracle:
-        arith = oracle.layers_arithmetic()  # the model computes as the build was found to
-        distro = oracle.build["distribution"]
         if args.map:
             cfg, notes = map_config(args.map, args.params, distro)
             configs = [cfg]
@@ -126,42 +116,39 @@ def _costmap_level(args) -> int:
         else:
             configs = generated_configs(distro, args.configs, args.seed)
         label = (f"difftest --level costmap (the layer models against the C++ layers of {distro}, "
-                 f"{oracle.build.get('target', 'x86-64')}, {arith.name})")
+                 f"{planner.target}, {arith.name})")
         with progress_bar(1 if args.map else args.configs, label, enabled=not args.quiet) as advance:
             summary = run_layers_live(configs, oracle, progress=advance, arith=arith).as_dict()
-    return _level_report(args, summary, oracle, arith)
+    return _level_report(args, summary, planner, arith)
 
 
-def _plugin_level(args) -> int:
+def _plugin_level(args, planner) -> int:
     from ..difftest.plugin_live import generated_configs, map_configs, run_plugin_live
     from ..oracle.client import PluginOracle
     from ..report.tables import progress_bar
 
     from dataclasses import replace
 
-    with PluginOracle(args.oracle, args.variant) as oracle:
-        arith = oracle.plugin_arithmetic()  # the model computes as the build was found to
-        if args.variant == "fixed":
-            oracle.require_arithmetic()  # the fix's spec computes in x86-64's only so far
-        distro = oracle.build["distribution"]
+    arith = planner.plugin_arithmetic()  # the model computes as the build was found to
+    distro = planner.distribution
+    with PluginOracle(args.oracle, planner.variant) as oracle:
         if args.map:
             configs = list(map_configs(args.map, args.params, distro, args.configs, args.seed, args.pairs, args.sweep))
         else:
             configs = list(generated_configs(distro, args.configs, args.seed, args.pairs))
-        configs = [replace(c, params=replace(c.params, variant=args.variant)) for c in configs]
+        configs = [replace(c, params=replace(c.params, variant=planner.variant)) for c in configs]
         total = sum(len(c.pairs) for c in configs)
-        label = (f"difftest --level plugin ({args.backend} model, {args.variant}, against the C++ plugin of {distro} "
-                 f"for {oracle.build.get('target', 'x86-64')}: {arith.name})")
+        label = (f"difftest --level plugin ({args.backend} model, {planner.variant}, against the C++ plugin of "
+                 f"{distro} for {planner.target}: {arith.name})")
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_plugin_live(configs, oracle, args.backend, progress=advance, arith=arith).as_dict()
-    return _level_report(args, summary, oracle, arith)
+    return _level_report(args, summary, planner, arith)
 
 
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
     from ..maps.suite import MODE_CHOICES
-    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
     from ..engine import add_arguments as add_engine_arguments
 
     dt = sub.add_parser("difftest", help="compare every case of a suite with its golden files")
@@ -170,12 +157,10 @@ def register(sub) -> None:
     dt.add_argument("--backend", choices=BACKENDS, default="jit", help=BACKEND_HELP)
     dt.add_argument("--oracle", metavar="DIR", help="compare with the C++ NavFn built in DIR (navfn-smt oracle "
                     "build), run live on every case, instead of the golden files")
-    dt.add_argument("--target", metavar="NAME", help="the golden files were recorded from a build in this "
-                    "arithmetic (x86-64, x86-64-v3, aarch64: docs/toolchains.md); the spec computes in it")
     dt.add_argument("--unbounded", action="store_true", help="with --oracle: the C++ and the spec both with "
                     "priority buffers that never drop a push")
-    dt.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT,
-                    help=VARIANT_HELP + "; fixed needs --oracle (the C++ with the fix's patch)")
+    add_planner_arguments(dt, variant_help="; fixed needs --oracle (the C++ with the fix's patch); --target: the "
+                          "golden files were recorded from a build in this arithmetic")
     dt.add_argument("--level", choices=("navfn", "plugin", "costmap"), default="navfn",
                     help="navfn: NavFn on a suite (default); plugin: Nav2's createPlan on generated costmaps, poses "
                     "and parameters (or --map); costmap: the static and inflation layers on generated grids and "

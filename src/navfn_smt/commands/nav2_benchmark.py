@@ -115,17 +115,20 @@ def _print_map(res, args) -> None:
                   f"global costmap built in {duration(res.costmap_seconds)}, whole map {duration(res.seconds)}")
 
 
-def _layers_arithmetic(build: dict):
-    """The layers' arithmetic of an oracle build, for the global costmap both planners plan on
-    (None, x86-64's, with a note, when the build has no layers program or its arithmetic is
-    not one the model expresses: the C++ plugin is given the model's costmap either way)."""
-    from ..oracle.arithmetic import layers_of_build
+def _layers_arithmetic(planner):
+    """The layers' arithmetic of the planner under test's build, for the global costmap both
+    planners plan on (None, x86-64's, with a note, when the build has no layers program or its
+    arithmetic is not one the model expresses: the C++ plugin is given the model's costmap
+    either way)."""
+    from ..errors import NavfnInputError
     from ..report.tables import console
 
-    if "costmap-layers" not in build.get("programs", ()):
-        found, why = None, "the build has no costmap-layers program"
-    else:
-        found, why = layers_of_build(build)
+    found, why = None, "the build has no costmap-layers program"
+    if "costmap-layers" in planner.doc.get("programs", ()):
+        try:
+            found = planner.layers_arithmetic()
+        except NavfnInputError as e:
+            why = str(e)
     if found is None:
         console.print(f"the global costmap is computed in x86-64's layers arithmetic ({why}); both planners plan on it")
     return found
@@ -149,19 +152,21 @@ def cmd_nav2_benchmark(args) -> int:
         if args.oracle:
             from ..oracle.client import PluginOracle
             from ..spec.arithmetic import X86_64
+            from .common import planner_of
 
+            planner = planner_of(args, "original")  # the build's; each planner of the benchmark plans as it
+            arith = planner.plugin_arithmetic()  # the model plans as the build was found to compute
             first = stack.enter_context(PluginOracle(args.oracle, "original"))
-            arith = first.plugin_arithmetic()  # the model plans as the build was found to compute
             if arith.navfn != X86_64 and any(p.variant == "fixed" for p in planners):
                 planners = tuple(p for p in planners if p.variant == "original")
                 console.print(f"the fix computes in x86-64's arithmetic only so far, and {args.oracle} computes in "
                               f"{arith.navfn.name}'s: NavFn fixed is left out")
             oracles = {"original": first, **{v: stack.enter_context(PluginOracle(args.oracle, v))
                                              for v in sorted({p.variant for p in planners} - {"original"})}}
-            build = first.build
-            distro = build["distribution"]
-            layers_arith = _layers_arithmetic(build)
-            timing = (f"the C++ NavfnPlanner::createPlan ({distro}, {build.get('target', 'x86-64')}, "
+            build = planner.doc
+            distro = planner.distribution
+            layers_arith = _layers_arithmetic(planner)
+            timing = (f"the C++ NavfnPlanner::createPlan ({distro}, {planner.target}, "
                       f"{build['compiler']} {' '.join(build['flags'])}, oracle build {args.oracle}), its own time "
                       f"per pair; the model in {arith.name}")
         for m in maps:

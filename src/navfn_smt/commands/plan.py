@@ -5,7 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from .common import BACKEND_HELP, cell
+from ..nav2.mapserver import DEFAULT_DISTRO
+from .common import BACKEND_HELP, ORACLE_PLAN_HELP, add_planner_arguments, cell, planner_of
 
 
 def _plan_world(args) -> int:
@@ -21,17 +22,22 @@ def _plan_world(args) -> int:
         raise NavfnInputError("--size is for a raw map file, not a map_server map")
     start, goal = check_pose("start", args.start), check_pose("goal", args.goal)
     check_params_file(args.params)
-    overrides = {"use_astar": True if args.astar else False if args.dijkstra else None, "variant": args.variant}
-    setup = load_setup(args.map, args.params, args.distro, args.allow_outside, overrides, args.resolution,
-                       tuple(args.origin))
-    run = create_plan(setup.costmap, start, goal, setup.params, args.backend)
+    planner = planner_of(args)
+    arith = planner.plugin_arithmetic() if planner.build is not None else None
+    if arith is None and args.target not in (None, "x86-64"):
+        raise NavfnInputError(f"--world --target {args.target}: the plugin's arithmetic is found in a build; give "
+                              f"--oracle DIR (navfn-smt oracle build --target {args.target})")
+    overrides = {"use_astar": True if args.astar else False if args.dijkstra else None, "variant": planner.variant}
+    setup = load_setup(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside, overrides,
+                       args.resolution, tuple(args.origin),
+                       planner.layers_arithmetic() if planner.build is not None and is_yaml(args.map) else None)
+    run = create_plan(setup.costmap, start, goal, setup.params, args.backend, arith)
     report.plugin_plan(setup, run, start, goal, args.backend, args.json)
     return 0 if run.ok else 1
 
 
 def cmd_plan(args) -> int:
     """Plan on one map and print the path (NavFn itself, or Nav2's plugin with --world)."""
-    from ..backends import get_backend
     from ..maps.loading import load_costs
     from ..report import plan as report
 
@@ -43,17 +49,17 @@ def cmd_plan(args) -> int:
         raise NavfnInputError("--astar and --dijkstra exclude each other")
     mode = "dijkstra" if args.dijkstra else "astar"
     start, goal = cell("start", args.start), cell("goal", args.goal)
-    costs = load_costs(args.map, args.size, args.allow_outside, args.distro)
-    res = get_backend(args.backend, args.variant).prepare(costs).run(start, goal, astar=not args.dijkstra, trace=False)
-    report.cell_plan(res, mode, args.backend, start, goal, args.json, costs)
+    planner = planner_of(args)
+    costs = load_costs(args.map, args.size, args.allow_outside, planner.distribution or DEFAULT_DISTRO)
+    res = planner.backend(args.backend).prepare(costs).run(start, goal, astar=not args.dijkstra, trace=False)
+    report.cell_plan(res, mode, args.backend, start, goal, args.json, costs, planner)
     return 0 if len(res.path) else 1
 
 
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
-    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
+    from ..nav2.mapserver import DISTROS
 
     pl = sub.add_parser("plan", help="plan on one map and print the path")
     pl.add_argument("map", help="a suite map directory (test.txt gives the size), a map_server YAML, "
@@ -78,14 +84,15 @@ def register(sub) -> None:
                     "(default: 0 0)")
     pl.add_argument("--allow-outside", action="store_true",
                     help="let a map_server YAML name an image outside its own folder")
-    pl.add_argument("--distro", default=DEFAULT_DISTRO, choices=tuple(DISTROS),
-                    help="Nav2 distribution whose map loading and costmap rules apply (default: %(default)s)")
+    pl.add_argument("--distro", choices=tuple(DISTROS),
+                    help=f"Nav2 distribution whose map loading and costmap rules apply (default: {DEFAULT_DISTRO}, "
+                    "or with --oracle the build's)")
     alg = pl.add_mutually_exclusive_group()
     alg.add_argument("--dijkstra", action="store_true",
                      help="Dijkstra propagation (default: A* on cells; with --world the params file's use_astar, "
                      "whose Nav2 default is Dijkstra)")
     alg.add_argument("--astar", action="store_true", help="A* propagation (with --world: overrides use_astar)")
     pl.add_argument("--backend", choices=BACKENDS, default="jit", help=BACKEND_HELP)
-    pl.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
+    add_planner_arguments(pl, oracle_help=ORACLE_PLAN_HELP + " (with --world, the plugin's and the layers')")
     pl.add_argument("--json", action="store_true", help="print a JSON object")
     pl.set_defaults(func=cmd_plan)

@@ -5,12 +5,11 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from .common import BACKEND_HELP, check_files
+from .common import BACKEND_HELP, ORACLE_PLAN_HELP, add_planner_arguments, check_files, planner_of
 
 
 def cmd_render(args) -> int:
     """Draw one planning case of a map into a picture file."""
-    from ..backends import get_backend
     from ..maps.loading import is_yaml, load_case_map
     from ..maps.pictures import FORMATS, render_case
 
@@ -36,8 +35,8 @@ def cmd_render(args) -> int:
             raise NavfnInputError("--highlight takes X Y (a cell) or X1 Y1 X2 Y2 (a segment)")
         hl = [tuple(args.highlight[i:i + 2]) for i in range(0, len(args.highlight), 2)]
     check_files(args.output)
-    res = get_backend(args.backend, args.variant).prepare(m.costs).run(start, goal, astar=not args.dijkstra,
-                                                                       trace=False)
+    res = planner_of(args).backend(args.backend).prepare(m.costs).run(start, goal, astar=not args.dijkstra,
+                                                                    trace=False)
     window = render_case(m.costs, res, start, goal, args.output,
                          title=f"{m.name} ({'Dijkstra' if args.dijkstra else 'A*'})", highlight=hl,
                          arrows=None if args.arrows == "auto" else args.arrows == "on", zoom=args.zoom)
@@ -54,7 +53,6 @@ def cmd_render(args) -> int:
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
 
     rd = sub.add_parser("render", help="draw a planning case: costmap, potential, path, gradient")
     rd.add_argument("map", help="a suite map directory or a map_server YAML")
@@ -65,7 +63,7 @@ def register(sub) -> None:
     rd.add_argument("--goal", nargs=2, type=int, metavar=("X", "Y"), help="plan this goal cell instead of a case")
     rd.add_argument("--dijkstra", action="store_true", help="Dijkstra propagation (default: A*)")
     rd.add_argument("--backend", choices=BACKENDS, default="jit", help=BACKEND_HELP)
-    rd.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
+    add_planner_arguments(rd, oracle_help=ORACLE_PLAN_HELP)
     rd.add_argument("--highlight", nargs="+", type=float, metavar="V",
                     help="mark a cell (X Y) or a segment (X1 Y1 X2 Y2), e.g. a counterexample")
     rd.add_argument("--arrows", choices=("auto", "on", "off"), default="auto",

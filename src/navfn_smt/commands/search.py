@@ -6,7 +6,7 @@ from pathlib import Path
 
 from ..errors import NavfnInputError
 from ..fileio import check_writable_dir
-from .common import MODE_HELP, check_files, check_positive, vars_of
+from .common import MODE_HELP, add_planner_arguments, check_files, check_positive, planner_of, vars_of
 
 
 def cmd_search(args) -> int:
@@ -19,8 +19,9 @@ def cmd_search(args) -> int:
 
     eng = engine(args.jobs, args.scheduler)
     check_files(args.json)
+    planner = planner_of(args)
     if args.summary:
-        if args.variant != "original":
+        if planner.variant != "original":
             raise NavfnInputError("--summary counts on NavFn as shipped: no --variant")
         if args.kind:
             raise NavfnInputError("give either a KIND or --summary SUITE, not both")
@@ -40,7 +41,7 @@ def cmd_search(args) -> int:
     if args.out:
         check_writable_dir(args.out)
     findings, tried = run_search(args.kind, args.mode, args.size, args.max_size, args.timeout, args.seed,
-                                 costs_range, progress=report.progress_line, eng=eng, variant=args.variant)
+                                 costs_range, progress=report.progress_line, eng=eng, planner=planner)
     rows = [report.finding_row(f, s) for f, s in zip(findings, save_findings(findings, args.out))]
     report.table(args.kind, rows, modes_of(args.mode))
     report.sizes_table(args.kind, tried)
@@ -55,7 +56,6 @@ def register(sub) -> None:
     from ..maps.suite import MODE_CHOICES
     from ..engine import add_arguments as add_engine_arguments
     from ..search.kinds import SEARCH_KINDS
-    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
 
     se = sub.add_parser("search", help="hunt counterexamples (random maps, hill climbing, shrinking; replayed "
                         "on the spec), or count each kind on a suite with --summary")
@@ -70,7 +70,7 @@ def register(sub) -> None:
                     "resumed in rounds of doubling budgets, sizes not below the smallest counterexample "
                     "dropped (cost: every size alike, the largest gap reported, the best gap per size listed)")
     se.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
-    se.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP)
+    add_planner_arguments(se, arithmetic=False)
     se.add_argument("--timeout", type=float, default=60.0, metavar="S",
                     help="seconds for the whole search, split between modes (counted once the planner is compiled)")
     se.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (same seed and budget: same hunt)")

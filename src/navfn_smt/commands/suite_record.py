@@ -16,7 +16,7 @@ import contextlib
 from ..backends import BACKENDS
 from ..errors import NavfnInputError
 from ..maps.suite import MODE_CHOICES, modes_of
-from .common import target_arithmetic
+from .common import TARGET_HELP, planner_of
 
 
 def cmd_suite_record(args) -> int:
@@ -29,18 +29,15 @@ def cmd_suite_record(args) -> int:
     modes = modes_of(args.mode)
     if args.full_first < 0:
         raise NavfnInputError(f"--full-first {args.full_first}: expected a non-negative number of cases")
-    if args.oracle and args.target:
-        raise NavfnInputError("--target names the arithmetic the spec records in; with --oracle DIR the C++ "
-                              "records in its own")
-    arith = target_arithmetic(args.target)
+    planner = planner_of(args)  # with --oracle, the C++ records in its own arithmetic
     total = sum(len(load_map(d).cases) for d in discover(args.suite)) * len(modes)
     source = (f"the C++ of {args.oracle}" if args.oracle
-              else f"backend {args.backend}{f', {arith.name} arithmetic' if arith else ''}")
+              else f"backend {args.backend}{f', {planner.arithmetic.name} arithmetic' if args.target else ''}")
     with contextlib.ExitStack() as stack:
         oracle = stack.enter_context(Oracle(args.oracle)) if args.oracle else None
         advance = stack.enter_context(progress_bar(total, f"record {args.suite} ({source})", enabled=not args.quiet))
         recs = record_suite(args.suite, modes, args.backend, args.full_first, overwrite=args.overwrite,
-                            progress=lambda r: advance(r.cases), oracle=oracle, arith=arith)
+                            progress=lambda r: advance(r.cases), oracle=oracle, planner=planner)
     maps = len({r.map for r in recs})
     cases = sum(r.cases for r in recs)
     secs = sum(r.seconds for r in recs)
@@ -61,8 +58,7 @@ def register(suite_subparsers) -> argparse.ArgumentParser:
     re_.add_argument("--backend", choices=BACKENDS, default="jit", help="planner implementation that plans")
     re_.add_argument("--oracle", metavar="DIR", help="record from the C++ NavFn built in DIR (navfn-smt oracle "
                      "build) instead of the spec")
-    re_.add_argument("--target", metavar="NAME", help="record from the spec computing as a build of this "
-                     "arithmetic does (x86-64, x86-64-v3, aarch64: docs/toolchains.md)")
+    re_.add_argument("--target", metavar="NAME", help=TARGET_HELP + "; it records from the spec in it")
     re_.add_argument("--full-first", type=int, default=50, metavar="K",
                      help="store full potentials and traces of the first K cases of each map "
                      "(the shared suite uses 5 on its ROS maps)")

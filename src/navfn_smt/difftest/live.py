@@ -27,14 +27,14 @@ MAX_DETAILS = 20  # disagreements kept per map and mode (every one is counted)
 
 def run_live(root, modes: Iterable[str], backend: str, oracle,
              progress: Optional[Callable[[TaskOutcome], None]] = None, unbounded: bool = False,
-             variant: str = "original", arith=None) -> Summary:
+             planner=None) -> Summary:
     """Every case of ``root`` in ``modes``: ``backend`` against the running ``oracle``
     (``unbounded``: the spec's buffers never drop a push, as the C++ of ``navfn-unbounded``;
-    ``variant="fixed"``: the spec with the fix, as the C++ of ``navfn-fixed``; ``arith``: the
-    spec in that arithmetic, the build's)."""
+    ``planner``: the planner under test, :class:`~navfn_smt.under_test.PlannerUnderTest`, read
+    from the build: the spec in the build's arithmetic, with the fix as the C++ of ``navfn-fixed``)."""
     root = Path(root)
     summary = Summary()
-    be = get_backend(backend, variant, arith)
+    be = get_backend(backend, planner)
     for d in discover(root):
         smap = load_map(d, root)
         ny, nx = smap.costs.shape

@@ -146,10 +146,10 @@ def record_suite(
     overwrite: bool = False,
     progress: Optional[Callable[[RecordedMap], None]] = None,
     oracle=None,
-    arith=None,
+    planner=None,
 ) -> list[RecordedMap]:
-    """Write ``golden_<mode>.npz`` for every map under ``suite_dir`` from our spec (computing in
-    the arithmetic ``arith``; None: x86-64's), or with ``oracle`` (a running
+    """Write ``golden_<mode>.npz`` for every map under ``suite_dir`` from our spec (planning as
+    the planner under test ``planner``; None: NavFn as shipped, in x86-64's arithmetic), or with ``oracle`` (a running
     :class:`~navfn_smt.oracle.client.Oracle`) from the C++ NavFn.
 
     Every map is loaded and every target checked before anything is written; an existing
@@ -169,7 +169,7 @@ def record_suite(
             what = (f"{existing[0]} exists" if len(existing) == 1
                     else f"{existing[0]} and {len(existing) - 1} more golden files exist")
             raise NavfnInputError(f"{what} (pass --overwrite to replace)")
-    be = get_backend(backend, arith=arith)
+    be = get_backend(backend, planner)
     done: list[RecordedMap] = []
     for smap in maps:
         planner = be.prepare(smap.costs) if oracle is None else None

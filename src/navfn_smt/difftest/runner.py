@@ -128,7 +128,7 @@ class Task:
     hi: int
     max_details: int = 20
     counted: Optional[int] = None  # the map's cases as counted when the task was made
-    arith: object = None  # the arithmetic the golden files were recorded in (spec.arithmetic; None: x86-64's)
+    planner: object = None  # the planner under test (under_test.PlannerUnderTest; None: NavFn as shipped, x86-64)
 
 
 def _stamp(map_dir: str) -> tuple:
@@ -160,7 +160,7 @@ def run_task(t: Task) -> TaskOutcome:
     if t.hi > len(smap.cases) or t.counted not in (None, len(smap.cases)):
         raise NavfnInputError(f"{smap.directory / 'test.txt'}: has {len(smap.cases)} cases, not the "
                               f"{t.counted or t.hi} counted (changed during the run?)")
-    planner = get_backend(t.backend, arith=t.arith).prepare(smap.costs)
+    planner = get_backend(t.backend, t.planner).prepare(smap.costs)
     astar = t.mode == "astar"
     out = TaskOutcome(rel, smap.category, t.mode, t.hi - t.lo, 0, 0.0)
     t0 = time.perf_counter()
@@ -203,7 +203,7 @@ def count_cases(root, modes: Iterable[str]) -> int:
     return total
 
 
-def iter_tasks(root, modes: Iterable[str], backend: str, chunk: int = CHUNK, arith=None) -> Iterator[Task]:
+def iter_tasks(root, modes: Iterable[str], backend: str, chunk: int = CHUNK, planner=None) -> Iterator[Task]:
     """The difftest's tasks, map by map as they are needed: chunks of ``chunk`` cases per mode.
     Only the cases are counted here; each task reads and checks the map it runs."""
     modes = tuple(modes)
@@ -213,7 +213,7 @@ def iter_tasks(root, modes: Iterable[str], backend: str, chunk: int = CHUNK, ari
             load_map(d, Path(root))  # no task reads a map without cases: check it here
         for mode in modes:
             for lo in range(0, n, chunk):
-                yield Task(str(d), str(root), mode, backend, lo, min(lo + chunk, n), counted=n, arith=arith)
+                yield Task(str(d), str(root), mode, backend, lo, min(lo + chunk, n), counted=n, planner=planner)
 
 
 def plan_tasks(root, modes: Iterable[str], backend: str) -> list[Task]:
@@ -291,20 +291,20 @@ def run_suite(
     total: Optional[int] = None,
     chunk: int = CHUNK,
     on_client: Optional[Callable] = None,
-    arith=None,
+    planner=None,
 ) -> Summary:
     """Run the difftest of ``root`` on ``eng`` (else ``engine(jobs)``; ``jobs`` None or
     ``auto`` takes local workers from ``AUTO_CASES`` case runs on) and fold the outcomes
     into a :class:`Summary`; ``progress`` is called after each finished task.  ``total``
-    (the case runs, :func:`count_cases`) is counted when not given; ``arith``: the spec in that
-    arithmetic (golden files recorded from a build of it)."""
+    (the case runs, :func:`count_cases`) is counted when not given; ``planner``: the planner under
+    test (:class:`~navfn_smt.under_test.PlannerUnderTest`) the golden files were recorded from."""
     modes = tuple(modes)
     total = count_cases(root, modes) if total is None else total
     eng = (eng or engine(jobs)).for_work(total, AUTO_CASES)
     summary = Summary()
     try:
-        get_backend(backend, arith=arith)  # refused here, once, when the backend cannot compute in it
-        for _, o in stream(run_task, iter_tasks(root, modes, backend, chunk, arith), eng, on_client=on_client):
+        get_backend(backend, planner)  # refused here, once, when the backend cannot compute in it
+        for _, o in stream(run_task, iter_tasks(root, modes, backend, chunk, planner), eng, on_client=on_client):
             summary.add(o)
             if progress:
                 progress(o)

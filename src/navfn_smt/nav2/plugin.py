@@ -52,6 +52,7 @@ from ..spec.constants import DBL_MAX, FREE_SPACE, INT_MAX, LETHAL_OBSTACLE, POT_
 from ..spec.costs import add_border, set_costmap
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour
 from ..spec.numeric import c_fma
+from ..under_test import PlannerUnderTest
 from .params import PlannerParams
 
 LEGAL_BUT_NO_PLAN = ("Failed to create a plan from potential when a legal potential was found. "
@@ -564,13 +565,13 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
         return []
     run.max_cycles = n
     try:
-        planner = get_backend(backend, arith=run.arith.navfn).prepare(run.costs)
+        planner = get_backend(backend, PlannerUnderTest(arithmetic=run.arith.navfn)).prepare(run.costs)
         run.extraction, path = planner.extract(run.potential, cell, run.robot_cell, n)
         if run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
             run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
         if params.variant == "fixed" and run.extraction is not ExtractionExit.NEAR_GOAL:
             # the patched calcPath: calcPathGradient (above, with its WARN), then calcPathDescent
-            run.extraction, path = get_backend(backend, "fixed", run.arith.navfn).prepare(run.costs).extract(
+            run.extraction, path = get_backend(backend, PlannerUnderTest("fixed", run.arith.navfn)).prepare(run.costs).extract(
                 run.potential, cell, run.robot_cell, 0)
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
@@ -623,7 +624,7 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
     on_map = all(0 <= c[0] < nx and 0 <= c[1] < ny for c in (navfn_start, navfn_goal))
     if on_map:
         # calcNavFn* only propagate; calcPath comes later, from the chosen pose's cell
-        planner = get_backend(backend, arith=run.arith.navfn).prepare(run.costs)
+        planner = get_backend(backend, PlannerUnderTest(arithmetic=run.arith.navfn)).prepare(run.costs)
         r = planner.run(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
         if variant == "fixed" and not fix.reached(r.start_potential):
             r = planner.run_fixed(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)

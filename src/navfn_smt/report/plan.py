@@ -90,17 +90,20 @@ def cell_plan_doc(res, mode: str, backend: str, start, goal) -> dict:
     }
 
 
-def cell_plan(res, mode: str, backend: str, start, goal, as_json: bool, costs=None) -> None:
+def cell_plan(res, mode: str, backend: str, start, goal, as_json: bool, costs=None, planner=None) -> None:
     """Print a plan between two cells: its JSON object (with ``why`` when there is no path),
-    or a summary and the path's points, or no path and why (from the map's ``costs``)."""
+    or a summary and the path's points, or no path and why (from the map's ``costs``);
+    ``planner``: the planner under test that planned it, named in both."""
     why = why_no_path(costs, res, start, goal) if costs is not None and not len(res.path) else None
     if as_json:
         doc = cell_plan_doc(res, mode, backend, start, goal)
+        if planner is not None:
+            doc["planner"] = planner.as_dict()
         if why:
             doc["why"] = why
         print(json.dumps(doc))
         return
-    print(f"mode {mode}, start {start}, goal {goal}")
+    print(f"mode {mode}, start {start}, goal {goal}" + (f"; planner: {planner.label}" if planner is not None else ""))
     print(f"start reached: {res.start_reached}; start potential: {float(res.start_potential):.9g}; "
           f"cycles: {res.cycles}; updates: {res.updates}; dropped pushes: {res.dropped}")
     if "fix" in res.extra:

@@ -40,6 +40,7 @@ from ..spec.constants import COST_NEUTRAL, COST_OBS
 from ..spec.planner import path_cycle_limit
 from ..spec.propagation import cycle_limit
 from . import steps
+from ..under_test import ORIGINAL, PlannerUnderTest
 from .kinds import KINDS, Batch, plan_batch
 
 DEFAULT_COSTS = (COST_NEUTRAL, COST_OBS - 1)  # what setCostmap produces for passable cells
@@ -71,7 +72,11 @@ class Finding:
     found_size: tuple[int, int]  # the map size the hunt found it on (before shrinking)
     seed: int
     history: list = field(default_factory=list)  # (seconds, score) at every improvement
-    variant: str = "original"  # the planner hunted: NavFn as shipped, or with the fix
+    planner: PlannerUnderTest = ORIGINAL  # the planner hunted: NavFn as shipped, or with the fix
+
+    @property
+    def variant(self) -> str:
+        return self.planner.variant
 
     @property
     def size(self) -> tuple[int, int]:
@@ -117,8 +122,8 @@ class _Climber:
     """Scores candidate maps of one size for one kind and mode."""
 
     def __init__(self, kind: str, astar: bool, size, costs_range, rng: np.random.Generator,
-                 variant: str = "original"):
-        self.kind, self.astar, self.variant = KINDS[kind], astar, variant
+                 planner: PlannerUnderTest = ORIGINAL):
+        self.kind, self.astar, self.planner = KINDS[kind], astar, planner
         self.w, self.h = size
         self.lo, self.hi = costs_range
         self.rng = rng
@@ -156,7 +161,7 @@ class _Climber:
     def score(self, costs: np.ndarray, focus: Optional[np.ndarray] = None) -> tuple[float, int, Batch, float]:
         """The best screen score over the candidate's cases (``focus``: those pairs only), which
         case has it, the batch, and the kind's guide of the map (0 without a guide)."""
-        b = plan_batch(costs, self.cases() if focus is None else focus, self.astar, variant=self.variant)
+        b = plan_batch(costs, self.cases() if focus is None else focus, self.astar, planner=self.planner)
         s = self.kind.screen(b)
         self.evaluations += 1
         self.plans += len(b.cases)
@@ -177,13 +182,13 @@ class Climb:
     """The climb on one size, resumable: :meth:`advance` evaluates maps until a total number of
     evaluations, the deadline or (a kind that is not maximised) its first candidate."""
 
-    def __init__(self, kind: str, mode: str, size, costs_range, seed: int, variant: str, t0: float,
+    def __init__(self, kind: str, mode: str, size, costs_range, seed: int, planner: PlannerUnderTest, t0: float,
                  compiled: bool = True):
         w, h = size
         astar = mode == "astar"
         rng = np.random.default_rng([seed, zlib.crc32(kind.encode()), int(astar), w, h])
         self.spec = KINDS[kind]
-        self.cl = _Climber(kind, astar, (w, h), costs_range, rng, variant)
+        self.cl = _Climber(kind, astar, (w, h), costs_range, rng, planner)
         self.size, self.t0 = (w, h), t0
         self.tag = f"search {kind} {mode} {w}x{h}"
         self.patience = MAXIMISE_PATIENCE if self.spec.maximise else PATIENCE
@@ -195,7 +200,7 @@ class Climb:
         self.closest = 0.0  # the highest guide seen
         self.seconds = 0.0  # time spent in this climb
         self.compiled = (steps.FocusSteps(w, h, FOCUS, cycle_limit(w, h), path_cycle_limit(w))
-                         if compiled and kind == "cost" and variant == "original" else None)
+                         if compiled and kind == "cost" and planner.variant == "original" else None)
 
     @property
     def evaluations(self) -> int:
@@ -294,16 +299,16 @@ class Climb:
 
 
 @functools.cache  # once per process: later hunts find the planner compiled
-def _compile(kind: str, mode: str, costs_range, variant: str) -> None:
+def _compile(kind: str, mode: str, costs_range, planner: PlannerUnderTest) -> None:
     """A few evaluations of a throwaway climb on a 4x4 map, before a hunt's clock starts: with
     a cold JIT cache (a fresh install, a new version) compiling the planner and the kind's
     steps takes tens of seconds, which would otherwise come out of ``--timeout``."""
-    Climb(kind, mode, (4, 4), costs_range, 0, variant, time.perf_counter()).advance(3, float("inf"), _quiet)
+    Climb(kind, mode, (4, 4), costs_range, 0, planner, time.perf_counter()).advance(3, float("inf"), _quiet)
 
 
-def screen_one(kind: str, costs: np.ndarray, start, goal, astar: bool, variant: str = "original") -> float:
+def screen_one(kind: str, costs: np.ndarray, start, goal, astar: bool, planner: PlannerUnderTest = ORIGINAL) -> float:
     """The kind's screen score of one case (planned by the JIT)."""
-    b = plan_batch(costs, [(start[0], start[1], goal[0], goal[1])], astar, variant=variant)
+    b = plan_batch(costs, [(start[0], start[1], goal[0], goal[1])], astar, planner=planner)
     return float(KINDS[kind].screen(b)[0])
 
 
@@ -325,12 +330,12 @@ def _drop(costs, start, goal, axis: int, k: int, shift_start: int, shift_goal: i
 
 
 def shrink(kind: str, costs: np.ndarray, start, goal, astar: bool, keep_size: bool,
-           costs_range=DEFAULT_COSTS, deadline: Optional[float] = None, variant: str = "original"):
+           costs_range=DEFAULT_COSTS, deadline: Optional[float] = None, planner: PlannerUnderTest = ORIGINAL):
     """The smallest, simplest map that still shows ``kind`` (by the screen): rows and columns
     dropped (unless ``keep_size``), then obstacles removed and costs lowered toward the
     cheapest.  ``cost`` keeps its gap at least as large as it was."""
     lo = costs_range[0]
-    need = screen_one(kind, costs, start, goal, astar, variant)
+    need = screen_one(kind, costs, start, goal, astar, planner)
     if need <= 0:
         return costs, tuple(start), tuple(goal)
     if not KINDS[kind].maximise:
@@ -340,7 +345,7 @@ def shrink(kind: str, costs: np.ndarray, start, goal, astar: bool, keep_size: bo
         h, w = c.shape
         if not (1 <= s[0] < w - 1 and 1 <= s[1] < h - 1 and 1 <= g[0] < w - 1 and 1 <= g[1] < h - 1) or s == g:
             return False
-        return screen_one(kind, c, s, g, astar, variant) >= need
+        return screen_one(kind, c, s, g, astar, planner) >= need
 
     def late() -> bool:
         return deadline is not None and time.perf_counter() > deadline
@@ -387,7 +392,7 @@ def _check_kind(kind: str) -> None:
 
 
 def _confirm(climb: Climb, kind: str, mode: str, seed: int, costs_range, shrink_result: bool, keep_size: bool,
-             shrink_seconds: float, variant: str, say: Progress) -> Optional[Finding]:
+             shrink_seconds: float, planner: PlannerUnderTest, say: Progress) -> Optional[Finding]:
     """The climb's best candidate, shrunk (``shrink_result``) and replayed on the reference spec:
     a :class:`Finding` when the kind's judge confirms it, else None."""
     if climb.best is None:
@@ -396,19 +401,19 @@ def _confirm(climb: Climb, kind: str, mode: str, seed: int, costs_range, shrink_
     astar = mode == "astar"
     if shrink_result:
         costs, start, goal = shrink(kind, costs, start, goal, astar, keep_size=keep_size, costs_range=costs_range,
-                                    deadline=time.perf_counter() + shrink_seconds, variant=variant)
-    r = P.run(costs, start, goal, astar, variant=variant)
+                                    deadline=time.perf_counter() + shrink_seconds, planner=planner)
+    r = P.run(costs, start, goal, astar, variant=planner.variant)
     detail = KINDS[kind].judge(r)
     if detail is None:
         say(f"[{climb.tag}] the reference spec does not confirm the candidate; nothing reported")
         return None
     return Finding(kind, mode, costs, start, goal, detail, sc, t, ev, pl, climb.size, seed, list(climb.history),
-                   variant)
+                   planner)
 
 
 def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=DEFAULT_COSTS,
          progress: Optional[Progress] = None, shrink_result: bool = True,
-         max_evaluations: Optional[int] = None, variant: str = "original") -> Optional[Finding]:
+         max_evaluations: Optional[int] = None, planner: PlannerUnderTest = ORIGINAL) -> Optional[Finding]:
     """Hunt ``kind`` on maps of ``size`` (W, H, lethal border included) in ``mode`` (of the
     planner ``variant``: ``fixed`` hunts the planner with the fix).
 
@@ -416,13 +421,13 @@ def hunt(kind: str, mode: str, size, timeout: float, seed: int = 0, costs_range=
     _check_kind(kind)
     w, h = size
     check_size(w, h)
-    _compile(kind, mode, costs_range, variant)
+    _compile(kind, mode, costs_range, planner)
     t0 = time.perf_counter()
-    climb = Climb(kind, mode, (w, h), costs_range, seed, variant, t0)
+    climb = Climb(kind, mode, (w, h), costs_range, seed, planner, t0)
     say = progress or _quiet
     climb.advance(sys.maxsize if max_evaluations is None else max_evaluations, t0 + timeout, say)
     return _confirm(climb, kind, mode, seed, costs_range, shrink_result, KINDS[kind].maximise,
-                    max(5.0, timeout / 4), variant, say)
+                    max(5.0, timeout / 4), planner, say)
 
 
 def interior(size) -> int:
@@ -450,7 +455,7 @@ def _share(size, live: list, maximise: bool) -> float:
 
 
 def hunt_smallest(kind: str, mode: str, max_size, timeout: float, seed: int = 0, costs_range=DEFAULT_COSTS,
-                  progress: Optional[Progress] = None, variant: str = "original",
+                  progress: Optional[Progress] = None, planner: PlannerUnderTest = ORIGINAL,
                   max_evaluations: Optional[int] = None) -> tuple[Optional[Finding], list[dict]]:
     """The smallest counterexample on sizes up to ``max_size`` (a maximised kind: the largest
     score over those sizes), and what each size tried.
@@ -465,7 +470,7 @@ def hunt_smallest(kind: str, mode: str, max_size, timeout: float, seed: int = 0,
     check_size(*max_size, what="--max-size")
     spec = KINDS[kind]
     say = progress or _quiet
-    _compile(kind, mode, costs_range, variant)
+    _compile(kind, mode, costs_range, planner)
     t0 = time.perf_counter()
     deadline = t0 + timeout
     total = sys.maxsize if max_evaluations is None else max_evaluations
@@ -485,13 +490,13 @@ def hunt_smallest(kind: str, mode: str, max_size, timeout: float, seed: int = 0,
         for sz in live():
             if sz not in live() or time.perf_counter() > deadline or spent() >= total:
                 continue
-            c = climbs.get(sz) or climbs.setdefault(sz, Climb(kind, mode, sz, costs_range, seed, variant, t0))
+            c = climbs.get(sz) or climbs.setdefault(sz, Climb(kind, mode, sz, costs_range, seed, planner, t0))
             if c.done:
                 continue
             until = max(1, int(budget * _share(sz, live(), spec.maximise)))
             c.advance(min(until, c.evaluations + total - spent()), deadline, say)
             if c.done:
-                f = _confirm(c, kind, mode, seed, costs_range, True, False, 5.0, variant, say)
+                f = _confirm(c, kind, mode, seed, costs_range, True, False, 5.0, planner, say)
                 if f is not None and (best is None or f.interior < best.interior):
                     best = f
         if spent() == before:  # every live size is done (its candidate not confirmed)
@@ -500,7 +505,7 @@ def hunt_smallest(kind: str, mode: str, max_size, timeout: float, seed: int = 0,
     if spec.maximise:
         top = max((c for c in climbs.values() if c.best is not None), key=lambda c: c.best[0], default=None)
         if top is not None:
-            best = _confirm(top, kind, mode, seed, costs_range, True, True, max(5.0, timeout / 4), variant, say)
+            best = _confirm(top, kind, mode, seed, costs_range, True, True, max(5.0, timeout / 4), planner, say)
     tried = [{"size": list(sz), "interior": interior(sz), "evaluations": c.evaluations,
               "seconds": round(c.seconds, 3), "found": c.best is not None,
               "best": c.best[0] if c.best is not None else None,

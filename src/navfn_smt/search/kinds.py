@@ -66,13 +66,13 @@ class Batch:
         return self.out["start_potential"] < _HIGH
 
 
-def plan_batch(costs: np.ndarray, cases, astar: bool, backend: str = "jit", variant: str = "original") -> Batch:
-    """Plan ``cases`` (rows ``sx sy gx gy``) on ``costs`` with one backend (and planner variant),
-    as a :class:`Batch`."""
+def plan_batch(costs: np.ndarray, cases, astar: bool, backend: str = "jit", planner=None) -> Batch:
+    """Plan ``cases`` (rows ``sx sy gx gy``) on ``costs`` with one backend planning as the
+    planner under test ``planner`` (None: NavFn as shipped), as a :class:`Batch`."""
     from ..backends import get_backend
 
     cases = np.asarray(cases, np.int64).reshape(-1, 4)
-    out = get_backend(backend, variant).prepare(costs).run_batch(cases, astar)
+    out = get_backend(backend, planner).prepare(costs).run_batch(cases, astar)
     return Batch(np.asarray(costs, np.uint8), cases, astar, out)
 
 

@@ -13,6 +13,7 @@ from typing import Optional
 from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from ..maps.suite import modes_of
+from ..under_test import ORIGINAL
 from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_smallest
 from .kinds import SEARCH_KINDS
 
@@ -39,22 +40,22 @@ def _overflow(mode, size, max_size, timeout, seed, progress) -> list:
 
 def _hunt_mode(task) -> tuple[list, Optional[dict]]:
     """One mode's hunt (a task): its findings (none or one) and, with ``max_size``, the sizes tried."""
-    kind, m, size, max_size, share, seed, costs_range, progress, variant = task
+    kind, m, size, max_size, share, seed, costs_range, progress, planner = task
     if kind == "overflow":
         return _overflow(m, size, max_size, share, seed, progress), None
     if size is None and max_size is None:
         max_size = DEFAULT_MAX_SIZE.get(kind)
     if max_size is not None:
-        f, t = hunt_smallest(kind, m, max_size, share, seed, costs_range, progress, variant)
+        f, t = hunt_smallest(kind, m, max_size, share, seed, costs_range, progress, planner)
         return [f] if f is not None else [], {"mode": m, "sizes": t}
     f = hunt(kind, m, tuple(size or DEFAULT_SIZE.get(kind, DEFAULT_HUNT_SIZE)), share, seed, costs_range, progress,
-             variant=variant)
+             planner=planner)
     return [f] if f is not None else [], None
 
 
 def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout: float = 60.0, seed: int = 0,
                costs_range=DEFAULT_COSTS, progress=None, eng: Engine = Engine(1),
-               variant: str = "original") -> tuple[list, list]:
+               planner=None) -> tuple[list, list]:
     """The findings of one search (per mode, at most one each), and per mode what sizes were
     tried with ``max_size`` (``[]`` otherwise, and for ``overflow``).  Each mode hunts for its
     share of ``timeout`` on ``eng`` (``auto``: side by side when the share pays for workers)."""
@@ -64,7 +65,8 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
         raise NavfnInputError("--timeout must be positive")
     if size is not None and max_size is not None:
         raise NavfnInputError("--size and --max-size exclude each other")
-    if variant != "original" and kind == "overflow":
+    planner = ORIGINAL if planner is None else planner
+    if planner.variant != "original" and kind == "overflow":
         raise NavfnInputError("search overflow hunts the C++ buffers' overflow, which the fix does not touch: "
                               "no --variant")
     if size is not None:
@@ -73,7 +75,7 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
         check_size(*max_size, what="--max-size")
     modes = _overflow_search()[0](mode) if kind == "overflow" else modes_of(mode)
     share = timeout / len(modes)
-    tasks = [(kind, m, size, max_size, share, seed, costs_range, progress, variant) for m in modes]
+    tasks = [(kind, m, size, max_size, share, seed, costs_range, progress, planner) for m in modes]
     eng = eng.for_work(len(modes) if share >= PARALLEL_SHARE else 1, 2)
     got = dict(stream(_hunt_mode, tasks, eng))
     findings = [f for i in range(len(modes)) for f in got[i][0]]
