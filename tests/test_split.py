@@ -163,3 +163,25 @@ def test_split_command_with_the_default_jobs_writes_its_report(tmp_path):
     assert main(["split", "doubling_is_exact", "--files", str(TOY), "--quiet", "--report", str(report)]) == 0
     doc = json.loads(report.read_text())
     assert doc["engine"].startswith("auto") and doc["splits"][0]["status"] == "proved"
+
+
+def test_ci_runs_every_shipped_split_once():
+    """.ci/run names the splits on its two lanes (the solver-decided ones beside the slow proof
+    run, the enumerated one after it): together they are every shipped split, each once, and
+    the enumerated lane holds only splits without a time limit."""
+    import re
+    import shlex
+    from pathlib import Path
+
+    from navfn_smt.smt.runner import default_proof_files
+
+    script = (Path(__file__).resolve().parents[1] / ".ci" / "run").read_text().replace("\\\n", " ")
+    named = []
+    for line in script.splitlines():
+        if re.match(r"\s*navfn-smt split ", line):
+            words = shlex.split(line.split(">")[0].split("||")[0])
+            named.append([w for w in words[2:] if re.fullmatch(r"[a-z_]+", w) and w != "split"])
+    splits = {s.obligation: s for s in S.load_splits(default_proof_files())}
+    flat = [n for lane in named for n in lane]
+    assert len(named) == 2 and sorted(flat) == sorted(splits), named
+    assert all(splits[n].methods == ("enumerate",) for n in named[1])
