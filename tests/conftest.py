@@ -34,25 +34,6 @@ FIXTURE_MARKERS = {"shared_suite": "shared", "shared_suite_large": "large", "nav
                    "local_cluster": "dask", "proof_run": "prove", "progress_run": "prove"}
 
 
-# The order the test processes take files in (``-n auto --dist loadfile --no-loadscope-reorder``):
-# the longest files first, so that no long file starts while the other process runs out of
-# work (as measured with ``--durations=0``: docs/hardening.md, "The test run's time"); the
-# other files after them in their own order; last, the files that share the session's oracle
-# builds with test_oracle.py, so that they find them built rather than wait for them
-LONGEST_FIRST = ("test_oracle.py", "test_check_encoding.py", "test_prove.py", "test_difftest_suites.py",
-                 "test_check_certificate.py", "test_check_bounded.py", "test_ci_recipe.py",
-                 "test_domain_conformance.py", "test_smt_equivalence.py", "test_engine_difftest.py", "test_cli.py",
-                 "test_engine_runs.py", "test_search_small.py")
-AFTER_THE_BUILDS = ("test_fix.py", "test_nav2_benchmark.py")
-
-
-def _order(item) -> int:
-    name = Path(str(item.fspath)).name
-    if name in LONGEST_FIRST:
-        return LONGEST_FIRST.index(name)
-    return len(LONGEST_FIRST) + 1 if name in AFTER_THE_BUILDS else len(LONGEST_FIRST)
-
-
 def pytest_collection_modifyitems(config, items):
     skip_slow = pytest.mark.skip(reason="slow: set NAVFN_SLOW=1")
     for item in items:
@@ -61,7 +42,6 @@ def pytest_collection_modifyitems(config, items):
                 item.add_marker(FIXTURE_MARKERS[fixture])
         if "slow" in item.keywords and not SLOW:
             item.add_marker(skip_slow)
-    items.sort(key=_order)  # stable: each file's tests keep their order
 
 
 @pytest.fixture

@@ -147,13 +147,3 @@ def test_the_report_checks_can_fail():
         ("report/sweep.py", "search.counterexamples", "save_counterexample")]
     assert _not_rendering([(here, "def f():\n    from ..smt.obligation import load_obligations\n")]) == [
         ("report/sweep.py", "smt.obligation", "load_obligations")]
-
-
-def test_the_test_runs_order_names_files_that_exist():
-    """conftest.py's order of the files (longest first, the build sharers last) names real
-    files: a renamed file would silently fall back to the middle of the run."""
-    from conftest import AFTER_THE_BUILDS, LONGEST_FIRST
-
-    here = Path(__file__).resolve().parent
-    missing = [n for n in LONGEST_FIRST + AFTER_THE_BUILDS if not (here / n).is_file()]
-    assert missing == [] and len(set(LONGEST_FIRST + AFTER_THE_BUILDS)) == len(LONGEST_FIRST + AFTER_THE_BUILDS)
