@@ -15,6 +15,7 @@ from navfn_smt.difftest.record import compare_golden_files
 from navfn_smt.maps.suite import MODES, discover
 from navfn_smt.oracle.build import ANCHOR, build, distribution
 from navfn_smt.oracle.client import Oracle, PluginOracle
+from navfn_smt.under_test import PlannerUnderTest
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "src" / "navfn_smt" / "examples" / "suite"
 DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
@@ -579,8 +580,8 @@ def test_the_plugin_model_in_the_arithmetic_found_agrees_with_the_arm64_plugin(t
     assert main(["difftest", "--level", "plugin", "--oracle", str(folder), "--configs", "25", "--quiet"]) == 0
     assert ", 0 failed" in capsys.readouterr().out
     configs = list(generated_configs("rolling", 25, 0, 24))
+    found = PlannerUnderTest.of_build(folder).plugin_arithmetic()
     with PluginOracle(folder) as oracle:
-        found = oracle.plugin_arithmetic()
         for wrong in (PluginArithmetic(found.navfn, found.fused - {"map_to_world"}),
                       PluginArithmetic(KNOWN["x86-64"], found.fused)):
             assert run_plugin_live(configs, oracle, arith=wrong).as_dict()["failed"] > 0, wrong.name
@@ -606,8 +607,8 @@ def test_each_call_of_the_plugins_squared_distance_is_compared_with_the_square_i
     assert doc["plugin_arithmetic"]["squared_distance_orders"] == {
         "same_position": "dx", "smooth_goal": "dx", "smooth_last": "dx", "tolerance": "dy"}
     configs = [c for k, c in enumerate(generated_configs("jazzy", 41, 0, 24)) if k in (39, 40)]
+    found = PlannerUnderTest.of_build(tmp_path / "b").plugin_arithmetic()
     with PluginOracle(tmp_path / "b") as oracle:
-        found = oracle.plugin_arithmetic()
         assert found.dy_first == {"tolerance"}
         assert run_plugin_live(configs, oracle, arith=found).as_dict()["failed"] == 0
         assert run_plugin_live(configs, oracle, arith=replace(found, dy_first=frozenset())).as_dict()["failed"] == 2
@@ -625,8 +626,8 @@ def test_the_layers_model_in_the_arithmetic_found_agrees_with_the_fused_layers(t
     doc, folder = target_builds["x86-64-v3"]
     assert doc["layers_arithmetic"]["fused"] == ["distance_to_line", "lut_index"]
     assert doc["layers_arithmetic"]["orders"] == {"dot": "A", "len_sq": "C"}
+    found = PlannerUnderTest.of_build(folder).layers_arithmetic()
     with LayersOracle(folder) as oracle:
-        found = oracle.layers_arithmetic()
         assert run_layers_live(generated_configs("rolling", 40, 0), oracle, arith=found).as_dict()["failed"] == 0
         assert run_layers_live(generated_configs("rolling", 40, 0), oracle, arith=LAYERS_X86_64).as_dict()["failed"] > 0
 

@@ -22,8 +22,6 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from ..spec.planner import PlanResult
-from ..spec.arithmetic import X86_64
-from .arithmetic import layers_of_build, of_build, plugin_of_build
 from .build import load_build
 
 
@@ -50,32 +48,6 @@ class _Program:
         self.proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                      env=env, bufsize=0)
         self._pending, self._at = b"", 0  # bytes read from the pipe, and how many of them are taken
-
-    def _found(self, reader):
-        """What ``reader`` (one of oracle.arithmetic's ``*of_build``) finds in this build; a clear
-        error when it finds nothing the models can compute in."""
-        value, why = reader(self.build)
-        if value is None:
-            raise NavfnInputError(f"{self.folder}: {why}")
-        return value
-
-    def arithmetic(self):
-        """The :class:`~navfn_smt.spec.arithmetic.Arithmetic` the build was found to compute in; a
-        clear error when the spec cannot express it (or the build does not record it)."""
-        return self._found(of_build)
-
-    def require_arithmetic(self, spec=X86_64) -> None:
-        """A clear error unless the build computes in the arithmetic ``spec`` (the fix, whose spec
-        computes in x86-64's only so far): a build is never compared in an arithmetic it does
-        not have."""
-        arith = self.arithmetic()
-        if arith != spec:
-            fused = ", ".join(sorted(arith.fused)) or "none"
-            raise NavfnInputError(
-                f"{self.folder} was built for {self.build.get('target', '?')} and computes in the {arith.name} "
-                f"arithmetic (fused multiply-adds: {fused}; float-to-int conversion {arith.conversion}); this "
-                f"model computes in {spec.name} arithmetic only, so this build is not compared here (NavFn itself "
-                f"is: difftest --oracle DIR)")
 
     def close(self) -> None:
         if self.proc.poll() is None:
@@ -196,11 +168,6 @@ class PluginOracle(_Program):
         self.planning_seconds = 0.0
         super().__init__(folder)
 
-    def plugin_arithmetic(self):
-        """The :class:`~navfn_smt.spec.arithmetic.PluginArithmetic` the plugin build was found to
-        compute in; a clear error when the model cannot express it (or the build does not record it)."""
-        return self._found(plugin_of_build)
-
     def create_plans(self, cm, params, pairs) -> list[PluginAnswer]:
         """``createPlan(start, goal)`` for every (start, goal) :class:`~navfn_smt.nav2.plugin.Pose`
         pair of ``pairs`` on the :class:`~navfn_smt.nav2.plugin.Costmap` ``cm``, by a plugin
@@ -247,11 +214,6 @@ class LayersOracle(_Program):
     END = struct.pack("<3i", 0, 0, 0)
     # OpenMP threads that spin between requests take the CPU the model needs meanwhile
     ENV = {"OMP_WAIT_POLICY": "passive"}
-
-    def layers_arithmetic(self):
-        """The :class:`~navfn_smt.spec.arithmetic.LayersArithmetic` the layers build was found to
-        compute in; a clear error when the model cannot express it (or the build does not record it)."""
-        return self._found(layers_of_build)
 
     def costmap(self, occupancy: np.ndarray, resolution: float, origin, params) -> LayersAnswer:
         """The layers of the :class:`~navfn_smt.nav2.costmap.CostmapParams` ``params`` (in order;
