@@ -104,7 +104,7 @@ def test_sigint_while_the_command_line_is_built(monkeypatch, capsys):
     """Ctrl-C before the command runs (while its modules are imported): exit 130, one line."""
     from navfn_smt import cli
 
-    def interrupted():
+    def interrupted(argv=None):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(cli, "build_parser", interrupted)

@@ -60,8 +60,20 @@ def _version() -> str:
         return "unknown (not installed)"
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The whole command line: every command module's parser, in the order of :data:`COMMANDS`."""
+def _named(argv) -> tuple:
+    """The command modules ``argv`` needs: the one it names (its first word that is not an
+    option), so that one command's run imports what that command uses and no other's;
+    every one when it names none (``--help``, ``--version``) or one that does not exist."""
+    if argv is None:
+        return COMMANDS
+    word = next((a for a in argv if not a.startswith("-")), None)
+    module = word.replace("-", "_") if word else None
+    return (module,) if module in COMMANDS else COMMANDS
+
+
+def build_parser(argv=None) -> argparse.ArgumentParser:
+    """The command line: the parser of each command module ``argv`` needs (:func:`_named`; every
+    one without ``argv``), in the order of :data:`COMMANDS`."""
     p = Parser(
         prog="navfn-smt",
         description="Executable specification of Nav2's NavFn planner, differential testing "
@@ -69,7 +81,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--version", action="version", version=f"%(prog)s {_version()}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for name in COMMANDS:
+    for name in _named(argv):
         importlib.import_module(f".commands.{name}", __package__).register(sub)
     return p
 
@@ -78,7 +90,8 @@ def main(argv=None) -> int:
     """Run one command; its exit status (2 for bad input, 130 when interrupted, even while the
     command line is still being built)."""
     try:
-        parser = build_parser()
+        argv = sys.argv[1:] if argv is None else list(argv)
+        parser = build_parser(argv)
         args = parser.parse_args(argv)
         if getattr(args, "jobs", 1) is not None and getattr(args, "jobs", 1) < 1:
             parser.error("--jobs must be at least 1")
