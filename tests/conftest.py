@@ -66,6 +66,25 @@ def nav2_src() -> Path:
 DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
 
 
+def _session_root(tmp_path_factory) -> Path:
+    """The test session's folder, shared by its test processes under ``pytest -n``."""
+    root = tmp_path_factory.getbasetemp()
+    return root.parent if os.environ.get("PYTEST_XDIST_WORKER") else root
+
+
+@pytest.fixture(scope="session", autouse=True)
+def object_cache(tmp_path_factory):
+    """The oracle builds of one test run share one object cache (navfn_smt/oracle/objects.py),
+    empty when the run starts: never the user's, so a run's time does not depend on the last."""
+    before = os.environ.get("NAVFN_SMT_OBJECT_CACHE")
+    os.environ["NAVFN_SMT_OBJECT_CACHE"] = str(_session_root(tmp_path_factory) / "objects")
+    yield
+    if before is None:
+        os.environ.pop("NAVFN_SMT_OBJECT_CACHE", None)
+    else:
+        os.environ["NAVFN_SMT_OBJECT_CACHE"] = before
+
+
 @pytest.fixture(scope="session")
 def builds(nav2_src, tmp_path_factory) -> dict:
     """Every program of the oracle built from each distribution's sources: ``{distro: (build.json,
@@ -77,10 +96,7 @@ def builds(nav2_src, tmp_path_factory) -> dict:
 
     from navfn_smt.oracle.build import build
 
-    root = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):
-        root = root.parent  # the session's folder, above each test process's own
-    root = root / "oracle-builds"
+    root = _session_root(tmp_path_factory) / "oracle-builds"
     root.mkdir(exist_ok=True)
     out = {}
     with open(root / "lock", "w") as lock:

@@ -79,6 +79,29 @@ def seeded_copy(nav2_src: Path, tmp_path: Path, distro: str, rel: str, line: str
     return src
 
 
+def test_an_object_from_the_cache_is_the_object_compiled_here(nav2_src, tmp_path, monkeypatch):
+    """Rolling's plain program built with no object cache; then a copy of the sources in
+    another folder, navfn.cpp's step changed, built into a fresh cache; then Rolling again from
+    that cache: it compiles navfn.cpp and takes the driver's object, and its program equals the
+    one built without the cache byte for byte (the objects say nothing of where the sources were)."""
+    import hashlib
+
+    def program(folder):
+        return hashlib.sha256((folder / "navfn-plain").read_bytes()).hexdigest()
+
+    monkeypatch.setenv("NAVFN_SMT_OBJECT_CACHE", "off")
+    alone = build(nav2_src / "rolling", tmp_path / "alone", programs=("navfn-plain",))
+    assert alone["objects"] == {"cache": None, "compiled": 2, "reused": 0}
+    monkeypatch.setenv("NAVFN_SMT_OBJECT_CACHE", str(tmp_path / "objects"))
+    src = seeded_copy(nav2_src, tmp_path, "rolling", "nav2_navfn_planner/src/navfn.cpp", "pathStep = 0.5;",
+                      "pathStep = 0.25;")
+    assert build(src, tmp_path / "copy", programs=("navfn-plain",))["objects"]["compiled"] == 2
+    again = build(nav2_src / "rolling", tmp_path / "again", programs=("navfn-plain",))
+    assert (again["objects"]["compiled"], again["objects"]["reused"]) == (1, 1)
+    assert program(tmp_path / "again") == program(tmp_path / "alone") != program(tmp_path / "copy")
+    assert again["path_maps"]["/nav2"] == str((nav2_src / "rolling").absolute())
+
+
 @pytest.mark.parametrize("bug", SEEDED)
 def test_a_bug_seeded_in_the_cpp_is_caught_and_named(nav2_src, tmp_path, bug):
     """The live difftest of the example suite fails on the seeded copy, and each disagreement

@@ -360,7 +360,7 @@ def of_build(doc: dict):
     return Arithmetic.from_dict(entry), None
 
 
-def layers_record(disassembly: str) -> dict:
+def layers_record(disassembly: str, unmap=Path) -> dict:
     """build.json's ``layers_arithmetic`` entry from ``objdump -d -l`` of the costmap layers
     program (built with ``-g``): the modelled sites of
     :data:`~navfn_smt.spec.arithmetic.LAYER_SITES` fused, the other sites fused with why their
@@ -370,7 +370,7 @@ def layers_record(disassembly: str) -> dict:
     on some of its lines only, a product that cannot be told).  A fused instruction of a
     compiler's intrinsics header (``fmaintrin.h``) is one the code asks for, not a contraction:
     Eigen's AVX square root, which the ``eigen-sqrt`` program measures; it is counted apart."""
-    source = functools.lru_cache(maxsize=None)(_source_lines)
+    source = functools.lru_cache(maxsize=None)(lambda path: _source_lines(unmap(path)))
     found, problems, body, products, count, explicit = defaultdict(set), [], [], defaultdict(set), 0, 0
     for where, _, text in located_binary(disassembly):
         body.append((where, text.strip()))
@@ -409,10 +409,11 @@ def layers_record(disassembly: str) -> dict:
             "unexpressible": list(dict.fromkeys(problems))}
 
 
-def layers_find(tc, program: Path, runner, folder: Path) -> dict:
+def layers_find(tc, program: Path, runner, folder: Path, unmap=Path) -> dict:
     """The costmap layers' arithmetic in the program ``program`` (built with ``-g``) as ``tc``
-    built it (:func:`layers_record`), and the kernel of its libm's ``hypot`` (:func:`probe_hypot`)."""
-    doc = layers_record(objdump(tc.objdump(), program))
+    built it (:func:`layers_record`; ``unmap``: the file a path of its debug information names),
+    and the kernel of its libm's ``hypot`` (:func:`probe_hypot`)."""
+    doc = layers_record(objdump(tc.objdump(), program), unmap)
     pairs = probe_inputs()
     kernel, misses = kernel_of(pairs, probe_hypot(tc, runner, folder, pairs))
     if kernel is None:

@@ -4,7 +4,8 @@ oracles the spec and the models are tested against.
 The sources are the system under test: ``NAV2_SRC`` is a navigation2 checkout or a folder
 holding ``nav2_navfn_planner``, ``nav2_core`` and ``nav2_costmap_2d``.  Nothing of them is
 copied into the project and nothing in them is changed.  The build goes to a folder the user
-names, the programs compiled side by side:
+names, the programs' sources compiled one at a time, side by side, each object kept once per
+content (:mod:`.objects`):
 
 - ``navfn-plain``: ``navfn.cpp`` as it is, with the driver ``navfn_driver.cpp`` and the rclcpp
   stub headers (``stubs/``, no ROS installation);
@@ -55,6 +56,7 @@ from .arithmetic import find as find_arithmetic
 from .arithmetic import layers_find, plugin_find
 from .arithmetic import record as record_arithmetic
 from .library import disassemble, elf_target, fused_lines_of_binary
+from .objects import Compiler, cache_dir, compile_flags
 from .targets import Toolchain, toolchain
 
 HERE = Path(__file__).resolve().parent
@@ -210,13 +212,25 @@ def git_commit(src: Path) -> tuple:
     return _git(src, "rev-parse", "HEAD"), None
 
 
-def _compile(tc: Toolchain, sources, includes, defines, out: Path, extra=()) -> None:
-    cmd = [tc.cxx, *tc.all_flags, *(f"-I{i}" for i in includes), *(f"-D{d}" for d in defines),
-           *map(str, sources), *extra, "-o", str(out)]  # extra after the sources: libraries to link
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        first = next((line for line in r.stderr.splitlines() if "error" in line), r.stderr.strip()[:300])
-        raise NavfnInputError(f"the C++ build of {out.name} failed: {first}")
+ROOT_NAMES = {"src": "/nav2", "package": "/navfn-smt-oracle", "build": "/oracle-build"}  # in the objects
+
+
+def _compile_all(compiler: Compiler, jobs: dict, programs, tmp: Path) -> None:
+    """Every program of ``programs``: each of its sources compiled to an object (one per core,
+    side by side, :mod:`.objects`), then linked into ``tmp / name``."""
+    objects = tmp / ".objects"
+    objects.mkdir()
+    work = [(name, i, Path(source)) for name in programs for i, source in enumerate(jobs[name][0])]
+    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        done = {(name, i): pool.submit(compiler.compile, source, jobs[name][1], jobs[name][2],
+                                       compile_flags(jobs[name][3] if len(jobs[name]) > 3 else ()),
+                                       objects / f"{name}.{i}.{source.stem}.o", name)
+                for name, i, source in work}
+        linked = [pool.submit(compiler.link, [done[name, i].result() for i in range(len(jobs[name][0]))],
+                              jobs[name][3] if len(jobs[name]) > 3 else (), tmp / name) for name in programs]
+        for job in linked:
+            job.result()
+    shutil.rmtree(objects)
 
 
 def _jobs(src: Path, tmp: Path) -> dict:
@@ -332,8 +346,8 @@ def _skipped(src: Path, name: str) -> Optional[str]:
 
 def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, library=None) -> dict:
     """Build the oracle ``programs`` (all by default) from ``nav2_src`` into the folder ``out``
-    with the toolchain ``tc`` (default: x86-64 with ``$CXX`` or g++), compiling them side by
-    side, one per core; returns build.json.  ``library``: a shared library of NavFn built from
+    with the toolchain ``tc`` (default: x86-64 with ``$CXX`` or g++), compiling their sources
+    side by side, one per core, from the object cache where it has them; returns build.json.  ``library``: a shared library of NavFn built from
     ``nav2_src``, which ``navfn-plain`` (the only program then) links (:mod:`.library`)."""
     src = find_sources(nav2_src)
     out = Path(out)
@@ -350,7 +364,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
     skipped = {name: why for name in programs if (why := _skipped(src, name))}
     programs = tuple(p for p in programs if p not in skipped)
     out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent)).absolute()
     try:
         jobs = _jobs(src, tmp)
         if library is not None:  # the driver alone, linked with a copy of the library beside it
@@ -359,10 +373,9 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             driver, includes, defines = jobs["navfn-plain"][0][0], *jobs["navfn-plain"][1:3]
             # by name (-l:), so the program needs the file name, found beside it ($ORIGIN)
             jobs["navfn-plain"] = ([driver], includes, defines, [f"-L{tmp}", f"-l:{lib.name}", "-Wl,-rpath,$ORIGIN"])
-        with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-            running = [pool.submit(_compile, tc, *jobs[name][:3], tmp / name, *jobs[name][3:]) for name in programs]
-            for job in running:
-                job.result()
+        compiler = Compiler(tc, {src: ROOT_NAMES["src"], HERE: ROOT_NAMES["package"], tmp: ROOT_NAMES["build"]},
+                            cache_dir())
+        _compile_all(compiler, jobs, programs, tmp)
         try:
             (tmp / "arithmetic").mkdir()
             if library is None:
@@ -376,7 +389,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
                 sources, includes, defines = jobs["navfn-plugin"][:3]
                 planner_cpp = next(f for f in sources if Path(f).name == "navfn_planner.cpp")
                 plugin_arith = plugin_find(tc, planner_cpp, includes, defines, tmp / "arithmetic")
-            layers_arith = layers_find(tc, tmp / "costmap-layers", runner, tmp / "arithmetic") if "costmap-layers" in programs else None
+            layers_arith = layers_find(tc, tmp / "costmap-layers", runner, tmp / "arithmetic", compiler.unmap) if "costmap-layers" in programs else None
         except RuntimeError as e:
             raise NavfnInputError(f"the arithmetic of the {tc.target} build could not be found: {e}") from None
         commit, why = git_commit(src)
@@ -384,7 +397,10 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             "sources": str(src.resolve()), "distribution": distribution(src), "git_commit": commit,
             **({"git_commit_note": why} if why else {}),
             "target": tc.target, "machine": tc.machine(), "compiler": tc.cxx, "compiler_version": tc.version(),
-            "flags": tc.all_flags, "runner": runner, "arithmetic": arith,
+            "flags": tc.all_flags, "path_maps": dict(compiler.named),
+            "objects": {"cache": str(compiler.cache) if compiler.cache else None, "compiled": compiler.compiled,
+                        "reused": compiler.reused},
+            "runner": runner, "arithmetic": arith,
             **({"plugin_arithmetic": plugin_arith} if plugin_arith is not None else {}),
             **({"layers_arithmetic": layers_arith} if layers_arith is not None else {}),
             "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs), "skipped": skipped,
