@@ -362,7 +362,7 @@ def of_build(doc: dict):
 
 def layers_record(disassembly: str, unmap=Path) -> dict:
     """build.json's ``layers_arithmetic`` entry from ``objdump -d -l`` of the costmap layers
-    program (built with ``-g``): the modelled sites of
+    program (built with ``-g1`` or more): the modelled sites of
     :data:`~navfn_smt.spec.arithmetic.LAYER_SITES` fused, the other sites fused with why their
     value cannot change the result, which product each of distanceToLine's sums fused (a
     multiplicand followed back to the line that assigns ``A``, ``B``, ``C`` or ``D``), and what
@@ -410,7 +410,7 @@ def layers_record(disassembly: str, unmap=Path) -> dict:
 
 
 def layers_find(tc, program: Path, runner, folder: Path, unmap=Path) -> dict:
-    """The costmap layers' arithmetic in the program ``program`` (built with ``-g``) as ``tc``
+    """The costmap layers' arithmetic in the program ``program`` (built with ``-g1`` or more) as ``tc``
     built it (:func:`layers_record`; ``unmap``: the file a path of its debug information names),
     and the kernel of its libm's ``hypot`` (:func:`probe_hypot`)."""
     doc = layers_record(objdump(tc.objdump(), program), unmap)

@@ -266,7 +266,7 @@ def _jobs(src: Path, tmp: Path) -> dict:
         ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])
     return {
         "costmap-layers": (layers, [HERE / "ros_stubs", costmap / "include", *eigen_include()], layer_defines,
-                           ["-fopenmp", "-g"]),  # -g: its arithmetic is read from its machine code
+                           ["-fopenmp", "-g1"]),  # -g1 (line tables): its arithmetic is read from its machine code
         "eigen-sqrt": ([HERE / "eigen_sqrt.cpp"], eigen_include(), [], ["-fopenmp"]),
         "navfn-plain": ([driver, navfn_cpp], includes, defines),
         "navfn-traced": ([driver, traced], includes, [*defines, "NAVFN_SMT_TRACED"]),
