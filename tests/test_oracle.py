@@ -570,6 +570,21 @@ def test_the_spec_in_the_arithmetic_found_agrees_with_each_build_live(target_bui
     assert s["failed"] == 0 and s["passed"] == 4396, s["disagreements"][:1]
 
 
+@pytest.mark.parametrize("name", ["aarch64", "x86-64-v3"])
+def test_the_committed_counterexamples_plan_on_each_build_as_the_spec_in_its_arithmetic(target_builds, name):
+    """Every committed counterexample's map, every case, both modes, on the C++ built for arm64
+    and for x86-64-v3, against the spec in the arithmetic found in each build, white-box and bit
+    for bit: so which of them is a counterexample in that arithmetic (``is_one_in`` of each
+    counterexample.json, held to the spec by tests/test_counterexamples.py) is what that C++ does."""
+    from navfn_smt.under_test import PlannerUnderTest
+
+    doc, folder = target_builds[name]
+    root = Path(__file__).resolve().parent / "data" / "counterexamples"
+    with Oracle(folder) as oracle:
+        s = run_live(root, MODES, "jit", oracle, planner=PlannerUnderTest.of_build(folder)).as_dict()
+    assert s["failed"] == 0 and s["passed"] == 2 * len(discover(root)), s["disagreements"][:1]
+
+
 @pytest.mark.parametrize("wrong", ["path_step", "planar", "conversion"])
 def test_an_arithmetic_wrong_on_purpose_is_caught_by_the_difftest(target_builds, wrong):
     """arm64's arithmetic with one of its float sites unfused, or with x86-64's conversion: the

@@ -55,16 +55,17 @@ class Run:
 
 
 def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = None,
-        variant: str = F.DEFAULT_VARIANT) -> Run:
+        variant: str = F.DEFAULT_VARIANT, arith=None) -> Run:
     """Plan like :func:`navfn_smt.spec.planner.plan`, also noting every cell ever queued.
 
     ``capacity`` bounds each priority buffer (PRIORITYBUFSIZE, as in C++, when None);
-    ``variant="fixed"`` plans with the fix (:mod:`navfn_smt.spec.fix`)."""
+    ``variant="fixed"`` plans with the fix (:mod:`navfn_smt.spec.fix`); ``arith``: the
+    :class:`~navfn_smt.spec.arithmetic.Arithmetic` of the build to plan as (None: x86-64's)."""
     fixed = F.check_variant(variant) == "fixed"
     arr = add_border(np.asarray(costs, dtype=np.uint8))
     ny, nx = arr.shape
     start, goal = (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1]))
-    st = setup(arr.ravel().tolist(), nx, ny, goal, capacity)
+    st = setup(arr.ravel().tolist(), nx, ny, goal, capacity, arith)
     queued = set(st.cur)
     hook = lambda cycle, cells: queued.update(cells)  # noqa: E731
     if fixed:
@@ -73,7 +74,7 @@ def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = N
         reached = propagate(st, start, goal, astar, cycle_limit(nx, ny), trace_hook=hook, record_trace=False)
     queued.update(st.cur, st.nxt, st.over)
     try:
-        ext = calc_path(st.potential, nx, ny, start, goal, path_cycle_limit(nx))
+        ext = calc_path(st.potential, nx, ny, start, goal, path_cycle_limit(nx), arith=arith)
         if fixed and ext.exit is not ExtractionExit.NEAR_GOAL:
             ext = F.descend(st.potential, nx, ny, start, goal)
         path, exit_ = np.array(ext.path, np.float32).reshape(-1, 2), ext.exit.value

@@ -7,7 +7,10 @@ A counterexample directory ``<kind>-<mode>-<W>x<H>`` holds
 * ``golden_astar.npz`` and ``golden_dijkstra.npz`` recorded from the reference spec,
 * ``picture.png``: the case drawn in the counterexample's mode,
 * ``counterexample.json``: kind, mode, size, start, goal and the judge's detail (plus what
-  the finder adds: gap, time, seed, ...).
+  the finder adds: gap, time, seed, ...); ``arithmetic``, the arithmetic it was found and its
+  golden files recorded in when not x86-64's; ``is_one_in``, for each known arithmetic of a
+  build (:data:`~navfn_smt.spec.arithmetic.KNOWN`), whether the case is a counterexample of its
+  kind when the spec plans in it (:func:`stands_in`).
 
 Everything is written into a hidden sibling directory first and renamed into place, so an
 interruption leaves no half-written counterexample.  ``search`` and ``check`` both save
@@ -28,6 +31,8 @@ from ..check import properties as P
 from ..errors import NavfnInputError
 from ..fileio import jsonable
 from ..maps.suite import GOLDEN_FIELDS, MODES, load_golden, load_map, write_map_dir
+from ..spec.arithmetic import KNOWN, X86_64
+from ..under_test import PlannerUnderTest
 from . import kinds as KD
 
 JSON_NAME = "counterexample.json"
@@ -62,15 +67,18 @@ def save_findings(findings, out_dir) -> list[Optional[str]]:
             extra["variant"] = field_of(f, "variant")
         d = save_counterexample(out_dir, costs, field_of(f, "start"), field_of(f, "goal"),
                                 field_of(f, "mode") == "astar", field_of(f, "kind"), field_of(f, "detail", {}),
-                                extra=extra)
+                                extra=extra, planner=field_of(f, "planner"))
         saved.append(str(d))
     return saved
 
 
 def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, kind: str, detail: dict,
-                        extra: Optional[dict] = None, name: Optional[str] = None) -> Path:
+                        extra: Optional[dict] = None, name: Optional[str] = None,
+                        planner: Optional[PlannerUnderTest] = None) -> Path:
     """Write the counterexample directory ``out_dir/<kind>-<mode>-<W>x<H>`` (or ``name``) whole,
-    replacing an older one of the same name; returns its path."""
+    replacing an older one of the same name; returns its path.  Its golden files are recorded
+    from the reference spec in the arithmetic of ``planner`` (None: x86-64's)."""
+    arith = planner.arithmetic if planner is not None and planner.arithmetic is not None else X86_64
     from ..backends import get_backend
     from ..difftest.record import golden_fields, write_golden
     from ..maps.pictures import render_case
@@ -90,7 +98,7 @@ def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, ki
     try:
         write_map_dir(tmp, costs, [(*start, *goal)], comment=f"{kind} counterexample ({mode})")
         smap = load_map(tmp)
-        ref = get_backend("reference").prepare(costs)
+        ref = get_backend("reference", planner).prepare(costs)
         for m in MODES:
             write_golden(smap.golden_path(m), golden_fields(smap, ref, m == "astar"))
         res = ref.run(start, goal, astar, trace=False)
@@ -99,7 +107,9 @@ def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, ki
                     title=_title(kind, astar, w, h, detail),
                     arrows=True)
         doc = {"kind": kind, "mode": mode, "size": [w, h], "start": list(start), "goal": list(goal),
-               "detail": jsonable(detail), **jsonable(extra or {})}
+               "detail": jsonable(detail), **jsonable(extra or {}),
+               **({"arithmetic": arith.name} if arith != X86_64 else {})}
+        doc["is_one_in"] = stands_in(doc, costs)
         (tmp / JSON_NAME).write_text(json.dumps(doc, indent=2) + "\n", encoding="utf-8")
         if final.exists():
             os.replace(final, old)
@@ -156,13 +166,32 @@ def judge_kind(kind: str, r: P.Run, doc: Optional[dict] = None) -> Optional[dict
     return None if why is None else {"reason": why}
 
 
-def golden_differences(directory, backend: str) -> list[str]:
-    """Fields of the stored golden files that ``backend`` does not reproduce bit for bit."""
+def planner_of(doc: dict) -> PlannerUnderTest:
+    """The planner a saved counterexample was found in: its variant, in the arithmetic its
+    golden files were recorded in (``arithmetic``; x86-64's when it names none)."""
+    return PlannerUnderTest.of_target(doc.get("arithmetic"), doc.get("variant", "original"))
+
+
+def stands_in(doc: dict, costs: np.ndarray) -> dict:
+    """``{arithmetic: whether the case of doc is a counterexample of its kind}``, the spec
+    planning the case in each known arithmetic (the fixed variant in x86-64's only, the one it
+    computes in so far)."""
+    sx, sy = doc["start"]
+    gx, gy = doc["goal"]
+    variant = doc.get("variant", "original")
+    return {name: judge_kind(doc["kind"], P.run(costs, (sx, sy), (gx, gy), doc["mode"] == "astar", variant=variant,
+                                                arith=arith), doc) is not None
+            for name, arith in KNOWN.items() if variant == "original" or arith == X86_64}
+
+
+def golden_differences(directory, backend: str, planner: Optional[PlannerUnderTest] = None) -> list[str]:
+    """Fields of the stored golden files that ``backend`` (computing as ``planner``; None: NavFn
+    as shipped, in x86-64's arithmetic) does not reproduce bit for bit."""
     from ..backends import get_backend
     from ..difftest.record import golden_fields
 
     smap = load_map(directory)
-    planner = get_backend(backend).prepare(smap.costs)
+    planner = get_backend(backend, planner).prepare(smap.costs)
     diffs = []
     for m in MODES:
         stored = load_golden(smap.golden_path(m), smap)
@@ -176,16 +205,20 @@ def golden_differences(directory, backend: str) -> list[str]:
 
 def replay(directory) -> dict:
     """Replay a saved counterexample: its golden files on the reference spec and the JIT (bit
-    for bit), and its kind's judge on the spec.  Returns the problems found (empty lists and
-    a detail when it still stands)."""
+    for bit, in the arithmetic it was found in), its kind's judge on the spec, and in which
+    known arithmetics it is one (``is_one_in``, for the test to hold against the recorded one).
+    Returns the problems found (empty lists and a detail when it still stands)."""
     doc = read_counterexample(directory)
     smap = load_map(directory)
     sx, sy, gx, gy = (int(v) for v in smap.cases[0])
-    r = P.run(smap.costs, (sx, sy), (gx, gy), doc["mode"] == "astar", variant=doc.get("variant", "original"))
+    planner = planner_of(doc)
+    r = P.run(smap.costs, (sx, sy), (gx, gy), doc["mode"] == "astar", variant=planner.variant,
+              arith=planner.arithmetic)
     return {
         "kind": doc["kind"],
-        "golden": {b: golden_differences(directory, b) for b in ("reference", "jit")},
+        "golden": {b: golden_differences(directory, b, planner) for b in ("reference", "jit")},
         "detail": judge_kind(doc["kind"], r, doc),
+        "is_one_in": stands_in(doc, smap.costs),
     }
 
 

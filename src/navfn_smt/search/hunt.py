@@ -402,7 +402,7 @@ def _confirm(climb: Climb, kind: str, mode: str, seed: int, costs_range, shrink_
     if shrink_result:
         costs, start, goal = shrink(kind, costs, start, goal, astar, keep_size=keep_size, costs_range=costs_range,
                                     deadline=time.perf_counter() + shrink_seconds, planner=planner)
-    r = P.run(costs, start, goal, astar, variant=planner.variant)
+    r = P.run(costs, start, goal, astar, variant=planner.variant, arith=planner.arithmetic)
     detail = KINDS[kind].judge(r)
     if detail is None:
         say(f"[{climb.tag}] the reference spec does not confirm the candidate; nothing reported")
