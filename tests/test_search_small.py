@@ -200,3 +200,26 @@ def test_cli_unreached_defaults_to_the_smallest_map_hunt(tmp_path, capsys):
     for row in doc["findings"]:
         assert row["interior_cells"] <= min(t["interior"] for t in sizes["sizes"] if t["found"])
     assert "sizes hunted" in capsys.readouterr().out
+
+
+def test_a_search_in_arm64_arithmetic_saves_what_it_found_in_that_arithmetic(tmp_path, capsys):
+    """``search --target aarch64``: the hunt, its confirmation on the reference spec and the
+    saved golden files are all in arm64's arithmetic, which counterexample.json names; the
+    saved directory replays in it.  Kinds the search cannot yet plan in another arithmetic
+    (overflow), and --summary, refuse the option in one line."""
+    from navfn_smt.search.counterexamples import discover_counterexamples, read_counterexample, replay
+
+    out = tmp_path / "out"
+    assert main(["search", "int-conversion", "--target", "aarch64", "--mode", "astar", "--timeout", "3",
+                 "--out", str(out)]) == 0
+    (d,) = discover_counterexamples(out)
+    doc = read_counterexample(d)
+    assert doc["arithmetic"] == "aarch64" and doc["is_one_in"]["aarch64"]
+    r = replay(d)
+    assert r["golden"] == {"reference": [], "jit": []} and r["detail"] is not None
+    capsys.readouterr()
+    for argv in (["search", "overflow", "--target", "aarch64"], ["search", "--summary", str(tmp_path), "--target",
+                                                                 "aarch64"]):
+        assert main(argv) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "--target" in err[0], err

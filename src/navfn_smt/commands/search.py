@@ -21,8 +21,9 @@ def cmd_search(args) -> int:
     check_files(args.json)
     planner = planner_of(args)
     if args.summary:
-        if planner.variant != "original":
-            raise NavfnInputError("--summary counts on NavFn as shipped: no --variant")
+        if planner.variant != "original" or args.target:
+            raise NavfnInputError("--summary counts on NavFn as shipped, in the golden files' arithmetic: no "
+                                  "--variant, no --target")
         if args.kind:
             raise NavfnInputError("give either a KIND or --summary SUITE, not both")
         from ..search.summary import summarize
@@ -70,7 +71,7 @@ def register(sub) -> None:
                     "resumed in rounds of doubling budgets, sizes not below the smallest counterexample "
                     "dropped (cost: every size alike, the largest gap reported, the best gap per size listed)")
     se.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
-    add_planner_arguments(se, arithmetic=False)
+    add_planner_arguments(se)
     se.add_argument("--timeout", type=float, default=60.0, metavar="S",
                     help="seconds for the whole search, split between modes (counted once the planner is compiled)")
     se.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (same seed and budget: same hunt)")

@@ -36,6 +36,7 @@ import numpy as np
 
 from ..check import properties as P
 from ..errors import NavfnInputError
+from ..spec.arithmetic import X86_64
 from ..spec.constants import COST_NEUTRAL, COST_OBS
 from ..spec.planner import path_cycle_limit
 from ..spec.propagation import cycle_limit
@@ -200,7 +201,8 @@ class Climb:
         self.closest = 0.0  # the highest guide seen
         self.seconds = 0.0  # time spent in this climb
         self.compiled = (steps.FocusSteps(w, h, FOCUS, cycle_limit(w, h), path_cycle_limit(w))
-                         if compiled and kind == "cost" and planner.variant == "original" else None)
+                         if compiled and kind == "cost" and planner.variant == "original"
+                         and planner.arithmetic == X86_64 else None)  # the compiled steps plan as x86-64 does
 
     @property
     def evaluations(self) -> int:

@@ -13,6 +13,7 @@ from typing import Optional
 from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from ..maps.suite import modes_of
+from ..spec.arithmetic import X86_64
 from ..under_test import ORIGINAL
 from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_smallest
 from .kinds import SEARCH_KINDS
@@ -69,6 +70,9 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
     if planner.variant != "original" and kind == "overflow":
         raise NavfnInputError("search overflow hunts the C++ buffers' overflow, which the fix does not touch: "
                               "no --variant")
+    if planner.arithmetic != X86_64 and kind == "overflow":
+        raise NavfnInputError(f"search overflow plans in x86-64's arithmetic only so far, not "
+                              f"{planner.arithmetic.name}'s: no --target")
     if size is not None:
         check_size(*size)
     if max_size is not None:
