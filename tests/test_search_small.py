@@ -214,7 +214,7 @@ def test_a_search_in_arm64_arithmetic_saves_what_it_found_in_that_arithmetic(tmp
                  "--out", str(out)]) == 0
     (d,) = discover_counterexamples(out)
     doc = read_counterexample(d)
-    assert doc["arithmetic"] == "aarch64" and doc["is_one_in"]["aarch64"]
+    assert doc["arithmetic"] == "aarch64" and doc["is_one_in"]["aarch64"] and d.name.endswith("-aarch64")
     r = replay(d)
     assert r["golden"] == {"reference": [], "jit": []} and r["detail"] is not None
     capsys.readouterr()

@@ -39,9 +39,11 @@ JSON_NAME = "counterexample.json"
 PICTURE_NAME = "picture.png"
 
 
-def directory_name(kind: str, mode: str, costs: np.ndarray) -> str:
+def directory_name(kind: str, mode: str, costs: np.ndarray, arith=X86_64) -> str:
+    """``<kind>-<mode>-<W>x<H>``, and ``-<arithmetic>`` for one found in another arithmetic
+    than x86-64's (the golden files' and the committed ones')."""
     h, w = np.asarray(costs).shape
-    return f"{kind}-{mode}-{w}x{h}"
+    return f"{kind}-{mode}-{w}x{h}" + ("" if arith == X86_64 else f"-{arith.name}")
 
 
 def field_of(f, name, default=None):
@@ -91,7 +93,7 @@ def save_counterexample(out_dir, costs: np.ndarray, start, goal, astar: bool, ki
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
         raise NavfnInputError(f"{out}: cannot create directory ({e.strerror})") from None
-    final = out / (name or directory_name(kind, mode, costs))
+    final = out / (name or directory_name(kind, mode, costs, arith))
     tmp = out / f".{final.name}.tmp{os.getpid()}"
     old = out / f".{final.name}.old{os.getpid()}"
     shutil.rmtree(tmp, ignore_errors=True)
