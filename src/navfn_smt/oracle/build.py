@@ -396,7 +396,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
         doc = {
             "sources": str(src.resolve()), "distribution": distribution(src), "git_commit": commit,
             **({"git_commit_note": why} if why else {}),
-            "target": tc.target, "machine": tc.machine(), "compiler": tc.cxx, "compiler_version": tc.version(),
+            "target": tc.target, "machine": compiler.machine, "compiler": tc.cxx, "compiler_version": compiler.version,
             "flags": tc.all_flags, "path_maps": dict(compiler.named),
             "objects": {"cache": str(compiler.cache) if compiler.cache else None, "compiled": compiler.compiled,
                         "reused": compiler.reused},

@@ -56,7 +56,8 @@ class Compiler:
             pairs[str(Path(folder).absolute())] = pairs[str(Path(folder).resolve())] = name
         self.roots = sorted(pairs.items(), key=lambda r: -len(r[0]))  # the longest first: inner folders
         self.cache = cache
-        self.identity = f"{tc.cxx}\n{tc.version()}\n{tc.machine()}\n"
+        self.version, self.machine = tc.version(), tc.machine()  # asked of the compiler once a build
+        self.identity = f"{tc.cxx}\n{self.version}\n{self.machine}\n"
         self.compiled = 0
         self.reused = 0
 

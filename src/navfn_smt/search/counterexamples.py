@@ -174,16 +174,20 @@ def planner_of(doc: dict) -> PlannerUnderTest:
     return PlannerUnderTest.of_target(doc.get("arithmetic"), doc.get("variant", "original"))
 
 
-def stands_in(doc: dict, costs: np.ndarray) -> dict:
-    """``{arithmetic: whether the case of doc is a counterexample of its kind}``, the spec
-    planning the case in each known arithmetic (the fixed variant in x86-64's only, the one it
-    computes in so far)."""
-    sx, sy = doc["start"]
-    gx, gy = doc["goal"]
+def judged_in_each(doc: dict, costs: np.ndarray, start, goal) -> dict:
+    """``{arithmetic: the detail of doc's kind's judge, None where the case is no counterexample}``,
+    the spec planning ``start`` to ``goal`` on ``costs`` in each known arithmetic (the fixed
+    variant in x86-64's only, the one it computes in so far)."""
     variant = doc.get("variant", "original")
-    return {name: judge_kind(doc["kind"], P.run(costs, (sx, sy), (gx, gy), doc["mode"] == "astar", variant=variant,
-                                                arith=arith), doc) is not None
+    return {name: judge_kind(doc["kind"], P.run(costs, start, goal, doc["mode"] == "astar", variant=variant,
+                                                arith=arith), doc)
             for name, arith in KNOWN.items() if variant == "original" or arith == X86_64}
+
+
+def stands_in(doc: dict, costs: np.ndarray) -> dict:
+    """``{arithmetic: whether the case of doc is a counterexample of its kind}`` (:func:`judged_in_each`)."""
+    judged = judged_in_each(doc, costs, tuple(doc["start"]), tuple(doc["goal"]))
+    return {name: detail is not None for name, detail in judged.items()}
 
 
 def golden_differences(directory, backend: str, planner: Optional[PlannerUnderTest] = None) -> list[str]:
@@ -193,11 +197,11 @@ def golden_differences(directory, backend: str, planner: Optional[PlannerUnderTe
     from ..difftest.record import golden_fields
 
     smap = load_map(directory)
-    planner = get_backend(backend, planner).prepare(smap.costs)
+    prepared = get_backend(backend, planner).prepare(smap.costs)
     diffs = []
     for m in MODES:
         stored = load_golden(smap.golden_path(m), smap)
-        fresh = golden_fields(smap, planner, m == "astar")
+        fresh = golden_fields(smap, prepared, m == "astar")
         for f in GOLDEN_FIELDS:
             a, b = np.asarray(stored[f]), np.asarray(fresh[f])
             if a.dtype != b.dtype or a.shape != b.shape or a.tobytes() != b.tobytes():
@@ -214,13 +218,12 @@ def replay(directory) -> dict:
     smap = load_map(directory)
     sx, sy, gx, gy = (int(v) for v in smap.cases[0])
     planner = planner_of(doc)
-    r = P.run(smap.costs, (sx, sy), (gx, gy), doc["mode"] == "astar", variant=planner.variant,
-              arith=planner.arithmetic)
+    judged = judged_in_each(doc, smap.costs, (sx, sy), (gx, gy))  # its own arithmetic among them
     return {
         "kind": doc["kind"],
         "golden": {b: golden_differences(directory, b, planner) for b in ("reference", "jit")},
-        "detail": judge_kind(doc["kind"], r, doc),
-        "is_one_in": stands_in(doc, smap.costs),
+        "detail": judged[planner.arithmetic.name],
+        "is_one_in": {name: detail is not None for name, detail in judged.items()},
     }
 
 
