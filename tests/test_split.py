@@ -184,4 +184,22 @@ def test_ci_runs_every_shipped_split_once():
     splits = {s.obligation: s for s in S.load_splits(default_proof_files())}
     flat = [n for lane in named for n in lane]
     assert len(named) == 2 and sorted(flat) == sorted(splits), named
+    # so the slow proof run leaves those obligations' whole queries to them
+    slow = [line for line in script.splitlines() if re.match(r"\s*navfn-smt prove --slow-only ", line)]
+    assert len(slow) == 1 and "--skip-split" in shlex.split(slow[0].split("||")[0]), slow
     assert all(splits[n].methods == ("enumerate",) for n in named[1])
+
+
+def test_prove_leaves_the_whole_queries_of_split_obligations_to_their_splits(tmp_path):
+    """``prove --skip-split`` asks no fp32 whole query of an obligation a split decides, and says
+    which it left out (on the terminal and in the report); the others it asks as before."""
+    from navfn_smt.smt.runner import tasks
+
+    left = tmp_path / "left.json"
+    assert main(["prove", str(TOY), "--solver", "z3", "--skip-split", "--report", str(left)]) == 0
+    asked = {(t.name, t.semantics) for t in tasks([TOY], everything=False)}  # what a run without it asks
+    doc = json.loads(left.read_text())
+    kept = {(o["name"], o["semantics"]) for o in doc["obligations"]}
+    split_fp32 = {(s.obligation, "fp32") for s in S.load_splits([TOY])}
+    assert split_fp32 <= asked and not split_fp32 & kept and kept == asked - split_fp32
+    assert sorted(doc["left_to_splits"]) == sorted(f"{n} (fp32)" for n, _ in split_fp32)

@@ -36,7 +36,7 @@ def cmd_prove(args) -> int:
     from ..smt.knowledge import record_decisions
     from ..smt.obligation import load_obligations
     from ..smt.solvers import SOLVERS
-    from ..smt.runner import SEMANTICS, default_proof_files, run, slow_queries, wanted, write_smt2
+    from ..smt.runner import SEMANTICS, default_proof_files, run, slow_queries, split_decided, wanted, write_smt2
 
     if args.slow_only and args.markdown:
         raise NavfnInputError("--slow-only leaves the default queries out: the invariants page (--markdown) needs "
@@ -60,16 +60,20 @@ def cmd_prove(args) -> int:
     known = known_of_files(files, obligations, PREDICATES)
     whole = args.all or args.slow_only
     bounds = whole and not args.no_bound_search
-    n = sum(wanted(o, s, args.all, args.slow_only, bounds) for o in obligations for s in semantics)
+    skip = split_decided(files) if args.skip_split else frozenset()
+    left_out = [f"{o.name} ({s})" for o in obligations for s in semantics
+                if wanted(o, s, args.all, args.slow_only, bounds) and (o.name, s) in skip]
+    n = sum(wanted(o, s, args.all, args.slow_only, bounds) for o in obligations for s in semantics) - len(left_out)
     with progress_bar(n, "prove") as advance:
         outcomes = run(files, semantics, args.timeout, eng, solvers, progress=lambda o: advance(1),
-                       bounds=bounds, everything=args.all, known=known, slow_only=args.slow_only)
+                       bounds=bounds, everything=args.all, known=known, slow_only=args.slow_only, skip=skip)
     witness_files = proof_run.write_witnesses(outcomes, witnesses)
     if args.smt2:
         write_smt2(files, semantics, Path(args.smt2))
     report.table(outcomes, known)
     meta = {**proof_run.meta(args.timeout, solvers, semantics, files),
-            "queries": "all" if args.all else "slow only" if args.slow_only else "default"}
+            "queries": "all" if args.all else "slow only" if args.slow_only else "default",
+            "left_to_splits": left_out}
     if args.report:
         report.write_json(args.report, outcomes, witness_files, meta, known)
     if args.junit:
@@ -77,6 +81,9 @@ def cmd_prove(args) -> int:
     if args.markdown:
         report.write_markdown(args.markdown, outcomes, meta, _page_sources(meta["files"]))
     proof_run.witness_note(outcomes, witnesses)
+    if left_out:
+        print(f"{len(left_out)} whole queries left to their splits (`navfn-smt split`, --skip-split): "
+              f"{', '.join(left_out)}")
     left = [] if whole else slow_queries(files, semantics)
     if left:
         print(f"{len(left)} slow queries left to `navfn-smt prove --all` (splits: `navfn-smt split`): {', '.join(left)}")
@@ -113,6 +120,9 @@ def register(sub) -> None:
     pr.add_argument("--slow-only", action="store_true",
                     help="only what --all adds to the default run: the slow queries and the bound searches (for "
                          "a CI whose test run has checked the default queries already)")
+    pr.add_argument("--skip-split", action="store_true",
+                    help="leave out the whole fp32 queries of the obligations a split decides part by part (their "
+                         "verdict is the split's: for a CI that runs `navfn-smt split` on them beside this run)")
     pr.add_argument("--record", action="store_true",
                     help="record every decision made where nothing was known (known.json beside the proof file, "
                          "keyed by a hash of the proof file, kernels and domains), so later runs judge against it")

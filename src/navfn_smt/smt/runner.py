@@ -69,19 +69,20 @@ def _job(task: Task) -> Outcome:
 
 
 def tasks(paths, semantics=SEMANTICS, timeout: float = 30.0, solvers=("z3",), bounds: bool = True,
-          everything: bool = True, slow_only: bool = False) -> list[Task]:
+          everything: bool = True, slow_only: bool = False, skip: frozenset = frozenset()) -> list[Task]:
     """Every (obligation, semantics) of the proof files that has an expected verdict, in
     file, obligation and semantics order (the order of the results); without
     ``everything``, not the slow ones (:attr:`Obligation.slow`); with ``slow_only``, only what
     ``everything`` adds to the default run: the slow ones and, with ``bounds``, the fp32
-    queries whose bound a refutation searches (:func:`wanted`)."""
+    queries whose bound a refutation searches (:func:`wanted`); never the ``(name, semantics)``
+    pairs of ``skip``."""
     sources = {}
     out = []
     for o in load_obligations(paths):
         if o.source not in sources:
             sources[o.source] = Path(o.source).read_bytes()
         out.extend(Task(o.source, sources[o.source], o.name, s, timeout, tuple(solvers), bounds)
-                   for s in semantics if wanted(o, s, everything, slow_only, bounds))
+                   for s in semantics if wanted(o, s, everything, slow_only, bounds) and (o.name, s) not in skip)
     return out
 
 
@@ -94,6 +95,14 @@ def wanted(o, semantics: str, everything: bool = True, slow_only: bool = False, 
     return everything or semantics not in o.slow
 
 
+def split_decided(paths) -> frozenset:
+    """The ``(name, "fp32")`` of every obligation of ``paths`` that a split of theirs decides part
+    by part (:mod:`.split`): ``prove --skip-split`` leaves their whole queries to ``navfn-smt split``."""
+    from .split import load_splits
+
+    return frozenset((s.obligation, "fp32") for s in load_splits(paths))
+
+
 def slow_queries(paths, semantics=SEMANTICS) -> list[str]:
     """The ``name (semantics)`` of the slow queries a default run leaves out."""
     return [f"{o.name} ({s})" for o in load_obligations(paths) for s in semantics
@@ -102,14 +111,16 @@ def slow_queries(paths, semantics=SEMANTICS) -> list[str]:
 
 def run(paths, semantics=SEMANTICS, timeout: float = 30.0, jobs: Union[Engine, int] = 1, solvers=("z3",),
         progress: Optional[Callable[[Outcome], None]] = None, bounds: bool = True,
-        everything: bool = True, known: Optional[dict] = None, slow_only: bool = False) -> list[Outcome]:
+        everything: bool = True, known: Optional[dict] = None, slow_only: bool = False,
+        skip: frozenset = frozenset()) -> list[Outcome]:
     """The outcome of every obligation of ``paths`` in every semantics it declares, judged
     against what is ``known`` (:func:`navfn_smt.smt.split.known_of_files`; default: each
     obligation's declaration), in the order of :func:`tasks` whatever the order they finish in.  ``jobs``: an
-    :class:`~navfn_smt.engine.Engine` (``auto`` resolved here), or a number of local workers."""
+    :class:`~navfn_smt.engine.Engine` (``auto`` resolved here), or a number of local workers;
+    ``skip``: the ``(name, semantics)`` pairs left out (:func:`split_decided`)."""
     if not (timeout > 0 and timeout < float("inf")):
         raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
-    work = tasks(paths, semantics, timeout, solvers, bounds, everything, slow_only)
+    work = tasks(paths, semantics, timeout, solvers, bounds, everything, slow_only, skip)
     if not work:
         raise NavfnInputError("no obligation to check in the requested semantics")
     eng = as_engine(jobs)
