@@ -625,6 +625,50 @@ def test_the_plugin_model_in_the_arithmetic_found_agrees_with_the_arm64_plugin(t
             assert run_plugin_live(configs, oracle, arith=wrong).as_dict()["failed"] > 0, wrong.name
 
 
+def test_diagnose_judges_a_plan_as_the_arm64_build_computes_it(target_builds, tmp_path, capsys):
+    """A Nav2 plan the arm64 plugin makes otherwise than x86-64's (30 poses against 29: generated
+    configuration 387, pair 2): ``diagnose`` in the arithmetic found in that build gives the C++'s
+    plan and says which arithmetic it judged; in x86-64's it gives the other.  The CLI names it,
+    refuses ``--target aarch64`` without a build and a sweep in that arithmetic."""
+    import itertools
+
+    import numpy as np
+
+    from navfn_smt.diagnose.core import diagnose
+    from navfn_smt.difftest.plugin_live import PluginConfig, generated_configs, run_plugin_live
+
+    doc, folder = target_builds["aarch64"]
+    found = PlannerUnderTest.of_build(folder).plugin_arithmetic()
+    cfg = next(itertools.islice(generated_configs("rolling", 388, 0, 24), 387, 388))
+    start, goal = cfg.pairs[2]
+    arm, x86 = (diagnose(cfg.costmap, start, goal, cfg.params, arith=a) for a in (found, None))
+    assert arm.ok and x86.ok and (len(arm.run.poses), len(x86.run.poses)) == (30, 29)
+    assert arm.arith == found and "aarch64" in arm.arith.name and "aarch64" not in x86.arith.name
+    one = [PluginConfig(cfg.costmap, cfg.params, [(start, goal)], cfg.name)]
+    with PluginOracle(folder) as oracle:  # the arm64 C++ plans as the arm64 diagnosis, not as x86-64's
+        assert run_plugin_live(one, oracle, arith=found).as_dict()["failed"] == 0
+        assert run_plugin_live(one, oracle).as_dict()["failed"] == 1
+    costs = tmp_path / "costs.npy"
+    np.save(costs, cfg.costmap.costs)
+    params = tmp_path / "params.yaml"  # the configuration's planner parameters (no global_costmap: none runs)
+    params.write_text("planner_server:\n  ros__parameters:\n    planner_plugins: [GridBased]\n    GridBased:\n"
+                      f"      plugin: nav2_navfn_planner::NavfnPlanner\n      tolerance: {cfg.params.tolerance}\n"
+                      f"      use_astar: {str(cfg.params.use_astar).lower()}\n")
+    where = ["--params", str(params), "--resolution", str(cfg.costmap.resolution), "--origin", str(cfg.costmap.origin_x),
+             str(cfg.costmap.origin_y), "--start", str(start.x), str(start.y), "--goal", str(goal.x), str(goal.y)]
+    report = tmp_path / "d.json"
+    assert main(["diagnose", str(costs), *where, "--oracle", str(folder), "--json", str(report)]) == 0
+    out = capsys.readouterr().out
+    assert "judged   original, the C++ of rolling for aarch64, aarch64 arithmetic" in out, out
+    got = json.loads(report.read_text())
+    assert got["planner"]["arithmetic"] == "aarch64" and got["arithmetic"] == found.name
+    assert got["results"][0]["poses"] == 30
+    assert main(["diagnose", str(costs), *where, "--target", "aarch64"]) == 2
+    assert "give --oracle DIR" in capsys.readouterr().err
+    assert main(["diagnose", str(costs), *where[:-3], "--sweep", "5", "--oracle", str(folder)]) == 2
+    assert "--sweep computes in x86-64's arithmetic only" in capsys.readouterr().err
+
+
 def test_each_call_of_the_plugins_squared_distance_is_compared_with_the_square_it_fused(nav2_src, tmp_path):
     """Jazzy's plugin for x86-64-v3 fuses fma(dy, dy, dx * dx) in the tolerance search's copy of
     squared_distance and fma(dx, dx, dy * dy) in the smoothing's: found per call, and the model

@@ -114,6 +114,27 @@ def planner_of(args, variant=None):
     return PlannerUnderTest.of_target(target, variant, distro)
 
 
+def plugin_arithmetic_of(planner, command: str):
+    """The plugin arithmetic the planner under test computes in for ``command`` (its name in
+    errors): the one found in its build (``--oracle DIR``), None for x86-64's; a clear error
+    for ``--target NAME`` of another machine, whose plugin arithmetic is found only in a build."""
+    if planner.build is not None:
+        return planner.plugin_arithmetic()
+    if planner.arithmetic is not None and planner.arithmetic.name != "x86-64":
+        name = planner.arithmetic.name
+        raise NavfnInputError(f"{command} --target {name}: the plugin's arithmetic is found in a build; give "
+                              f"--oracle DIR (navfn-smt oracle build --target {name})")
+    return None
+
+
+def layers_arithmetic_of(planner, map_path):
+    """The costmap layers' arithmetic of the planner's build for a map_server map (None: x86-64's,
+    or a costmap given directly, on which no layer runs)."""
+    from ..maps.loading import is_yaml
+
+    return planner.layers_arithmetic() if planner.build is not None and is_yaml(map_path) else None
+
+
 def add_toolchain_arguments(parser) -> None:
     """``--target``, ``--cxx`` and ``--cxxflags``: the toolchain a command builds Nav2's C++ with."""
     parser.add_argument("--target", metavar="NAME", help="the machine to build for: x86-64 (default; $CXX or g++), "

@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from .common import add_planner_arguments, planner_of
+from .common import ORACLE_PLAN_HELP, add_planner_arguments, layers_arithmetic_of, planner_of, plugin_arithmetic_of
 
 
 def _check_outputs(args) -> None:
@@ -61,6 +61,7 @@ def cmd_diagnose(args) -> int:
     from ..report import diagnose as report
     from ..diagnose.core import diagnose
     from ..diagnose.inputs import load_inputs, parse_goals, pose_arg
+    from ..nav2.mapserver import DEFAULT_DISTRO
 
     given = [o for o, v in (("--goal", args.goal), ("--goals", args.goals), ("--sweep", args.sweep)) if v]
     if len(given) != 1:
@@ -70,24 +71,26 @@ def cmd_diagnose(args) -> int:
         raise NavfnInputError("--max-steps must be at least 1")
     start = pose_arg("start", args.start)
     _check_outputs(args)
+    planner = planner_of(args)
+    arith = plugin_arithmetic_of(planner, "diagnose")
     if args.sweep:
-        return _sweep(args, start)
+        return _sweep(args, start, planner, arith)
     goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
-    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
-                        tuple(args.origin), planner_of(args).variant)
+    setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside,
+                        args.resolution, tuple(args.origin), planner.variant, layers_arithmetic_of(planner, args.map))
     t0 = time.perf_counter()
     results = []
     batch = len(goals) > 1 or bool(args.goals)
     with _Progress(len(goals), "diagnose", quiet=not batch or args.quiet) as prog:
         for g in goals:
             d = diagnose(setup.costmap, start, g, setup.params, args.backend, what_ifs=not args.no_what_ifs,
-                         max_steps=args.max_steps)
+                         max_steps=args.max_steps, arith=arith)
             results.append(d)
             prog.step(d)
     seconds = time.perf_counter() - t0
-    report.print_text(args.map, setup, args.backend, results)
+    report.print_text(args.map, setup, args.backend, results, planner)
     if args.json:
-        report.write_json(args.json, report.report_doc(args.map, setup, args.backend, results, seconds))
+        report.write_json(args.json, report.report_doc(args.map, setup, args.backend, results, seconds, planner))
     if args.picture:
         title = f"{Path(args.map).name} ({'A*' if setup.params.use_astar else 'Dijkstra'})"
         if batch:
@@ -97,15 +100,21 @@ def cmd_diagnose(args) -> int:
     return 0 if all(d.ok for d in results) else 1
 
 
-def _sweep(args, start) -> int:
+def _sweep(args, start, planner, arith) -> int:
     """Every free cell (or a sample of N) as a goal from one robot pose: outcome counts, JSON, picture."""
     from ..report.sweep import render_sweep, write_summary_json
     from ..diagnose.inputs import load_inputs
     from ..diagnose.sweep import summary, sweep
 
+    from ..nav2.mapserver import DEFAULT_DISTRO
+    from ..spec.arithmetic import PLUGIN_X86_64
+
+    if arith not in (None, PLUGIN_X86_64):
+        raise NavfnInputError(f"--sweep computes in x86-64's arithmetic only so far (its compiled loops), not as "
+                              f"{planner.label} does: diagnose the goals one by one there (--goals FILE)")
     n = None if args.sweep == "all" else _sample_size(args.sweep)
-    setup = load_inputs(args.map, args.params, args.distro, args.allow_outside, args.resolution,
-                        tuple(args.origin), planner_of(args).variant)
+    setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside,
+                        args.resolution, tuple(args.origin), planner.variant, layers_arithmetic_of(planner, args.map))
     cm = setup.costmap
     from ..report.tables import progress_bar
     from ..diagnose.sweep import select_goals
@@ -165,11 +174,13 @@ def register(sub) -> None:
     d.add_argument("--params", metavar="FILE",
                    help="a Nav2 params file: the NavfnPlanner plugin's parameters (planner_server) and the global "
                    "costmap's layers (global_costmap); default: Nav2's defaults, static layer only")
-    d.add_argument("--distro", default=DEFAULT_DISTRO,
-                   help=f"Nav2 distribution whose map loading and costmap rules apply ({', '.join(DISTROS)})")
+    d.add_argument("--distro", default=None,
+                   help=f"Nav2 distribution whose map loading and costmap rules apply ({', '.join(DISTROS)}; default "
+                        f"{DEFAULT_DISTRO}, or the --oracle build's)")
     d.add_argument("--allow-outside", action="store_true",
                    help="let the map YAML name an image outside its own folder")
-    add_planner_arguments(d, arithmetic=False)
+    add_planner_arguments(d, oracle_help=ORACLE_PLAN_HELP + ": the plugin's, NavFn's and the layers'; every step "
+                          "of the diagnosis computes in it")
     d.add_argument("--backend", choices=BACKENDS, default="jit",
                    help="planner implementation: the numba JIT or the reference spec")
     d.add_argument("--json", metavar="FILE", help="write the machine-readable report (docs/diagnose.md)")

@@ -6,7 +6,8 @@ from pathlib import Path
 
 from ..errors import NavfnInputError
 from ..nav2.mapserver import DEFAULT_DISTRO
-from .common import BACKEND_HELP, ORACLE_PLAN_HELP, add_planner_arguments, cell, planner_of
+from .common import (BACKEND_HELP, ORACLE_PLAN_HELP, add_planner_arguments, cell, layers_arithmetic_of,
+                     planner_of, plugin_arithmetic_of)
 
 
 def _plan_world(args) -> int:
@@ -23,14 +24,10 @@ def _plan_world(args) -> int:
     start, goal = check_pose("start", args.start), check_pose("goal", args.goal)
     check_params_file(args.params)
     planner = planner_of(args)
-    arith = planner.plugin_arithmetic() if planner.build is not None else None
-    if arith is None and args.target not in (None, "x86-64"):
-        raise NavfnInputError(f"--world --target {args.target}: the plugin's arithmetic is found in a build; give "
-                              f"--oracle DIR (navfn-smt oracle build --target {args.target})")
+    arith = plugin_arithmetic_of(planner, "--world")
     overrides = {"use_astar": True if args.astar else False if args.dijkstra else None, "variant": planner.variant}
     setup = load_setup(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside, overrides,
-                       args.resolution, tuple(args.origin),
-                       planner.layers_arithmetic() if planner.build is not None and is_yaml(args.map) else None)
+                       args.resolution, tuple(args.origin), layers_arithmetic_of(planner, args.map))
     run = create_plan(setup.costmap, start, goal, setup.params, args.backend, arith)
     report.plugin_plan(setup, run, start, goal, args.backend, args.json)
     return 0 if run.ok else 1

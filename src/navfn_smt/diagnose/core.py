@@ -17,6 +17,10 @@ with the planner's own pieces:
   when its state repeats, or it stops at another exit, no factor works;
 * what-ifs: the plugin run again with ``use_astar``, ``tolerance`` and ``allow_unknown``
   changed one at a time.
+
+Every step computes in one arithmetic, the plugin's of the build judged (``arith``: its
+multiply-adds and conversions, NavFn's among them; x86-64's by default): the plan, the
+propagations run again, calcPath walked without a budget, the factor's check and the what-ifs.
 """
 
 from __future__ import annotations
@@ -29,6 +33,7 @@ from typing import Optional
 import numpy as np
 
 from ..nav2.params import PlannerParams
+from ..spec.arithmetic import PLUGIN_X86_64, PluginArithmetic
 from ..nav2.plugin import (
     INT_MAX,
     POT_HIGH,
@@ -111,6 +116,7 @@ class Diagnosis:
     failing_cell: Optional[tuple[int, int]] = None  # the cell to look at in the picture
     propagation_check: dict = field(default_factory=dict)  # what lifting the limits did
     timings: dict = field(default_factory=dict)  # seconds per step
+    arith: PluginArithmetic = PLUGIN_X86_64  # the arithmetic every step computed in
 
     @property
     def legal_potential_no_plan(self) -> bool:
@@ -126,20 +132,23 @@ def with_params(params: PlannerParams, **changes) -> PlannerParams:
 
 
 def diagnose(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams = PlannerParams(), backend: str = "jit",
-             what_ifs: bool = True, max_steps: Optional[int] = None) -> Diagnosis:
-    """Plan as Nav2 does and explain the outcome (never raises for planning outcomes)."""
+             what_ifs: bool = True, max_steps: Optional[int] = None,
+             arith: Optional[PluginArithmetic] = None) -> Diagnosis:
+    """Plan as Nav2 does and explain the outcome (never raises for planning outcomes), every
+    step computed as a build of the plugin arithmetic ``arith`` does (None: x86-64's)."""
+    arith = arith or PLUGIN_X86_64
     t0 = time.perf_counter()
-    run = create_plan(cm, start, goal, params, backend)
+    run = create_plan(cm, start, goal, params, backend, arith)
     timings = {"plan": time.perf_counter() - t0}
     d = Diagnosis(ok=run.ok, cause="ok", stage="success", summary="", details=[], run=run, params=params,
-                  costmap=cm, start=start, goal=goal, timings=timings)
+                  costmap=cm, start=start, goal=goal, timings=timings, arith=arith)
     t = time.perf_counter()
     _classify(d, cm, backend, max_steps)
     d.stage = CAUSES[d.cause]
     timings["explain"] = time.perf_counter() - t
     if what_ifs and d.cause not in ("start_outside_map", "goal_outside_map"):
         t = time.perf_counter()
-        d.what_ifs = _what_ifs(cm, start, goal, params, backend)
+        d.what_ifs = _what_ifs(cm, start, goal, params, backend, arith)
         timings["what_ifs"] = time.perf_counter() - t
     timings["total"] = time.perf_counter() - t0
     return d
@@ -249,7 +258,7 @@ def _no_legal_potential(d: Diagnosis, cm: Costmap, backend: str) -> None:
                              f"{', '.join(map(str, con.cut[:6]))}{' ...' if len(con.cut) > 6 else ''}")
         return
     # connected but unreached: what stopped propagation?
-    lifted = _repropagate(run, d.params.use_astar, backend)
+    lifted = _repropagate(run, d.params.use_astar, backend, d.arith)
     d.propagation_check = lifted
     cyc = run.cycles >= run.cycle_limit
     drops = run.dropped > 0
@@ -275,9 +284,9 @@ def _no_legal_potential(d: Diagnosis, cm: Costmap, backend: str) -> None:
                                                        for k, v in lifted.items()))
 
 
-def _repropagate(run: PluginRun, astar: bool, backend: str) -> dict:
+def _repropagate(run: PluginRun, astar: bool, backend: str, arith: PluginArithmetic) -> dict:
     """Whether the goal's cell gets a potential with the cycle limit lifted, the buffers made
-    unbounded, or both (same costs, cells and mode)."""
+    unbounded, or both (same costs, cells, mode and arithmetic)."""
     from ..spec.propagation import unbounded_capacity
 
     ny, nx = run.costs.shape
@@ -285,15 +294,13 @@ def _repropagate(run: PluginRun, astar: bool, backend: str) -> dict:
     out = {}
     for name, cycles, cap in (("cycles_lifted", big, None), ("buffers_lifted", None, unbounded_capacity(nx, ny)),
                               ("both_lifted", big, unbounded_capacity(nx, ny))):
-        pot = _propagate(run.costs, run.target_cell, run.robot_cell, astar, backend, cycles, cap)
+        pot = _propagate(run.costs, run.target_cell, run.robot_cell, astar, backend, cycles, cap, arith)
         out[name] = bool(pot[run.target_cell[1], run.target_cell[0]] < POT_HIGH)
     return out
 
 
-def _propagate(costs, start, goal, astar, backend, cycles, capacity) -> np.ndarray:
-    from ..backends import get_backend
-
-    planner = get_backend(backend).prepare(costs, capacity)
+def _propagate(costs, start, goal, astar, backend, cycles, capacity, arith: PluginArithmetic) -> np.ndarray:
+    planner = _navfn(backend, arith).prepare(costs, capacity)
     return planner.run(start, goal, astar, trace=False, path_cycles=0, cycles=cycles).potential
 
 
@@ -360,17 +367,22 @@ def _cell_of(p) -> tuple[int, int]:
     return int(round(float(p[0]))), int(round(float(p[1])))
 
 
+def _navfn(backend: str, arith: PluginArithmetic):
+    """The NavFn ``backend`` computing in the NavFn arithmetic of ``arith``."""
+    from ..under_test import PlannerUnderTest
+
+    return PlannerUnderTest(arithmetic=arith.navfn).backend(backend)
+
+
 def _factor_fix(d: Diagnosis, cm: Costmap, backend: str, max_steps: Optional[int]) -> FactorFix:
     """The smallest factor, computed from the unbudgeted extraction and checked on the plugin."""
-    from ..backends import get_backend
-
     run = d.run
     maxdim = max(cm.size_x, cm.size_y)
     limit = INT_MAX // maxdim
     if not (0 <= run.robot_cell[0] < cm.size_x and 0 <= run.robot_cell[1] < cm.size_y):
         return FactorFix(None, "the robot's cell lies past the map's edge", max_dimension=maxdim, factor_limit=limit)
     w = d.walk = walk_extraction(run.potential, run.best_cell, run.robot_cell,
-                                 **({"max_steps": max_steps} if max_steps else {}))
+                                 **({"max_steps": max_steps} if max_steps else {}), arith=d.arith.navfn)
     if w.exit != "near_goal":
         why = {"cycle": f"calcPath's state repeats (period {w.cycle_period} from iteration {w.cycle_start})",
                UNDECIDED: f"undecided: no exit and no repeated state in {w.iterations} iterations",
@@ -382,29 +394,31 @@ def _factor_fix(d: Diagnosis, cm: Costmap, backend: str, max_steps: Optional[int
         return FactorFix(None, f"the path needs calcPath({L}) but max_cycles = {maxdim} * factor overflows int "
                                f"above factor {limit}", path_length=L, max_dimension=maxdim, factor_limit=limit)
     # the budget boundary on the backend itself: calcPath(L) succeeds, calcPath(L - 1) does not
-    planner = get_backend(backend).prepare(run.costs)
+    planner = _navfn(backend, d.arith).prepare(run.costs)
     at_l = planner.extract(run.potential, run.best_cell, run.robot_cell, L)[0] is ExtractionExit.NEAR_GOAL
     below = planner.extract(run.potential, run.best_cell, run.robot_cell, L - 1)[0] is ExtractionExit.NEAR_GOAL
     if not at_l or below:
         raise AssertionError(f"the unbudgeted extraction (L = {L}) disagrees with the {backend} backend's calcPath")
     fix = FactorFix(need, f"the path needs calcPath({L}): max_cycles_factor >= ceil({L} / {maxdim}) = {need}",
                     path_length=L, max_dimension=maxdim, factor_limit=limit)
-    ok = create_plan(d.costmap, d.start, d.goal, with_params(d.params, max_cycles_factor=need), backend)
+    ok = create_plan(d.costmap, d.start, d.goal, with_params(d.params, max_cycles_factor=need), backend, d.arith)
     fix.verified_with = ok.ok
     if need - 1 >= 0:
-        less = create_plan(d.costmap, d.start, d.goal, with_params(d.params, max_cycles_factor=need - 1), backend)
+        less = create_plan(d.costmap, d.start, d.goal, with_params(d.params, max_cycles_factor=need - 1), backend,
+                           d.arith)
         fix.verified_one_less = not less.ok
     return fix
 
 
 # ------------------------------------------------------------------------------ what-ifs
-def _what_ifs(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, backend: str) -> list:
+def _what_ifs(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, backend: str,
+              arith: PluginArithmetic) -> list:
     changes = [("use_astar", not params.use_astar)]
     changes += [("tolerance", t) for t in TOLERANCES if t != params.tolerance]
     changes += [("allow_unknown", not params.allow_unknown)]
     out = []
     for key, value in changes:
-        r = create_plan(cm, start, goal, with_params(params, **{key: value}), backend)
+        r = create_plan(cm, start, goal, with_params(params, **{key: value}), backend, arith)
         shown = str(value).lower() if isinstance(value, bool) else f"{value:g}"
         out.append(WhatIf(f"{key}={shown}", r.ok, r.error, r.legal_potential_no_plan, _exit_name(r), len(r.poses)))
     return out

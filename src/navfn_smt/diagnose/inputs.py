@@ -20,12 +20,13 @@ from ..nav2.setup import Setup, check_params_file, load_setup
 
 
 def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
-                resolution=None, origin=(0.0, 0.0), variant: str = "original") -> Setup:
+                resolution=None, origin=(0.0, 0.0), variant: str = "original", layers_arith=None) -> Setup:
     """Map (or costmap file) + optional params file -> the costmap and the plugin's parameters
-    (:func:`load_setup`), for NavFn as shipped or with the fix (``variant``)."""
+    (:func:`load_setup`), for NavFn as shipped or with the fix (``variant``), the layers computing
+    in ``layers_arith`` (None: x86-64's)."""
     check_params_file(params_file)
     return load_setup(map_yaml, params_file, distro, allow_outside, {"variant": variant}, resolution=resolution,
-                      origin=origin)
+                      origin=origin, layers_arith=layers_arith)
 
 
 def parse_goals(path) -> list[Pose]:

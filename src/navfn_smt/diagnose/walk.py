@@ -85,16 +85,18 @@ _DETAILS = {
 
 
 def walk_extraction(potential: np.ndarray, start: tuple[int, int], goal: tuple[int, int],
-                    max_steps: int = DEFAULT_MAX_STEPS) -> Walk:
+                    max_steps: int = DEFAULT_MAX_STEPS, arith=None) -> Walk:
     """``calcPath(infinity)`` from NavFn's start cell ``start`` towards its goal ``goal`` on a
     (ny, nx) float32 potential: the exit it takes, or the cycle it enters.  The iteration is the
-    spec's own :func:`~navfn_smt.spec.extraction.calc_path`, watched."""
+    spec's own :func:`~navfn_smt.spec.extraction.calc_path`, watched, in the NavFn arithmetic
+    ``arith`` (None: x86-64's)."""
     pot_arr = np.asarray(potential, dtype=np.float32)
     ny, nx = pot_arr.shape
     watch = _Watch()
     w = Walk(exit=UNDECIDED, iterations=max_steps, points=np.zeros((0, 2), np.float32))
     try:
-        ext = calc_path(pot_arr.ravel().tolist(), nx, ny, tuple(start), tuple(goal), max_steps, watch=watch)
+        ext = calc_path(pot_arr.ravel().tolist(), nx, ny, tuple(start), tuple(goal), max_steps, watch=watch,
+                        arith=arith)
     except _Repeat as r:
         first, i = r.args
         w.exit, w.iterations, w.cycle_start, w.cycle_period = "cycle", i, first, i - first

@@ -92,8 +92,9 @@ def diagnosis_doc(d) -> dict:
     }
 
 
-def report_doc(map_path, setup, backend: str, diagnoses: Sequence, seconds: float) -> dict:
-    """The whole report: the set-up once, then one object per diagnosed plan."""
+def report_doc(map_path, setup, backend: str, diagnoses: Sequence, seconds: float, planner=None) -> dict:
+    """The whole report: the set-up once (with the planner judged and the arithmetic every step
+    computed in), then one object per diagnosed plan."""
     cm, p = setup.costmap, setup.params
     causes: dict = {}
     for d in diagnoses:
@@ -109,6 +110,8 @@ def report_doc(map_path, setup, backend: str, diagnoses: Sequence, seconds: floa
                    "allow_unknown": p.allow_unknown, "max_cycles_factor": p.max_cycles_factor,
                    "use_final_approach_orientation": p.use_final_approach_orientation},
         "backend": backend,
+        **({"planner": planner.as_dict()} if planner is not None else {}),
+        "arithmetic": _arithmetic(diagnoses),
         "summary": {"plans": len(diagnoses), "ok": sum(d.ok for d in diagnoses),
                     "failed": sum(not d.ok for d in diagnoses), "causes": causes,
                     "legal_potential_no_plan": sum(d.legal_potential_no_plan for d in diagnoses),
@@ -164,7 +167,14 @@ def text_lines(d) -> list[str]:
     return lines
 
 
-def print_text(map_path, setup, backend: str, diagnoses: Sequence, console=None) -> None:
+def _arithmetic(diagnoses: Sequence) -> str:
+    """The plugin arithmetic the diagnoses computed in (one for a report)."""
+    from ..spec.arithmetic import PLUGIN_X86_64
+
+    return (diagnoses[0].arith if diagnoses else PLUGIN_X86_64).name
+
+
+def print_text(map_path, setup, backend: str, diagnoses: Sequence, planner=None, console=None) -> None:
     out = console.print if console is not None else print
     cm, p = setup.costmap, setup.params
     out(f"map      {map_path}: {cm.size_x}x{cm.size_y} cells, {cm.resolution:g} m, costmap layers: "
@@ -173,6 +183,8 @@ def print_text(map_path, setup, backend: str, diagnoses: Sequence, console=None)
         out(f"note     {n}")
     out(f"params   {'A*' if p.use_astar else 'Dijkstra'}, tolerance {p.tolerance:g}, allow_unknown "
         f"{str(p.allow_unknown).lower()}, max_cycles_factor {p.max_cycles_factor} ({backend} backend)")
+    judged = f"{planner.label}; " if planner is not None else ""
+    out(f"judged   {judged}every step computed in the plugin arithmetic {_arithmetic(diagnoses)}")
     if len(diagnoses) == 1:
         for line in text_lines(diagnoses[0]):
             out(line)
