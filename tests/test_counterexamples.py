@@ -42,3 +42,14 @@ def test_the_arithmetics_part_counterexamples():
     verdicts = [read_counterexample(d)["is_one_in"] for d in DIRS]
     assert any(v["x86-64"] and not v["aarch64"] for v in verdicts)
     assert any(v["aarch64"] and not v["x86-64"] for v in verdicts)
+
+
+def test_a_path_without_potential_is_a_counterexample_only_where_conversions_saturate():
+    """NoPathWithoutFinitePotential is proved in x86-64's arithmetic and false in arm64's: the
+    committed path-without-potential maps are counterexamples in aarch64's only (x86-64-v3 fuses
+    as arm64 does but converts as x86-64 does), each from a start whose cost is lethal."""
+    docs = [read_counterexample(d) for d in DIRS if read_counterexample(d)["kind"] == "path-without-potential"]
+    assert {d["mode"] for d in docs} == {"astar", "dijkstra"}
+    for d in docs:
+        assert d["is_one_in"] == {"x86-64": False, "x86-64-v3": False, "aarch64": True}, d
+        assert d["detail"]["start_cost"] == 254 and not d["detail"]["start_passable"]

@@ -223,3 +223,22 @@ def test_a_search_in_arm64_arithmetic_saves_what_it_found_in_that_arithmetic(tmp
         assert main(argv) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and "--target" in err[0], err
+
+
+def test_a_path_without_potential_is_found_where_conversions_saturate_and_never_in_x86_64():
+    """``path-without-potential`` (calcPath returns a path from a start whose potential is not
+    finite): in arm64's arithmetic, where (int) of the unreached potential saturates, the hunt
+    finds one at once on the smallest maps, from a lethal start; in x86-64's, where the
+    conversion gives INT_MIN (NoPathWithoutFinitePotential is proved there), the same hunt finds
+    none, and the arm64 map plans no path."""
+    from navfn_smt.check import properties as P
+    from navfn_smt.search.hunt import hunt_smallest
+    from navfn_smt.under_test import PlannerUnderTest
+
+    arm = PlannerUnderTest.of_target("aarch64")
+    found, _ = hunt_smallest("path-without-potential", "astar", (8, 8), 60, planner=arm, max_evaluations=50)
+    assert found is not None and found.detail["start_passable"] is False, found
+    none, _ = hunt_smallest("path-without-potential", "astar", (8, 8), 60, max_evaluations=50)
+    assert none is None
+    r = P.run(found.costs, found.start, found.goal, True)  # x86-64's arithmetic: no path from there
+    assert P.no_path_before_start_potential(r) is None and len(r.path) == 0

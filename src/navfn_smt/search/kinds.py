@@ -210,6 +210,16 @@ def _judge_int_conversion(r: P.Run) -> Optional[dict]:
             "value": v, "fallback": i, "start_reached": bool(r.start_potential < _HIGH), "exit": r.exit}
 
 
+def _judge_path_without_potential(r: P.Run) -> Optional[dict]:
+    why = P.no_path_before_start_potential(r)
+    if why is None:
+        return None
+    sx, sy = r.start
+    return {"reason": why, "start_potential": float(r.start_potential), "start_cost": int(r.costs[sy, sx]),
+            "start_passable": P.passable(r.costs, r.start), "points": len(r.path),
+            "first_point": [float(v) for v in r.path[0]]}
+
+
 def _screen_cost(b: Batch) -> np.ndarray:
     g, _ = b.gaps()
     return np.maximum(g, 0).astype(np.float64)
@@ -241,6 +251,10 @@ def _guide_unreached(b: Batch) -> float:
     most = int(cycles.max())
     share = np.count_nonzero(cycles == most) / (len(cycles) + 1)
     return (most + share) / limit
+
+
+def _screen_path_without_potential(b: Batch) -> np.ndarray:
+    return (~b.finite() & (b.out["exit"] == exit_code(ExtractionExit.NEAR_GOAL))).astype(np.float64)
 
 
 def _screen_turn(b: Batch) -> np.ndarray:
@@ -294,6 +308,11 @@ KINDS = {k.name: k for k in (
          "outside the int32 range to int (undefined behaviour in C++); on maps whose potentials stay below "
          "2**31 this happens exactly when the start is unreached (the first fallback converts 1e10)",
          _judge_int_conversion, _screen_int_conversion),
+    Kind("path-without-potential", "calcPath returns a path although the start's potential is not finite "
+         "(properties 'no-path-before-start-potential'): a lethal start, or one the wave never reached; proved "
+         "impossible in x86-64's arithmetic (NoPathWithoutFinitePotential), where (int) of the unreached potential "
+         "is INT_MIN; where the conversion saturates (arm64) the fallback can walk from such a start",
+         _judge_path_without_potential, _screen_path_without_potential),
 )}
 
 SEARCH_KINDS = tuple(KINDS) + ("overflow",)
