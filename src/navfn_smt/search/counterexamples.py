@@ -146,9 +146,10 @@ def read_counterexample(directory) -> dict:
         raise NavfnInputError(f"{p}: unreadable ({e})") from None
 
 
-def judge_kind(kind: str, r: P.Run, doc: Optional[dict] = None) -> Optional[dict]:
+def judge_kind(kind: str, r: P.Run, doc: Optional[dict] = None, arith=None) -> Optional[dict]:
     """The judge of ``kind``: a search kind of :mod:`.kinds`, ``overflow`` (judged by
-    :mod:`.overflow`, imported only then) or a property of :data:`properties.PROPERTIES`
+    :mod:`.overflow`, imported only then: ``r`` replanned with unbounded buffers in ``r``'s
+    arithmetic ``arith``, None: x86-64's) or a property of :data:`properties.PROPERTIES`
     (``optimal`` takes the ``gap`` allowed from ``doc``'s ``allowed_gap``)."""
     if kind in KD.KINDS:
         return KD.KINDS[kind].judge(r)
@@ -158,7 +159,7 @@ def judge_kind(kind: str, r: P.Run, doc: Optional[dict] = None) -> Optional[dict
         except ImportError as e:
             raise NavfnInputError(f"overflow counterexamples need navfn_smt.search.overflow ({e})") from None
         cap = (doc or {}).get("detail", {}).get("capacity")
-        return overflow_judge(r) if cap is None else overflow_judge(r, capacity=int(cap))
+        return overflow_judge(r, arith=arith) if cap is None else overflow_judge(r, capacity=int(cap), arith=arith)
     if kind == "optimal":
         why = P.judge(kind, r, gap=int((doc or {}).get("allowed_gap", 0)))
     elif kind in P.PROPERTIES:
@@ -180,7 +181,7 @@ def judged_in_each(doc: dict, costs: np.ndarray, start, goal) -> dict:
     variant in x86-64's only, the one it computes in so far)."""
     variant = doc.get("variant", "original")
     return {name: judge_kind(doc["kind"], P.run(costs, start, goal, doc["mode"] == "astar", variant=variant,
-                                                arith=arith), doc)
+                                                arith=arith), doc, arith)
             for name, arith in KNOWN.items() if variant == "original" or arith == X86_64}
 
 

@@ -65,6 +65,7 @@ class OverflowCounterexample:
     found_size: tuple[int, int] = ()
     history: list = field(default_factory=list)
     kind: str = "overflow"
+    planner: object = None  # the planner under test hunted (None: NavFn as shipped, x86-64's arithmetic)
 
 
 # ---------------------------------------------------------------------------------------
@@ -114,14 +115,14 @@ def verdict(bounded, unbounded, capacity: int = CAPACITY, both_paths: bool = Fal
 class _Judge:
     """The JIT planners of one map (bounded and unbounded) and the counts of plans made."""
 
-    def __init__(self, costs: np.ndarray, capacity: int = CAPACITY, both_paths: bool = False):
+    def __init__(self, costs: np.ndarray, capacity: int = CAPACITY, both_paths: bool = False, planner=None):
         from ..backends import get_backend
 
         self.both_paths = both_paths
         ny, nx = costs.shape
         self.capacity = capacity
-        self.bounded = get_backend("jit").prepare(costs, capacity)
-        self.unbounded = get_backend("jit").prepare(costs, unbounded_capacity(nx, ny))
+        self.bounded = get_backend("jit", planner).prepare(costs, capacity)
+        self.unbounded = get_backend("jit", planner).prepare(costs, unbounded_capacity(nx, ny))
         self.plans = 0
 
     def largest_buffer(self, start, goal, astar: bool) -> tuple[int, object]:
@@ -157,17 +158,17 @@ class _Judge:
 
 
 def replay(costs: np.ndarray, start, goal, astar: bool, capacity: int = CAPACITY,
-           both_paths: bool = False) -> Optional[dict]:
+           both_paths: bool = False, arith=None) -> Optional[dict]:
     """Replay a case on the reference spec (:func:`navfn_smt.check.properties.run`) with
-    ``capacity`` and with unbounded buffers: the counterexample's detail, or None when the
-    spec does not confirm it."""
+    ``capacity`` and with unbounded buffers, both in the arithmetic ``arith`` (None: x86-64's):
+    the counterexample's detail, or None when the spec does not confirm it."""
     from ..check.properties import run
 
     costs = np.asarray(costs, np.uint8)
     ny, nx = costs.shape
     t0 = time.perf_counter()
-    bounded = run(costs, start, goal, astar, capacity=capacity)
-    unbounded = run(costs, start, goal, astar, capacity=unbounded_capacity(nx, ny))
+    bounded = run(costs, start, goal, astar, capacity=capacity, arith=arith)
+    unbounded = run(costs, start, goal, astar, capacity=unbounded_capacity(nx, ny), arith=arith)
     d = verdict(bounded, unbounded, capacity, both_paths)
     if d is not None:
         d["replay_seconds"] = round(time.perf_counter() - t0, 2)
@@ -175,14 +176,15 @@ def replay(costs: np.ndarray, start, goal, astar: bool, capacity: int = CAPACITY
     return d
 
 
-def judge(r, capacity: int = CAPACITY) -> Optional[dict]:
+def judge(r, capacity: int = CAPACITY, arith=None) -> Optional[dict]:
     """The ``overflow`` kind's judge of one spec run (a :class:`navfn_smt.check.properties.Run`
-    made with the C++ capacity): the same case replanned by the spec with unbounded buffers,
-    and the detail when the run dropped pushes and its path differs (else None)."""
+    made with the C++ capacity, in the arithmetic ``arith``; None: x86-64's): the same case
+    replanned by the spec with unbounded buffers in that arithmetic, and the detail when the run
+    dropped pushes and its path differs (else None)."""
     from ..check.properties import run
 
     ny, nx = r.costs.shape
-    unbounded = run(r.costs, r.start, r.goal, r.astar, capacity=unbounded_capacity(nx, ny))
+    unbounded = run(r.costs, r.start, r.goal, r.astar, capacity=unbounded_capacity(nx, ny), arith=arith)
     return verdict(r, unbounded, capacity)
 
 
@@ -251,8 +253,9 @@ def family_candidates(w: int, h: int, cost_range: str, rng: np.random.Generator)
 # ---------------------------------------------------------------------------------------
 class _Search:
     def __init__(self, astar: bool, cost_range: str, seed: int, deadline: float, say: Progress,
-                 both_paths: bool = False):
+                 both_paths: bool = False, planner=None):
         self.astar = astar
+        self.planner = planner
         self.both_paths = both_paths
         self.cost_range = cost_range
         self.rng = np.random.default_rng(seed)
@@ -269,7 +272,7 @@ class _Search:
 
     def evaluate(self, costs, start, goal, judge: Optional[_Judge] = None):
         """(largest buffer, detail or None, judge) of one case."""
-        judge = judge or _Judge(costs, both_paths=self.both_paths)
+        judge = judge or _Judge(costs, both_paths=self.both_paths, planner=self.planner)
         self.evaluations += 1
         before = judge.plans
         most, unb = judge.largest_buffer(start, goal, self.astar)
@@ -387,7 +390,7 @@ def _side(v) -> tuple[int, int]:
 
 def search_overflow(mode: str, size=None, max_size=None, timeout: float = 60.0, seed: int = 0,
                     progress: Optional[Progress] = None, cost_range: str = "internal",
-                    both_paths: bool = False, verify: bool = True) -> list[OverflowCounterexample]:
+                    both_paths: bool = False, verify: bool = True, planner=None) -> list[OverflowCounterexample]:
     """Maps on which a push dropped by a full buffer (capacity 10,000) changes the path.
 
     ``mode``: ``dijkstra``, ``astar`` or ``both`` (the timeout is split).  With ``size``
@@ -396,7 +399,8 @@ def search_overflow(mode: str, size=None, max_size=None, timeout: float = 60.0, 
     ``cost_range``: ``internal`` (NavFn's costs 0..253) or ``nav2`` (50..253, what
     ``setCostmap`` produces).  With ``both_paths`` only maps where both planners return a
     path (and the paths differ) count.  The smallest map found per mode is replayed on the reference
-    spec (``verify``) and returned; a mode without one is left out.
+    spec (``verify``) and returned; a mode without one is left out.  ``planner``: the planner
+    under test whose arithmetic the hunt and the replay plan in (None: NavFn as shipped, x86-64's).
     """
     if cost_range not in COST_RANGES:
         raise NavfnInputError(f"unknown cost range {cost_range!r} (choose {', '.join(COST_RANGES)})")
@@ -409,7 +413,7 @@ def search_overflow(mode: str, size=None, max_size=None, timeout: float = 60.0, 
     share = timeout / len(modes)
     for m in modes:
         t0 = time.monotonic()
-        s = _Search(m == "astar", cost_range, seed, t0 + share, say, both_paths)
+        s = _Search(m == "astar", cost_range, seed, t0 + share, say, both_paths, planner)
         best = None
         if size is not None:
             got = s.try_size(*size, until=s.deadline)
@@ -455,7 +459,8 @@ def search_overflow(mode: str, size=None, max_size=None, timeout: float = 60.0, 
                       both_paths_required=both_paths, seconds=seconds, mode=m)
         if verify:
             say(f"overflow {m}: replaying {w}x{h} on the reference spec")
-            ref = replay(cand.costs, cand.start, cand.goal, m == "astar", both_paths=both_paths)
+            ref = replay(cand.costs, cand.start, cand.goal, m == "astar", both_paths=both_paths,
+                         arith=None if planner is None else planner.arithmetic)
             if ref is None:
                 raise AssertionError(f"the reference spec does not confirm the JIT's overflow map {cand.describe()}")
             for k in ("dropped", "path_points", "path_points_unbounded", "first_difference"):
@@ -465,7 +470,7 @@ def search_overflow(mode: str, size=None, max_size=None, timeout: float = 60.0, 
         results.append(OverflowCounterexample(
             costs=cand.costs, start=cand.start, goal=cand.goal, mode=m, size=(w, h), detail=detail,
             seconds=seconds, evaluations=s.evaluations, plans=s.plans, seed=seed, found_size=(w, h),
-            history=s.history))
+            history=s.history, planner=planner))
     return results
 
 

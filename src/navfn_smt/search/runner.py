@@ -13,7 +13,6 @@ from typing import Optional
 from ..engine import Engine, stream
 from ..errors import NavfnInputError
 from ..maps.suite import modes_of
-from ..spec.arithmetic import X86_64
 from ..under_test import ORIGINAL
 from .hunt import DEFAULT_COSTS, check_size, hunt, hunt_smallest
 from .kinds import SEARCH_KINDS
@@ -34,16 +33,17 @@ def _overflow_search():
     return _modes, search_overflow
 
 
-def _overflow(mode, size, max_size, timeout, seed, progress) -> list:
+def _overflow(mode, size, max_size, timeout, seed, progress, planner) -> list:
     search_overflow = _overflow_search()[1]
-    return list(search_overflow(mode, size=size, max_size=max_size, timeout=timeout, seed=seed, progress=progress))
+    return list(search_overflow(mode, size=size, max_size=max_size, timeout=timeout, seed=seed, progress=progress,
+                                planner=planner))
 
 
 def _hunt_mode(task) -> tuple[list, Optional[dict]]:
     """One mode's hunt (a task): its findings (none or one) and, with ``max_size``, the sizes tried."""
     kind, m, size, max_size, share, seed, costs_range, progress, planner = task
     if kind == "overflow":
-        return _overflow(m, size, max_size, share, seed, progress), None
+        return _overflow(m, size, max_size, share, seed, progress, planner), None
     if size is None and max_size is None:
         max_size = DEFAULT_MAX_SIZE.get(kind)
     if max_size is not None:
@@ -70,9 +70,6 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
     if planner.variant != "original" and kind == "overflow":
         raise NavfnInputError("search overflow hunts the C++ buffers' overflow, which the fix does not touch: "
                               "no --variant")
-    if planner.arithmetic != X86_64 and kind == "overflow":
-        raise NavfnInputError(f"search overflow plans in x86-64's arithmetic only so far, not "
-                              f"{planner.arithmetic.name}'s: no --target")
     if size is not None:
         check_size(*size)
     if max_size is not None:
