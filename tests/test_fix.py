@@ -287,3 +287,53 @@ def test_sources_that_already_carry_the_fix_build_without_the_fixed_programs(nav
     doc = build(src, tmp_path / "out", programs=("navfn-plain", "navfn-fixed"))
     assert doc["programs"] == ["navfn-plain"]
     assert "does not apply" in doc["skipped"]["navfn-fixed"] and "already applied" in doc["skipped"]["navfn-fixed"]
+
+
+# --------------------------------------------------------------------------- in arm64's arithmetic
+def _arm64_cases(kind: str):
+    for d in sorted(CX.glob(f"{kind}-*")):
+        doc = json.loads((d / "counterexample.json").read_text())
+        sm = load_map(d)
+        sx, sy, gx, gy = (int(v) for v in sm.cases[0])
+        yield d.name, sm.costs, (sx, sy), (gx, gy), doc["mode"] == "astar"
+
+
+@pytest.mark.parametrize("backend", ["jit", "reference"])
+def test_in_arm64s_arithmetic_the_fix_propagates_on_where_the_original_plans_from_an_unreached_start(backend):
+    """Where ``(int)`` saturates (arm64), the original returns a path from a start the wave never
+    reached on the committed unreached maps; the patched propagation goes on there all the same
+    (it loops while the start is unreached), so the fixed backends plan as
+    spec.planner.plan(variant="fixed") in that arithmetic, bit for bit: the start reached, the
+    fixed propagation named.  (The backends once kept the original's path there, as they may in
+    x86-64's arithmetic, where no path comes from an unreached start.)"""
+    from navfn_smt.spec.arithmetic import KNOWN
+
+    arm, fixed = KNOWN["aarch64"], PlannerUnderTest.of_target("aarch64", "fixed")
+    seen = 0
+    for name, costs, s, g, astar in _arm64_cases("unreached"):
+        o = plan(costs, s, g, astar, arith=arm)
+        want = plan(costs, s, g, astar, variant="fixed", arith=arm)
+        planner = get_backend(backend, fixed).prepare(costs)
+        got = planner.run(s, g, astar)
+        for field in ("path", "potential", "trace"):
+            assert _same(getattr(want, field), getattr(got, field)), (name, field)
+        assert (want.cycles, want.exit, want.extra["fix"]) == (got.cycles, got.exit, got.extra["fix"]), name
+        cols = planner.run_batch(np.array([(*s, *g)]), astar)
+        assert _same(cols["path"], want.path) and cols["cycles"][0] == want.cycles, name
+        if len(o.path) and not o.start_potential < POT_HIGH:  # a path from the unreached start
+            seen += 1
+            assert want.start_potential < POT_HIGH and "propagation" in want.extra["fix"], name
+    assert seen >= 2, seen
+
+
+def test_in_arm64s_arithmetic_the_fix_still_returns_a_path_from_a_lethal_start():
+    """The patch leaves calcPath as it is: where ``(int)`` saturates, the fixed planner returns
+    the path-without-potential maps' path from the lethal start, as the original does (and as
+    the patched arm64 C++ does: tests/test_oracle.py); x86-64's returns none there."""
+    from navfn_smt.spec.arithmetic import KNOWN
+
+    for name, costs, s, g, astar in _arm64_cases("path-without-potential"):
+        arm = plan(costs, s, g, astar, variant="fixed", arith=KNOWN["aarch64"])
+        x86 = plan(costs, s, g, astar, variant="fixed")
+        assert len(arm.path) and not arm.start_potential < POT_HIGH and costs[s[1], s[0]] == COST_OBS, name
+        assert not len(x86.path), name

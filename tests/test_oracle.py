@@ -492,7 +492,8 @@ def target_builds(nav2_src, tmp_path_factory) -> dict:
             tc.runner()
         except NavfnInputError as e:
             pytest.skip(str(e))
-        programs = ("navfn-plain", "navfn-traced", *(("navfn-plugin",) if name == "aarch64" else ()),
+        programs = ("navfn-plain", "navfn-traced",
+                    *(("navfn-plugin", "navfn-fixed", "navfn-plugin-fixed") if name == "aarch64" else ()),
                     *(("costmap-layers",) if name == "x86-64-v3" else ()))
         out[name] = (build(nav2_src / "rolling", root / name, programs=programs, tc=tc), root / name)
     return out
@@ -542,17 +543,9 @@ def test_a_build_in_another_arithmetic_runs_under_qemu_and_is_compared_in_its_ow
     with Oracle(folder) as oracle:  # runs through the build's runner, unnoticed
         (res,) = oracle.plan(add_border(np.full((6, 6), 50, np.uint8)), [(1, 1, 4, 4)], True)
     assert res.start_reached and len(res.path) > 0
-    # the compiled backend computes in the build's arithmetic; the fix not yet: refused, not compared wrongly
+    # the compiled backend computes in the build's arithmetic (the fix too: the next test but one)
     assert main(["difftest", "--oracle", str(folder), "--quiet"]) == 0
     assert "4396 passed, 0 failed" in capsys.readouterr().out
-    from navfn_smt.errors import NavfnInputError
-    from navfn_smt.spec.arithmetic import KNOWN
-    from navfn_smt.under_test import PlannerUnderTest
-
-    with pytest.raises(NavfnInputError, match="aarch64 arithmetic"):
-        PlannerUnderTest("fixed", KNOWN["aarch64"])
-    with pytest.raises(NavfnInputError, match="aarch64 arithmetic"):
-        PlannerUnderTest.of_build(folder, "fixed")
 
 
 @pytest.mark.parametrize("name", TARGET_BUILDS)
@@ -583,6 +576,18 @@ def test_the_committed_counterexamples_plan_on_each_build_as_the_spec_in_its_ari
     with Oracle(folder) as oracle:
         s = run_live(root, MODES, "jit", oracle, planner=PlannerUnderTest.of_build(folder)).as_dict()
     assert s["failed"] == 0 and s["passed"] == 2 * len(discover(root)), s["disagreements"][:1]
+
+
+def test_the_patched_arm64_cpp_equals_the_fixed_spec_in_its_arithmetic(target_builds, capsys):
+    """Rolling patched by the fix and built for arm64 (navfn-fixed, under qemu-user): the fixed
+    spec in the arithmetic found in that build agrees with it on the example suite and on every
+    committed counterexample, white-box and bit for bit, both modes (among them the unreached
+    starts the original leaves with a path on arm64, which the patched propagation reaches)."""
+    _, folder = target_builds["aarch64"]
+    root = Path(__file__).resolve().parent / "data" / "counterexamples"
+    for suite in ([], [str(root)]):
+        assert main(["difftest", *suite, "--variant", "fixed", "--oracle", str(folder)]) == 0
+        assert ", 0 failed" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("wrong", ["path_step", "planar", "conversion"])
@@ -814,7 +819,8 @@ def test_golden_files_recorded_from_arm64_replay_on_the_spec_in_its_arithmetic(t
 
 def test_nav2_benchmark_plans_with_an_arm64_plugin_in_its_arithmetic(target_builds, tmp_path, capsys):
     """Rolling's plugin built for arm64: the benchmark's model plans in the arithmetic found in it
-    and agrees with it on every pose; the fix (x86-64's arithmetic only) is left out and said so."""
+    and agrees with it on every pose, NavFn as shipped and fixed (the arm64 build of the patched
+    sources), each in the arithmetic found in that build."""
     from test_nav2_benchmark import MARGIN, write_map
 
     _, folder = target_builds["aarch64"]
@@ -822,9 +828,9 @@ def test_nav2_benchmark_plans_with_an_arm64_plugin_in_its_arithmetic(target_buil
     assert main(["nav2-benchmark", str(write_map(tmp_path)), "--pairs", "4", "--margin", str(MARGIN), "--mode",
                  "astar", "--oracle", str(folder), "--json", str(out)]) == 0
     text = capsys.readouterr().out
-    assert "NavFn fixed is left out" in text and "the model in aarch64" in text
+    assert "the model in aarch64" in text
     (m,) = json.loads(out.read_text())["maps"]
-    assert [r["planner"] for r in m["rows"]] == ["NavFn original A*"] and m["differences"] == []
+    assert [r["planner"] for r in m["rows"]] == ["NavFn original A*", "NavFn fixed A*"] and m["differences"] == []
 
 
 @pytest.mark.parametrize("behaviour", ["silent", "gone", "ends"])

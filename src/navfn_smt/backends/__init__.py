@@ -69,7 +69,7 @@ class ReferenceMapPlanner:
         """:meth:`run` with the fix's propagation (:func:`navfn_smt.spec.fix.propagate_on`), without
         its descent."""
         return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
-                    path_cycles=path_cycles, cycles=cycles, variant="fixed", descent=False)
+                    path_cycles=path_cycles, cycles=cycles, variant="fixed", descent=False, arith=self.arith)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """``calcPath(path_cycles)`` alone on a given potential: (exit, path; empty unless NEAR_GOAL)."""
@@ -111,9 +111,11 @@ _SCALARS = ("start_reached", "start_potential", "cycles", "updates", "dropped", 
 
 class FixedMapPlanner:
     """A backend's planner with the fix of :mod:`navfn_smt.spec.fix`: the backend plans as
-    NavFn does, and where it returns no path the reference spec plans the case again with the
-    fix.  The fix never changes a path the original returns, so this is the fixed planner, and
-    the fix is stated once (in the spec, with the kernels)."""
+    NavFn does, and where it returns no path, or the start is unreached, it plans the case again
+    with the fix.  The fix never changes a path the original returns from a reached start, so
+    this is the fixed planner, and the fix is stated once (in the spec, with the kernels).  (From
+    an unreached start the original returns no path in x86-64's arithmetic, but it can where
+    ``(int)`` saturates, as on arm64: the patched propagation goes on there all the same.)"""
 
     def __init__(self, inner: MapPlanner):
         self.inner = inner
@@ -122,14 +124,15 @@ class FixedMapPlanner:
 
     def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
             cycles: Optional[int] = None) -> PlanResult:
-        """The original's run where it returns a path; from a reached start without one, the
-        same run with the descent's path; from an unreached start, the fixed run again."""
+        """The original's run where it returns a path from a reached start; from a reached start
+        without one, the same run with the descent's path; from an unreached start (with a path
+        or not), the fixed run again, then the descent where it has no path."""
         res = self.inner.run(start, goal, astar, trace, path_cycles, cycles)
         res.extra = {**res.extra, "fix": []}
-        if len(res.path):
-            return res
         if not F.reached(res.start_potential):  # the fix propagates on
             res = self.inner.run_fixed(start, goal, astar, trace, path_cycles, cycles)
+        elif len(res.path):
+            return res
         return res if len(res.path) else F.with_descent(res, start, goal)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
@@ -143,10 +146,12 @@ class FixedMapPlanner:
         return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
 
     def run_batch(self, cases, astar: bool) -> dict:
-        """The backend's columns, the cases it plans no path for planned again with the fix."""
+        """The backend's columns, the cases it plans no path for, or from an unreached start,
+        planned again with the fix."""
         cases = np.asarray(cases).reshape(-1, 4)
         cols = self.inner.run_batch(cases, astar)
-        failed = np.flatnonzero(cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL))
+        failed = np.flatnonzero((cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL))
+                                | ~np.asarray([F.reached(v) for v in cols["start_potential"]], bool))
         if not len(failed):
             return cols
         rows = [_row(cols, i) for i in range(len(cases))]

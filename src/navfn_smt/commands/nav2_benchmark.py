@@ -147,16 +147,11 @@ def cmd_nav2_benchmark(args) -> int:
         timing = "the model's create_plan (jit), wall time per pair; give --oracle DIR for the C++'s"
         if args.oracle:
             from ..oracle.client import PluginOracle
-            from ..spec.arithmetic import X86_64
             from .common import planner_of
 
             planner = planner_of(args, "original")  # the build's; each planner of the benchmark plans as it
             arith = planner.plugin_arithmetic()  # the model plans as the build was found to compute
             first = stack.enter_context(PluginOracle(args.oracle, "original"))
-            if arith.navfn != X86_64 and any(p.variant == "fixed" for p in planners):
-                planners = tuple(p for p in planners if p.variant == "original")
-                console.print(f"the fix computes in x86-64's arithmetic only so far, and {args.oracle} computes in "
-                              f"{arith.navfn.name}'s: NavFn fixed is left out")
             oracles = {"original": first, **{v: stack.enter_context(PluginOracle(args.oracle, v))
                                              for v in sorted({p.variant for p in planners} - {"original"})}}
             build = planner.doc

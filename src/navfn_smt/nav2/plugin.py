@@ -47,7 +47,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
-from ..spec.arithmetic import PLUGIN_X86_64, X86_64, PluginArithmetic
+from ..spec.arithmetic import PLUGIN_X86_64, PluginArithmetic
 from ..spec.constants import DBL_MAX, FREE_SPACE, INT_MAX, LETHAL_OBSTACLE, POT_HIGH
 from ..spec.costs import add_border, set_costmap
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour
@@ -318,9 +318,6 @@ def create_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams = Pl
     build of the arithmetic ``arith`` does (None: x86-64's); never raises for planning outcomes."""
     flavour = flavour_of(params.distro)
     run = PluginRun(poses=[], arith=arith or PLUGIN_X86_64)
-    if params.variant == "fixed" and run.arith.navfn != X86_64:
-        raise NavfnInputError(f"the fix computes in x86-64 arithmetic only so far, not in the "
-                              f"{run.arith.navfn.name} arithmetic")
     if flavour.throws and _checked_poses(cm, start, goal, params, run) is not None:
         return run
     if start.x == goal.x and start.y == goal.y:
