@@ -25,7 +25,7 @@ from ..inputs import check_inputs
 from ..spec.costs import add_border
 from ..spec.extraction import EXIT_CODES, ExtractionExit, UndefinedBehaviour, calc_path
 from ..spec.planner import PlanResult, path_cycle_limit, plan
-from ..spec.constants import PRIORITYBUFSIZE
+from ..spec.constants import POT_HIGH, PRIORITYBUFSIZE
 from ..spec.propagation import check_capacity, cycle_limit
 from ..spec import fix as F
 
@@ -150,8 +150,8 @@ class FixedMapPlanner:
         planned again with the fix."""
         cases = np.asarray(cases).reshape(-1, 4)
         cols = self.inner.run_batch(cases, astar)
-        failed = np.flatnonzero((cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL))
-                                | ~np.asarray([F.reached(v) for v in cols["start_potential"]], bool))
+        reached = np.asarray(cols["start_potential"], np.float32) < np.float32(POT_HIGH)  # F.reached, per case
+        failed = np.flatnonzero((cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL)) | ~reached)
         if not len(failed):
             return cols
         rows = [_row(cols, i) for i in range(len(cases))]

@@ -118,9 +118,11 @@ def plugin_arithmetic_of(planner, command: str):
     """The plugin arithmetic the planner under test computes in for ``command`` (its name in
     errors): the one found in its build (``--oracle DIR``), None for x86-64's; a clear error
     for ``--target NAME`` of another machine, whose plugin arithmetic is found only in a build."""
+    from ..spec.arithmetic import X86_64
+
     if planner.build is not None:
         return planner.plugin_arithmetic()
-    if planner.arithmetic is not None and planner.arithmetic.name != "x86-64":
+    if planner.arithmetic != X86_64:
         name = planner.arithmetic.name
         raise NavfnInputError(f"{command} --target {name}: the plugin's arithmetic is found in a build; give "
                               f"--oracle DIR (navfn-smt oracle build --target {name})")
