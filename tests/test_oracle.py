@@ -630,6 +630,18 @@ def test_the_plugin_model_in_the_arithmetic_found_agrees_with_the_arm64_plugin(t
             assert run_plugin_live(configs, oracle, arith=wrong).as_dict()["failed"] > 0, wrong.name
 
 
+def test_the_fixed_plugin_model_agrees_with_the_patched_arm64_plugin(target_builds, capsys):
+    """The patched plugin built for arm64 and the fixed model in the arithmetic found in it
+    agree on generated configurations, among them starts one cell past the map's edge (configuration
+    15 of seed 0, a 12x9 map with the start at x = 12), whose propagation the model runs on the
+    spec: it ran in x86-64's arithmetic there, and a path pose differed by a float32 ulp."""
+    _, folder = target_builds["aarch64"]
+    assert main(["difftest", "--level", "plugin", "--variant", "fixed", "--oracle", str(folder),
+                 "--configs", "20", "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert ", 0 failed" in out and " passed" in out, out[-500:]
+
+
 def test_diagnose_judges_a_plan_as_the_arm64_build_computes_it(target_builds, tmp_path, capsys):
     """A Nav2 plan the arm64 plugin makes otherwise than x86-64's (30 poses against 29: generated
     configuration 387, pair 2): ``diagnose`` in the arithmetic found in that build gives the C++'s

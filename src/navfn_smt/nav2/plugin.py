@@ -644,7 +644,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
 
     ny, nx = run.costs.shape
     if variant == "fixed":
-        st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal)
+        st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal, arith=run.arith.navfn)
         run.reached, _ = fix.propagate_on(st, navfn_start, navfn_goal, astar, run.cycle_limit, record_trace=False)
         run.potential = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
         run.cycles, run.dropped = st.cycles, st.dropped
