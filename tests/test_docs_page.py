@@ -151,9 +151,12 @@ def test_not_run_without_a_report(tmp_path):
     assert (tmp_path / "b.md").read_text() == text
 
 
-def test_prove_markdown_is_the_same_generator():
+def test_prove_markdown_is_the_same_generator(tmp_path):
     """`prove --markdown` renders through the docs generator: from the same verdicts it gives
-    the same page but for the line naming the report."""
+    the same page but for the line naming the report (the prove report and the split report
+    beside it, without the runs in other arithmetics, which only the docs generator joins in)."""
+    import shutil
+
     from navfn_smt.commands.common import page_sources
     from navfn_smt.commands.docs import generate
     from navfn_smt.report import invariants_page as page
@@ -163,10 +166,30 @@ def test_prove_markdown_is_the_same_generator():
     checks = sorted(REPORTS.glob("check*.json"))
     meta = {k: v for k, v in doc.items() if k in ("when", "timeout", "solvers", "semantics")}
     a = markdown(page.outcomes_of(doc), meta, page_sources(checks, REPORTS)).splitlines()
-    b = generate(REPORTS / "prove.json", checks).splitlines()
+    alone = tmp_path / "reports"
+    alone.mkdir()
+    for name in ("prove.json", "split.json"):
+        shutil.copy(REPORTS / name, alone / name)
+    b = generate(alone / "prove.json", checks).splitlines()
     assert len(a) == len(b)
     differ = [(x, y) for x, y in zip(a, b) if x != y]
     assert len(differ) == 1 and differ[0][1].startswith("Proofs: [reports/prove.json]"), differ
+
+
+def test_the_page_joins_the_runs_in_other_arithmetics_beside_the_report(tmp_path):
+    """The committed runs in x86-64-v3's and aarch64's arithmetic (prove-NAME.json beside
+    prove.json) each add a column; a file there that is no run in its arithmetic alone is refused."""
+    from navfn_smt.errors import NavfnInputError
+    from navfn_smt.report import invariants_page as page
+
+    doc = page.with_arithmetics(page.read_prove_report(REPORTS / "prove.json"), REPORTS / "prove.json")
+    assert doc["semantics"] == ["real", "fp32", "fp32@x86-64-v3", "fp32@aarch64"]
+    assert {o["semantics"] for o in doc["obligations"]} == set(doc["semantics"])
+    bad = json.loads((REPORTS / "prove.json").read_text())
+    (tmp_path / "prove.json").write_text(json.dumps(bad))
+    (tmp_path / "prove-aarch64.json").write_text(json.dumps(bad))  # real and fp32, not fp32@aarch64
+    with pytest.raises(NavfnInputError, match="not a run in fp32@aarch64 alone"):
+        page.with_arithmetics(bad, tmp_path / "prove.json")
 
 
 @pytest.mark.parametrize("what", ["missing", "malformed", "not-a-report", "check-missing", "check-malformed",

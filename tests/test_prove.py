@@ -196,18 +196,22 @@ def test_committed_invariants_page_matches_the_obligations():
     from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import default_proof_files
 
+    lines = (REPO / "docs" / "invariants.md").read_text().splitlines()
+    head = next(line for line in lines if line.startswith("| property | obligation |"))
+    sems = [p.strip() for p in head.strip().strip("|").split("|")][2:]
+    assert sems == ["real", "fp32", "fp32@x86-64-v3", "fp32@aarch64"]  # a column per build arithmetic
     rows = {}
-    for line in (REPO / "docs" / "invariants.md").read_text().splitlines():
+    for line in lines:
         parts = [p.strip() for p in line.strip().strip("|").split("|")]
-        if len(parts) == 4 and parts[1].startswith("`"):
-            rows[parts[1].strip("`")] = {"real": parts[2].split()[0], "fp32": parts[3].split()[0]}
+        if len(parts) == 2 + len(sems) and parts[1].startswith("`"):
+            rows[parts[1].strip("`")] = {s: v.split()[0] for s, v in zip(sems, parts[2:])}
     obs = load_obligations(default_proof_files())
     from navfn_smt.smt.split import known_of_files
 
     known = known_of_files(default_proof_files(), obs, PREDICATES)
     assert set(rows) == {o.name for o in obs}
     for o in obs:  # a split decides its obligation's fp32 verdict: the knowledge says so
-        assert rows[o.name] == {s: known[(o.name, s)].status for s in o.expect}, o.name
+        assert rows[o.name] == {s: known[(o.name, s)].status for s in sems}, o.name
 
 
 def test_committed_invariants_page_shows_the_predicates():
@@ -221,16 +225,19 @@ def test_committed_invariants_page_shows_the_predicates():
     from navfn_smt.smt.split import load_splits
 
     verdict_of = declared_verdicts(load_obligations(default_proof_files()), load_splits(default_proof_files()))
+    lines = (REPO / "docs" / "invariants.md").read_text().splitlines()
+    head = next(line for line in lines if line.startswith("| predicate |"))
+    sems = [p.strip() for p in head.strip().strip("|").split("|")][1:-2]
     rows = {}
-    for line in (REPO / "docs" / "invariants.md").read_text().splitlines():
+    for line in lines:
         parts = [p.strip() for p in line.strip().strip("|").split("|")]
-        if len(parts) == 5 and parts[0] in {p.name for p in PREDICATES}:
+        if len(parts) == 3 + len(sems) and parts[0] in {p.name for p in PREDICATES}:
             rows[parts[0]] = parts
     assert set(rows) == {p.name for p in PREDICATES}
     for p in PREDICATES:
-        name, real, fp32, base, step = rows[p.name]
-        assert (real, fp32) == tuple(derive(p, s, verdict_of, PREDICATES)["status"] for s in ("real", "fp32")), name
-        assert all(f"`{x}`" in base for x in p.base) and all(f"`{x}`" in step for x in p.lemmas), name
+        statuses, (base, step) = rows[p.name][1:1 + len(sems)], rows[p.name][-2:]
+        assert statuses == [derive(p, s, verdict_of, PREDICATES)["status"] for s in sems], p.name
+        assert all(f"`{x}`" in base for x in p.base) and all(f"`{x}`" in step for x in p.lemmas), p.name
 
 
 def test_slow_only_is_what_all_adds_to_the_default_run():
@@ -262,5 +269,44 @@ def test_slow_only_refuses_what_needs_a_whole_run(tmp_path, monkeypatch, capsys,
 
     monkeypatch.chdir(tmp_path)
     assert main(["prove", "--slow-only", *extra]) == 2
+    assert capsys.readouterr().err.startswith(f"navfn-smt: error: {message}")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_build_arithmetic_has_verdicts_of_its_own(tmp_path):
+    """NoPathWithoutFinitePotential's step is proved in x86-64's fp32, where ``(int)1e10`` is
+    INT_MIN, and refuted in aarch64's, where it saturates to INT_MAX: ``prove --target aarch64``
+    judges it in ``fp32@aarch64`` against what is declared there, with a witness the concrete
+    spec confirms in that arithmetic, and which is no counterexample in x86-64's."""
+    from navfn_smt.cli import main
+    from navfn_smt.smt.obligation import load_obligations
+    from navfn_smt.smt.replay import replay
+    from navfn_smt.spec.arithmetic import KNOWN
+
+    proof = REPO / "src" / "navfn_smt" / "proofs" / "no_path.py"
+    for target, want in (("aarch64", "refuted"), ("x86-64", "proved")):
+        assert main(["prove", str(proof), "--target", target, "--report", str(tmp_path / f"{target}.json")]) == 0
+        (row,) = json.loads((tmp_path / f"{target}.json").read_text())["obligations"]
+        assert row["semantics"] == ("fp32@aarch64" if target == "aarch64" else "fp32"), row
+        assert (row["status"], row["known"], row["judgement"]) == (want, want, "confirmed"), row
+    (row,) = json.loads((tmp_path / "aarch64.json").read_text())["obligations"]
+    w = json.loads(Path(row["witness"]).read_text())
+    assert w["replayed_on_spec"] is True and "aarch64" in w["replayed_in"]
+    (ob,) = load_obligations([proof])
+    values = {k: float(v["value"]) for k, v in w["values"].items()}
+    assert replay(ob, values, arithmetic=KNOWN["aarch64"]) is True
+    assert replay(ob, values) is False and replay(ob, values, arithmetic=KNOWN["x86-64-v3"]) is False
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--target", "sparc"], "--target 'sparc': no such arithmetic"),
+    (["--target", "aarch64", "--semantics", "real"], "--semantics real and --target/--oracle exclude each other"),
+    (["--target", "aarch64", "--oracle", "nowhere"], "--target aarch64 and --oracle DIR exclude each other"),
+])
+def test_prove_in_a_build_arithmetic_refuses_what_names_none(tmp_path, monkeypatch, capsys, extra, message):
+    from navfn_smt.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["prove", "--report", "r.json", *extra]) == 2
     assert capsys.readouterr().err.startswith(f"navfn-smt: error: {message}")
     assert list(tmp_path.iterdir()) == []

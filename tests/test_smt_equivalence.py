@@ -12,6 +12,8 @@ included, are the conformance harness's (``tests/test_domain_conformance.py``).
 
 from multiprocessing import get_context
 
+import pytest
+
 from navfn_smt.smt.evaluate import KERNELS, FPEvalDomain, compare_kernel, f32_input, value
 
 
@@ -37,3 +39,21 @@ def test_mutated_kernel_is_caught():
     D = FPEvalDomain()
     wrong = D.add64(D.widen(f32_input(D, 16777216.0)), D.widen(f32_input(D, 1.0)))  # no narrowing
     assert value(wrong) != value(D.add(f32_input(D, 16777216.0), f32_input(D, 1.0)))
+
+
+@pytest.mark.parametrize("target", ["x86-64-v3", "aarch64"])
+def test_fp_domain_in_a_build_arithmetic_equals_the_concrete_spec_in_it(target):
+    """The bit-precise domain in another build's arithmetic (fp.fma at the sites it fuses, its
+    float-to-int conversion) equals the concrete spec in that arithmetic, bit for bit, on a
+    sample of every kernel; and the comparison can fail: the domain left in x86-64's arithmetic
+    differs from the concrete spec in this one on the kernels a fused site or a conversion changes
+    (conformance table names: ``cell_update``, ``step``, and with arm64's conversion ``lowest``)."""
+    from navfn_smt.spec.arithmetic import KNOWN, X86_64
+
+    arith = KNOWN[target]
+    jobs = [(kernel, 7000 + i, max(1, n // 200)) for i, (kernel, n) in enumerate(KERNELS.items())]
+    bad = [b for kernel, seed, n in jobs for b in compare_kernel(kernel, seed, n, arith)]
+    assert not bad, bad[:5]
+    wrong = {b[0] for kernel, seed, n in jobs for b in compare_kernel(kernel, seed, n, arith, symbolic=X86_64)}
+    assert {"cell_update", "step"} <= wrong, wrong  # the fused updateCell and path step
+    assert ("lowest" in wrong) == (arith.conversion == "saturating"), wrong  # the fallback's (int) of 1e10

@@ -20,7 +20,7 @@ def generate(prove_report, check_reports) -> str:
     """The page from a prove report and check reports: read them (one-line errors on a missing
     or malformed one), with the split report beside the prove report, the shipped obligations
     and what is known of them (:func:`~navfn_smt.commands.common.page_sources`), and render it."""
-    prove_doc = page.read_prove_report(prove_report)
+    prove_doc = page.with_arithmetics(page.read_prove_report(prove_report), prove_report)
     sources = page_sources(check_reports, Path(prove_report).parent)
     return page.render(prove_doc, page.report_label(prove_report), **sources)
 

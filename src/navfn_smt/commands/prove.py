@@ -27,6 +27,27 @@ def _page_sources(files) -> dict:
     return page_sources(paths, Path(paths[0]).parent if paths else page.REPORTS_DIR, files)
 
 
+def _semantics(args, both: tuple) -> tuple:
+    """The semantics the run asks: ``--semantics``; with ``--target NAME`` or ``--oracle DIR``,
+    float32 in that build's arithmetic only (``fp32@NAME``; x86-64's is ``fp32``): the reals
+    have no build arithmetic."""
+    from ..smt.domains import FP32_SEMANTICS
+
+    if not (args.target or args.oracle):
+        return both if args.semantics == "both" else (args.semantics,)
+    from .common import planner_of
+
+    arith = planner_of(args).navfn_arithmetic()
+    named = [s for s, a in FP32_SEMANTICS.items() if a == arith]
+    if not named:
+        raise NavfnInputError(f"the build's arithmetic {arith.name} is none the proofs compute in (they do in: "
+                              f"{', '.join(a.name for a in FP32_SEMANTICS.values())})")
+    if args.semantics == "real":
+        raise NavfnInputError("--semantics real and --target/--oracle exclude each other: a build's arithmetic "
+                              "is float32's (the reals round nowhere and fuse nothing)")
+    return (named[0],)
+
+
 def cmd_prove(args) -> int:
     """Check the proof obligations; exit 1 only when a verdict contradicts what is known."""
     from ..engine import engine
@@ -44,7 +65,7 @@ def cmd_prove(args) -> int:
     if args.slow_only and args.all:
         raise NavfnInputError("--slow-only and --all exclude each other: --slow-only runs only what --all adds")
     files = _proof_files(args.files) if args.files else default_proof_files()
-    semantics = SEMANTICS if args.semantics == "both" else (args.semantics,)
+    semantics = _semantics(args, SEMANTICS)
     check_positive("--timeout", args.timeout)
     eng = engine(args.jobs, args.scheduler)
     check_files(args.report, args.junit, args.markdown)
@@ -106,6 +127,12 @@ def register(sub) -> None:
                     "(default: every proof file of the package's navfn_smt/proofs)")
     pr.add_argument("--semantics", choices=(*SEMANTICS, "both"), default="both",
                     help="real (no rounding), fp32 (bit-precise IEEE-754) or both")
+    pr.add_argument("--target", metavar="NAME",
+                    help="float32 in the arithmetic of a build for this machine: x86-64 (fp32, the default), "
+                         "x86-64-v3 or aarch64 (fp32@NAME: multiply-adds fused as that build fuses them, its "
+                         "float-to-int conversion; docs/toolchains.md)")
+    pr.add_argument("--oracle", metavar="DIR", help="float32 in the arithmetic found in the build in DIR "
+                    "(navfn-smt oracle build)")
     pr.add_argument("--timeout", type=float, default=30.0, metavar="S", help="seconds per solver query")
     add_engine_arguments(pr, "obligations (each in each semantics)")
     pr.add_argument("--solver", action="append", choices=SOLVERS,

@@ -35,7 +35,8 @@ def _update(D):
     return pre, l, hf, new, changed
 
 
-@obligation(FallbackPath, expect={"real": "proved", "fp32": "refuted"},
+@obligation(FallbackPath, expect={"real": "proved", "fp32": "refuted",
+                                  "fp32@x86-64-v3": "refuted", "fp32@aarch64": "refuted"},
             scope="one update with any neighbours: every map size",
             bound=Bound(var="l", lo=1.0, hi=POT_HIGH))
 def update_keeps_a_neighbour_below_its_floor(D):
@@ -48,7 +49,8 @@ def update_keeps_a_neighbour_below_its_floor(D):
     return pre, any_of(D, D.not_(changed), D.lt(l, D.int_to_f32(D.to_int32(new))))
 
 
-@obligation(FallbackPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FallbackPath, expect={"real": "proved", "fp32": "proved",
+                                  "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one update with any neighbours: every map size")
 def update_raises_at_most_twice_its_cost(D):
     """A changed cell ends at most twice its cost above its lowest neighbour (float32 sums).
@@ -69,7 +71,8 @@ def _fallback_step(D):
     return pre, centre, ring, K.lowest_of_eight(D, centre, ring)
 
 
-@obligation(FallbackPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FallbackPath, expect={"real": "proved", "fp32": "proved",
+                                  "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one fallback step at any cell with any eight neighbours: every map size", slow=("fp32",))
 def fallback_step_goes_strictly_lower(D):
     """The fallback moves only to a strictly lower, reached neighbour.
@@ -82,7 +85,8 @@ def fallback_step_goes_strictly_lower(D):
     return pre, any_of(D, D.eq(best, -1), moved_lower)
 
 
-@obligation(FallbackPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FallbackPath, expect={"real": "proved", "fp32": "proved",
+                                  "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one fallback step at any cell with any eight neighbours: every map size")
 def fallback_step_moves_below_the_floor(D):
     """The fallback moves whenever a neighbour is below the truncation of the centre's potential.

@@ -29,7 +29,8 @@ from navfn_smt.spec.fix import POT_BOUND
 KEY_BOUND = 2.0 * POT_BOUND  # a push key: a potential below POT_BOUND, plus A*'s heuristic below POT_BOUND
 
 
-@obligation(DescentPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(DescentPath, expect={"real": "proved", "fp32": "proved",
+                                 "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one step of the descent at any cell with any four neighbours: every map size")
 def descent_step_goes_strictly_lower(D):
     """The descent steps only to a strictly lower neighbour, which is then reached, and it steps
@@ -51,7 +52,8 @@ def descent_step_goes_strictly_lower(D):
     return pre, claim
 
 
-@obligation(ConnectedStartReached, expect={"real": "proved", "fp32": "proved"},
+@obligation(ConnectedStartReached, expect={"real": "proved", "fp32": "proved",
+                                           "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="the push test of any update, for any neighbour: every map size")
 def update_wants_an_unreached_neighbour(D):
     """An update whose key is below the bound asks to push every unreached passable neighbour.
@@ -66,7 +68,8 @@ def update_wants_an_unreached_neighbour(D):
     return pre, wanted
 
 
-@obligation(ConnectedStartReached, expect={"real": "proved", "fp32": "proved"},
+@obligation(ConnectedStartReached, expect={"real": "proved", "fp32": "proved",
+                                           "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one update of an unreached cell with any neighbours: every map size")
 def unreached_cell_beside_a_reached_one_gets_reached(D):
     """An update of an unreached passable cell beside a cell below the bound reaches it.
@@ -83,7 +86,8 @@ def unreached_cell_beside_a_reached_one_gets_reached(D):
     return pre, D.and_(changed, Reached(D, new))
 
 
-@obligation(ConnectedStartReached, expect={"real": "proved", "fp32": "proved"},
+@obligation(ConnectedStartReached, expect={"real": "proved", "fp32": "proved",
+                                           "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one update of any cell with any neighbours: every map size")
 def update_lowers_when_it_changes(D):
     """An update that changes a cell (and only such an update pushes) strictly lowers it: the

@@ -5,7 +5,10 @@ unreached).  The fallback compares the neighbours with ``int minp = potarr[stc]`
 x86-64 the conversion of POT_HIGH = 1e10 (beyond INT_MAX) yields INT_MIN, so no neighbour
 compares lower, the cell stays put, and calcPath returns 0 at once ("high potential").
 Over the reals, where the conversion has no range, the fallback would move to any
-reached neighbour instead: the paper's abstraction does not capture this behaviour.
+reached neighbour instead: the paper's abstraction does not capture this behaviour.  Nor
+does arm64: its ``fcvtzs`` saturates 1e10 to INT_MAX, every reached neighbour compares lower,
+and the fallback walks from the unreached start (``fp32@aarch64`` refuted; the committed
+``path-without-potential-*-aarch64`` counterexamples are such walks on the C++).
 """
 
 from navfn_smt.proofs import NoPathWithoutFinitePotential
@@ -14,7 +17,8 @@ from navfn_smt.smt.predicates import Unreached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
 
 
-@obligation(NoPathWithoutFinitePotential, expect={"real": "refuted", "fp32": "proved"},
+@obligation(NoPathWithoutFinitePotential, expect={"real": "refuted", "fp32": "proved", "fp32@aarch64": "refuted",
+                                                  "fp32@x86-64-v3": "proved"},
             scope="the fallback step at any cell with any eight neighbours: every map size")
 def unreached_cell_stays_put(D):
     """From an unreached cell the fallback keeps the cell (so calcPath fails at once).

@@ -67,7 +67,8 @@ def _step(D, least):
     return pre, D.and_(InUnitBox(D, ndx, ndy), moves)
 
 
-@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved",
+                                         "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one gradient step from any offset in the unit box: every map size")
 def step_keeps_offset_in_unit_box(D):
     """One step of calcPath keeps the offset in [-1, 1] and moves at most one cell per axis.
@@ -80,7 +81,8 @@ def step_keeps_offset_in_unit_box(D):
 
 # the counterexample needs only hypotf's documented accuracy (much faster for the solvers than
 # glibc's exact definition); it is replayed with the real libm
-@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "refuted"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "refuted",
+                                         "fp32@x86-64-v3": "refuted", "fp32@aarch64": "refuted"},
             scope="one gradient step from any offset in the unit box, any non-zero gradient: every map size",
             hypotf_model="ulp")
 def step_keeps_offset_in_unit_box_any_gradient(D):
@@ -99,7 +101,8 @@ def _near(D, s, cell_move, offset):
     return D.and_(D.le(dist, D.f64const(1.5)), D.ge(dist, D.f64const(-1.5)))
 
 
-@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved",
+                                         "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="any offset in the unit box, any interior cell of any map up to 2**12 cells a side")
 def near_goal_probe_reads_a_neighbour(D):
     """The near-goal probe reads a cell at most one away in each direction.
@@ -113,7 +116,8 @@ def near_goal_probe_reads_a_neighbour(D):
     return pre, all_of(D, D.ge(ox, -1), D.le(ox, 1), D.ge(oy, -1), D.le(oy, 1))
 
 
-@obligation(ValidPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(ValidPath, expect={"real": "proved", "fp32": "proved",
+                               "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="any start cell of any map up to 2**24 cells a side")
 def first_point_is_the_start(D):
     """The first point calcPath emits is the start cell exactly (offset 0, int converted to float).
@@ -131,7 +135,8 @@ def first_point_is_the_start(D):
 
 
 # needs only that hypotf lies between the larger magnitude and the sum of magnitudes
-@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved",
+                                         "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="gradCell's normalisation of any vector whose components are 0 or in [2**-25, 2**35]",
             hypotf_model="bounds")
 def stored_gradient_is_bounded(D):
@@ -146,7 +151,8 @@ def stored_gradient_is_bounded(D):
 
 
 # about 20 s in float32 (bitwuzla), so the proof belongs to the long run (prove --all)
-@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved",
+                                         "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="calcPath's bilinear interpolation at any offset in the unit box: every map size",
             slow=("fp32",))
 def interpolated_gradient_is_bounded(D):
@@ -241,7 +247,8 @@ interpolated_gradient_is_zero_or_not_tiny_split = split(
 # the step moves the offset by at most 1/2 along each axis, and a move of at most 1/2 keeps the
 # point within 3/2 of the cell.  The tie that makes the bound 3/2 tight sits in the second.
 
-@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved"},
+@obligation(FinitePotentialPath, expect={"real": "proved", "fp32": "proved",
+                                         "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one gradient step at any interior cell of any map up to 2**23 cells a side, any move of at "
                   "most 1/2 per axis", slow=("fp32",))
 def half_step_keeps_the_point_near_the_cell(D):

@@ -12,7 +12,8 @@ from navfn_smt.smt.predicates import Lethal, Unreached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
 
 
-@obligation(PositionSafe, expect={"real": "proved", "fp32": "proved"},
+@obligation(PositionSafe, expect={"real": "proved", "fp32": "proved",
+                                  "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one update of any cell with any neighbours: inductive, every map size")
 def update_keeps_obstacles_unreached(D):
     """An update never gives an obstacle a finite potential.

@@ -17,7 +17,8 @@ from navfn_smt.spec.constants import POT_HIGH
 from navfn_smt.spec.fix import POT_BOUND
 
 
-@obligation(QueuedStartReached, expect={"real": "proved", "fp32": "proved"},
+@obligation(QueuedStartReached, expect={"real": "proved", "fp32": "proved",
+                                        "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one update of an unreached cell with any neighbours: every map size")
 def queued_cell_gets_reached(D):
     """An update of an unreached passable cell some 4-neighbour of which, any of the four, is

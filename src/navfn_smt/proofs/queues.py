@@ -14,7 +14,8 @@ from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import COST_OBS, PRIORITYBUFSIZE
 
 
-@obligation(ObstacleFreeQueue, expect={"real": "proved", "fp32": "proved"},
+@obligation(ObstacleFreeQueue, expect={"real": "proved", "fp32": "proved",
+                                       "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one push, any cell index, map size, buffer fill: every map size")
 def push_admits_only_passable_cells_on_the_map(D):
     """A push enqueues only a passable cell on the map, and only into a buffer with room.
@@ -99,7 +100,8 @@ def _push(D, q, pending_q, cnt, fill, target, m, pending_other, cost, wanted=Tru
     return D.or_(pending_q, D.and_(admitted, is_q)), cnt, fill
 
 
-@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved",
+                                           "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="setupNavFn and initCost at any goal of any map: base case of the induction")
 def pending_matches_buffers_after_setup(D):
     """After setupNavFn and initCost's four pushes, pending flags match buffer contents (B).
@@ -118,7 +120,8 @@ def pending_matches_buffers_after_setup(D):
     return pre, _between_cycles(D, pending, cnt, fill)
 
 
-@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved",
+                                           "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="the start of any cycle (flags of cur cleared): every map size, every capacity")
 def pending_matches_buffers_at_cycle_start(D):
     """Clearing the flags of the current buffer's cells turns B into P.
@@ -131,7 +134,8 @@ def pending_matches_buffers_at_cycle_start(D):
     return _between_cycles(D, pending, cnt, fill), _during_cycle(D, cleared, cnt, fill)
 
 
-@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved",
+                                           "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one push of updateCell or updateCellAstar, any potentials, key and threshold: every map size")
 def pending_matches_buffers_after_push(D):
     """A push from an update keeps P: the flag is set exactly when the cell enters a buffer.
@@ -149,7 +153,8 @@ def pending_matches_buffers_after_push(D):
     return _during_cycle(D, pending, cnt, fill), _during_cycle(D, pending2, cnt2, fill2)
 
 
-@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved"},
+@obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved",
+                                           "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="the end of any cycle (buffer swap): every map size, every capacity")
 def pending_matches_buffers_at_cycle_end(D):
     """The swap (cur <- nxt; when that is empty, cur <- over) turns P back into B.

@@ -101,7 +101,8 @@ CHECK_DOCS = {
 
 INTRO = ("Each obligation below is a property of the specification's kernels, stated once and checked "
          "in two semantics: `real` (the paper's abstraction: no rounding) and `fp32` (bit-precise IEEE-754 "
-         "binary32/binary64 as the compiled C++ computes). `proved` means the solver showed the negation "
+         "binary32/binary64 as the compiled C++ computes on x86-64), and where the float32 columns "
+         "`fp32@NAME` are shown, as a build for NAME computes (its multiply-adds fused, its conversions). `proved` means the solver showed the negation "
          "unsatisfiable; `refuted` means it found a counterexample, which was replayed on the concrete "
          "specification (*bounded* when a bound found by search still proves it below); `unknown` means nothing "
          "is known and no solver decided in time (never counted as proved); `not run` means the report has no "
@@ -158,6 +159,30 @@ def read_prove_report(path) -> dict:
                                             for o in obs):
         raise NavfnInputError(f"{path}: not a prove report (no list of obligations with "
                               f"{', '.join(OBLIGATION_KEYS)}; write one with `navfn-smt prove --report`)")
+    return doc
+
+
+def with_arithmetics(prove_doc: dict, prove_report) -> dict:
+    """The prove report with the runs in other build arithmetics beside it joined in: each
+    ``prove-NAME.json`` (``navfn-smt prove --target NAME --all --report``) whose semantics are
+    float32 of another arithmetic (``fp32@NAME``) adds its verdicts and a column per semantics;
+    ``arithmetics`` lists them, ``(label, when)``, for the page's opening lines."""
+    from ..smt.domains import FP32_SEMANTICS
+
+    doc = {**prove_doc, "obligations": list(prove_doc["obligations"]),
+           "semantics": list(prove_doc.get("semantics") or []), "arithmetics": []}
+    for sem in FP32_SEMANTICS:
+        path = Path(prove_report).parent / f"prove-{sem.partition('@')[2]}.json"
+        if sem == "fp32" or not path.is_file():
+            continue
+        other = read_prove_report(path)
+        if list(other.get("semantics") or []) != [sem]:
+            raise NavfnInputError(f"{path}: not a run in {sem} alone (its semantics: "
+                                  f"{', '.join(other.get('semantics') or []) or 'none'}; write it with "
+                                  f"`navfn-smt prove --target {sem.partition('@')[2]} --all --report {path}`)")
+        doc["obligations"] += other["obligations"]
+        doc["semantics"].append(sem)
+        doc["arithmetics"].append((report_label(path), other.get("when", "?")))
     return doc
 
 
@@ -626,6 +651,13 @@ def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Pat
     out += [f"Proofs: {prove_link}, a `navfn-smt prove` run of {prove_doc.get('when', '?')}; "
            f"timeout {prove_doc.get('timeout', '?')} s per query; solvers: "
            f"{', '.join(prove_doc.get('solvers', [])) or '?'}; semantics: {', '.join(sems)}.", ""]
+    if prove_doc.get("arithmetics"):
+        out += ["`fp32` computes as the golden files' x86-64 build does (nothing fused, `(int)` out of range gives "
+                "INT_MIN); `fp32@NAME` as a build for NAME does, its multiply-adds fused and its conversions "
+                "(docs/toolchains.md); the reals have no build arithmetic. The runs in them: "
+                + "; ".join(f"[{label}]({label}) of {when}" for label, when in prove_doc["arithmetics"])
+                + ". A split and a chain of finer links decide `fp32` only (docs/toolchains.md says what "
+                "is open in the others).", ""]
     if stale:
         out += ["Verdicts of obligations no longer declared (the report is older than the proofs): "
                 + ", ".join(f"`{n}`" for n in stale) + ".", ""]

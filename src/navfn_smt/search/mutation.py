@@ -83,8 +83,8 @@ MUTANTS = (
            "fp32 domain narrows double to float toward zero"),
     Mutant("roundf_half_even", DOMAINS, "return z3.fpRoundToIntegral(z3.RNA(), a)",
            "return z3.fpRoundToIntegral(z3.RNE(), a)", "fp32 domain rounds halves to even"),
-    Mutant("no_int_min", DOMAINS, "return z3.If(in_range, z3.fpToSBV(z3.RTZ(), a, BV32), z3.BitVecVal(INT_MIN, 32))",
-           "return z3.fpToSBV(z3.RTZ(), a, BV32)", "fp32 domain forgets cvttss2si's INT_MIN"),
+    Mutant("no_int_min", DOMAINS, "return z3.If(in_range, truncated, z3.BitVecVal(INT_MIN, 32))",
+           "return truncated", "fp32 domain forgets cvttss2si's INT_MIN"),
 )
 
 

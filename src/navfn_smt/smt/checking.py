@@ -20,7 +20,7 @@ import z3
 from ..errors import NavfnInputError
 from . import codec
 from .codec import f32_from_bits, f32_to_bits, fp32_val
-from .domains import DOMAINS
+from .domains import DOMAINS, arithmetic_of, is_fp32
 from .obligation import Obligation
 from .replay import replay
 
@@ -69,8 +69,9 @@ class Outcome:
 
 
 def domain_of(ob: Obligation, semantics: str):
-    """A fresh domain of ``semantics`` for ``ob`` (fp32 with the obligation's hypotf model)."""
-    return DOMAINS[semantics](hypotf_model=ob.hypotf_model) if semantics == "fp32" else DOMAINS[semantics]()
+    """A fresh domain of ``semantics`` for ``ob`` (float32, in a build's arithmetic, with the
+    obligation's hypotf model)."""
+    return DOMAINS[semantics](hypotf_model=ob.hypotf_model) if is_fp32(semantics) else DOMAINS[semantics]()
 
 
 def query(ob: Obligation, semantics: str, extra=None):
@@ -113,8 +114,8 @@ def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3,
         out.status = "proved"
     elif answer == "sat":
         _judge_model(out, ob, values)
-    if bounds and ob.bound is not None and semantics == "fp32" and out.status == "refuted":
-        out.bound = search_bound(ob, timeout, solve)
+    if bounds and ob.bound is not None and is_fp32(semantics) and out.status == "refuted":
+        out.bound = search_bound(ob, timeout, solve, semantics)
     out.seconds = round(time.perf_counter() - t0, 3)
     return out.judge(known if known is not None else declared(ob, semantics))
 
@@ -138,9 +139,11 @@ def _judge_model(out: Outcome, ob: Obligation, values: dict) -> None:
 def judge_model(ob: Obligation, semantics: str, values: dict) -> tuple[str, dict, str]:
     """``(status, witness, detail)`` of a model of ``ob``'s negation in ``semantics``, replayed
     on the concrete spec: ``refuted`` when the spec confirms it, ``unknown`` when it does not."""
-    confirmed = replay(ob, values)
+    arith = arithmetic_of(semantics)
+    confirmed = replay(ob, values, arithmetic=arith)
     witness = {"values": codec.witness_values(values), "replayed_on_spec": confirmed,
-               "replayed_in": "rationals (real semantics)" if semantics == "real" else "float32 spec"}
+               "replayed_in": "rationals (real semantics)" if arith is None else
+               "float32 spec" + ("" if semantics == "fp32" else f" in {arith.name}'s arithmetic")}
     if confirmed is False:
         # the model satisfies the library-function model but not the real libm: it is not
         # a counterexample of the compiled planner; the question stays open
@@ -148,7 +151,7 @@ def judge_model(ob: Obligation, semantics: str, values: dict) -> tuple[str, dict
     return "refuted", witness, ""
 
 
-def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
+def search_bound(ob: Obligation, timeout: float, solve=solve_z3, semantics: str = "fp32") -> dict:
     """The largest float32 X in [lo, hi] with ``var < X`` added to the precondition such
     that the obligation is proved, by bisection over positive float32 bit patterns (the
     property is monotone in X: a smaller X only strengthens the precondition)."""
@@ -160,18 +163,18 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
     def proved_below(bits_x: int) -> Optional[bool]:
         x = f32_from_bits(bits_x)
         extra = lambda D: z3.fpLT(D.variables[b.var], fp32_val(x))  # noqa: E731
-        D, assertions = query(ob, "fp32", extra)
+        D, assertions = query(ob, semantics, extra)
         ans, values, _, _ = solve(assertions, D.variables, timeout)
         if ans == "unsat":
             return True
         if ans == "sat":
-            if not replay(ob, values, lambda C: values[b.var] < x):
+            if not replay(ob, values, lambda C: values[b.var] < x, arithmetic_of(semantics)):
                 return None
             witness_at[bits_x] = values[b.var]
             return False
         return None
 
-    cache = _BoundCache(ob)
+    cache = _BoundCache(ob, semantics)
     known = cache.get()
     if known is not None:
         kb = f32_to_bits(known)
@@ -204,22 +207,23 @@ def search_bound(ob: Obligation, timeout: float, solve=solve_z3) -> dict:
     return out
 
 
-def cached_bound(ob: Obligation) -> Optional[float]:
-    """The bound an earlier search found for ``ob`` and the code as it is now, if cached."""
-    return _BoundCache(ob).get() if ob.bound is not None else None
+def cached_bound(ob: Obligation, semantics: str = "fp32") -> Optional[float]:
+    """The bound an earlier search found for ``ob`` in ``semantics`` and the code as it is now, if cached."""
+    return _BoundCache(ob, semantics).get() if ob.bound is not None else None
 
 
 class _BoundCache:
     """Bounds found by search, kept beside the proof file (``.bounds.json``) and keyed by a
-    hash of the proof file, the kernels and the domains: a later run only re-verifies that
-    the bound is tight (two solver calls) instead of searching again."""
+    hash of the proof file, the kernels and the domains (and the semantics, for a build
+    arithmetic other than x86-64's): a later run only re-verifies that the bound is tight (two
+    solver calls) instead of searching again."""
 
-    def __init__(self, ob: Obligation):
+    def __init__(self, ob: Obligation, semantics: str = "fp32"):
         from .knowledge import content_key
 
         self.ob = ob
         self.path = Path(ob.source).parent / ".bounds.json" if ob.source else None
-        self.key = content_key(ob)
+        self.key = content_key(ob) + ("" if semantics == "fp32" else f"@{semantics}")
 
     def _load(self) -> dict:
         import json
@@ -241,7 +245,8 @@ class _BoundCache:
 
         if self.path is None:
             return "not cached (the obligation has no proof file)"
-        doc = {k: v for k, v in self._load().items() if not k.startswith(self.ob.name + ":")}
+        doc = {k: v for k, v in self._load().items()  # this obligation's older bound in this semantics goes
+               if not (k.startswith(self.ob.name + ":") and k.partition("@")[2] == self.key.partition("@")[2])}
         doc[self.key] = value
         try:
             atomic_write_text(self.path, json.dumps(doc, indent=1, sort_keys=True) + "\n")

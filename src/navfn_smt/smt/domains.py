@@ -5,8 +5,9 @@ Two interpretations of the operations the concrete domain
 
 * :class:`FPDomain` (``fp32``): bit-precise IEEE-754.  C++ ``float`` is ``Float32``,
   ``double`` is ``Float64``, every operation rounds to nearest-even exactly where the C++
-  rounds; C++ ``int`` is a 32-bit bit-vector; ``static_cast<int>`` is x86-64's
-  ``cvttss2si`` (truncation, INT_MIN for NaN and out of range).
+  rounds; C++ ``int`` is a 32-bit bit-vector.  Where the build contracts a multiply-add and
+  how ``static_cast<int>`` converts are its arithmetic's (:mod:`navfn_smt.spec.arithmetic`;
+  x86-64's by default: nothing fused, ``cvttss2si``'s INT_MIN for NaN and out of range).
 * :class:`RealDomain` (``real``): the paper's abstraction.  Both ``float`` and ``double``
   are mathematical reals, no operation rounds, ``int`` is a mathematical integer.
 
@@ -30,11 +31,15 @@ values, concretely (see :mod:`navfn_smt.smt.obligation`).
 
 from __future__ import annotations
 
+import functools
 import itertools
 import operator
+from typing import Optional
+
 import z3
 
-from ..spec.constants import INT_MIN
+from ..spec.arithmetic import KNOWN, X86_64, Arithmetic
+from ..spec.constants import INT_MAX, INT_MIN
 from .codec import fp32_val, fp64_val
 
 F32 = z3.FPSort(8, 24)
@@ -81,8 +86,8 @@ class Domain:
 
     @staticmethod
     def fuses(site: str) -> bool:
-        """The symbolic encodings compute in x86-64's arithmetic: no multiply-add is fused
-        (spec.arithmetic; the concrete spec computes in any)."""
+        """Nothing fused (x86-64's arithmetic; :class:`FPDomain` takes a build's; over the reals
+        a fused multiply-add equals the product and the sum)."""
         return False
 
 
@@ -97,9 +102,15 @@ class FPDomain(Domain):
 
     name = "fp32"
 
-    def __init__(self, hypotf_model: str = "glibc"):
+    def __init__(self, hypotf_model: str = "glibc", arithmetic: Arithmetic = X86_64):
         super().__init__()
         self.hypotf_model = hypotf_model
+        self.arith = arithmetic
+
+    def fuses(self, site: str) -> bool:
+        """Whether the build fuses the multiply-add ``site`` (its arithmetic's data: SMT-LIB's
+        ``fp.fma`` where it does, a product and a sum rounded each where it does not)."""
+        return self.arith.fuses(site)
 
     # ----------------------------------------------------------------- variables
     def f32(self, name: str):
@@ -151,14 +162,21 @@ class FPDomain(Domain):
             return self.f64const(float(n))
         return z3.fpSignedToFP(RNE, n, F64)
 
-    @staticmethod
-    def to_int32(a):
-        """cvttss2si / cvttsd2si: truncation; NaN or out of int32 range gives INT_MIN."""
+    def to_int32(self, a):
+        """``(int)`` as the arithmetic converts: truncation toward zero; NaN or out of int32 range
+        gives INT_MIN (x86-64's cvttss2si / cvttsd2si), or clamps with NaN giving 0 (arm64's fcvtzs)."""
         if a.sort() == F32:
-            in_range = z3.And(z3.fpGEQ(a, fp32_val(-2147483648.0)), z3.fpLT(a, fp32_val(2147483648.0)))
+            low, high = fp32_val(-2147483648.0), fp32_val(2147483648.0)
+            in_range = z3.And(z3.fpGEQ(a, low), z3.fpLT(a, high))
         else:
-            in_range = z3.And(z3.fpGT(a, fp64_val(-2147483649.0)), z3.fpLT(a, fp64_val(2147483648.0)))
-        return z3.If(in_range, z3.fpToSBV(z3.RTZ(), a, BV32), z3.BitVecVal(INT_MIN, 32))
+            low, high = fp64_val(-2147483649.0), fp64_val(2147483648.0)
+            in_range = z3.And(z3.fpGT(a, low), z3.fpLT(a, high))
+        truncated = z3.fpToSBV(z3.RTZ(), a, BV32)
+        if self.arith.conversion == "indefinite":
+            return z3.If(in_range, truncated, z3.BitVecVal(INT_MIN, 32))
+        return z3.If(z3.fpIsNaN(a), z3.BitVecVal(0, 32),
+                     z3.If(z3.fpLT(a, low) if a.sort() == F32 else z3.fpLEQ(a, low), z3.BitVecVal(INT_MIN, 32),
+                           z3.If(z3.fpGEQ(a, high), z3.BitVecVal(INT_MAX, 32), truncated)))
 
     # ------------------------------------------------------------- arithmetic
     def add_int(self, a, b):
@@ -421,4 +439,22 @@ class RealDomain(ExactArithmetic, Domain):
         return z3.If(c, a, b)
 
 
-DOMAINS = {"fp32": FPDomain, "real": RealDomain}
+# the float32 semantics of each known build arithmetic (spec.arithmetic.KNOWN): ``fp32`` is
+# x86-64's, the golden files' build; ``fp32@NAME`` computes as the build NAME does
+FP32_SEMANTICS = {"fp32": X86_64, **{f"fp32@{n}": a for n, a in KNOWN.items() if a != X86_64}}
+DOMAINS = {"real": RealDomain, **{s: functools.partial(FPDomain, arithmetic=a) for s, a in FP32_SEMANTICS.items()}}
+
+
+def is_fp32(semantics: str) -> bool:
+    """Whether ``semantics`` is float32 in some build's arithmetic."""
+    return semantics in FP32_SEMANTICS
+
+
+def fp32_of(target: str) -> str:
+    """The float32 semantics of the build arithmetic ``target`` (a name of spec.arithmetic.KNOWN)."""
+    return "fp32" if KNOWN[target] == X86_64 else f"fp32@{target}"
+
+
+def arithmetic_of(semantics: str) -> Optional[Arithmetic]:
+    """The build arithmetic a float32 ``semantics`` computes in; None over the reals."""
+    return FP32_SEMANTICS.get(semantics)

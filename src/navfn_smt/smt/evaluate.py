@@ -100,11 +100,11 @@ def _results(D, case: T.KernelCase, args: tuple):
     return tuple(value(v) for v in case.call(D, *(lift(D, k, v) for k, v in zip(case.kinds, args))))
 
 
-def fp32_result(case: T.KernelCase, args: tuple):
-    """``case``'s results on one input of the table in the bit-precise domain, or a sentence
-    saying why there are none (a result the inputs do not determine, the library model
-    refusing what the platform's libm returns)."""
-    D = FPEvalDomain()
+def fp32_result(case: T.KernelCase, args: tuple, arithmetic=None):
+    """``case``'s results on one input of the table in the bit-precise domain (in the build
+    arithmetic ``arithmetic``; None: x86-64's), or a sentence saying why there are none (a result
+    the inputs do not determine, the library model refusing what the platform's libm returns)."""
+    D = FPEvalDomain() if arithmetic is None else FPEvalDomain(arithmetic=arithmetic)
     try:
         got = _results(D, case, args)
     except NotConstant as e:  # the inputs do not determine the symbolic result
@@ -121,13 +121,17 @@ def real_result(case: T.KernelCase, args: tuple, domain=RealEvalDomain):
         return f"not determined: {str(e)[:200]}"
 
 
-def compare_kernel(kernel: str, seed: int, n: int) -> list:
+def compare_kernel(kernel: str, seed: int, n: int, arithmetic=None, symbolic=None) -> list:
     """Evaluate ``kernel`` on ``n`` inputs of the conformance table in the bit-precise domain and
-    concretely; return the mismatches (and the inputs where the library model refuses libm)."""
+    concretely, both in the build arithmetic ``arithmetic`` (None: x86-64's; ``symbolic``: the
+    bit-precise domain's, when it is to differ); return the mismatches (and the inputs where the
+    library model refuses libm)."""
     case = T.CASE[kernel]
+    conc = C.with_arithmetic(arithmetic)
+    symbolic = arithmetic if symbolic is None else symbolic
     bad = []
     for args in T.inputs(case, seed, n):
-        want, got = case.call(C, *args), fp32_result(case, args)
+        want, got = case.call(conc, *args), fp32_result(case, args, symbolic)
         if not T.agree(want, got):
             bad.append((kernel, args, want, got))
     return bad

@@ -34,6 +34,7 @@ from pathlib import Path
 from typing import Iterable, Optional
 
 from ..errors import NavfnInputError
+from .domains import FP32_SEMANTICS, is_fp32
 
 DECIDED = ("proved", "refuted")
 
@@ -109,10 +110,21 @@ def recorded(ob, semantics: str) -> Optional[dict]:
     return rec if isinstance(rec, dict) and rec.get("status") in DECIDED else None
 
 
+def expectations(ob) -> dict:
+    """``semantics -> declared verdict`` of ``ob``: its declaration, and for an obligation with a
+    float32 verdict, the float32 semantics of every other build arithmetic too (``unknown``
+    where the declaration names none: what is known there is recorded, or nothing)."""
+    out = dict(ob.expect)
+    if "fp32" in out:
+        out.update({s: ob.expect.get(s, "unknown") for s in FP32_SEMANTICS})
+    return out
+
+
 def knowledge(obligations, splits=(), predicates=(), bound_of=None) -> dict:
     """``(name, semantics) -> Known`` for every obligation and semantics it declares, from the
     declarations, the ``splits``, the ``predicates``' chains and the recorded decisions;
-    ``bound_of(ob)`` gives the bound cached for an obligation refuted in fp32 (none without it)."""
+    ``bound_of(ob, semantics)`` gives the bound cached for an obligation refuted in a float32
+    semantics (none without it); a split and a chain decide x86-64's ``fp32`` only."""
     by_split = {}
     for s in splits:
         if s.expect in DECIDED:
@@ -120,7 +132,7 @@ def knowledge(obligations, splits=(), predicates=(), bound_of=None) -> dict:
     whole = {name: p.name for p in predicates for name in getattr(p, "whole", ())}
     out = {}
     for ob in obligations:
-        for sem, declared in ob.expect.items():
+        for sem, declared in expectations(ob).items():
             k = Known(declared, "declared") if declared in DECIDED else NOTHING
             if sem == "fp32" and ob.name in by_split:  # split() refuses a verdict the declaration contradicts
                 k = Known(by_split[ob.name], "split")
@@ -130,7 +142,7 @@ def knowledge(obligations, splits=(), predicates=(), bound_of=None) -> dict:
                 rec = recorded(ob, sem)
                 if rec:
                     k = Known(rec["status"], "recorded")
-            cached = bound_of(ob) if bound_of is not None and k.status == "refuted" and sem == "fp32" else None
+            cached = bound_of(ob, sem) if bound_of is not None and k.status == "refuted" and is_fp32(sem) else None
             if cached is not None:
                 k = Known(k.status, k.source, {"var": ob.bound.var, "holds_below": cached})
             out[(ob.name, sem)] = k

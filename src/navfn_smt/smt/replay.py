@@ -114,13 +114,14 @@ class ExactReplayDomain(ExactArithmetic, ReplayDomain):
         return (1 if a >= 0 else -1) * math.floor(abs(a) + Fraction(1, 2))
 
 
-def replay(ob: Obligation, values: dict, extra_pre=None) -> Optional[bool]:
+def replay(ob: Obligation, values: dict, extra_pre=None, arithmetic=None) -> Optional[bool]:
     """Does the concrete spec confirm the counterexample (pre true, claim false)?
 
-    A float32 model is replayed with the C++ arithmetic and the platform's libm; a real
-    model (rationals) with the same kernels evaluated exactly on rationals."""
+    A float32 model is replayed with the C++ arithmetic of the build ``arithmetic``
+    (:class:`~navfn_smt.spec.arithmetic.Arithmetic`; None: x86-64's) and the platform's libm; a
+    real model (rationals) with the same kernels evaluated exactly on rationals."""
     exact = any(isinstance(v, Fraction) for v in values.values())
-    D = ExactReplayDomain(values) if exact else ReplayDomain(values)
+    D = ExactReplayDomain(values) if exact else ReplayDomain(values).with_arithmetic(arithmetic)
     pre, claim = ob.build(D)
     if extra_pre is not None:
         pre = pre and extra_pre(D)

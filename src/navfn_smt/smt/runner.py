@@ -18,6 +18,7 @@ from ..engine import Engine, as_engine, default_jobs, stream
 from ..errors import NavfnInputError
 from . import codec
 from .checking import Outcome, check, solve_z3
+from .domains import is_fp32
 from .obligation import load_obligations, load_obligations_from
 
 SEMANTICS = ("real", "fp32")
@@ -87,12 +88,14 @@ def tasks(paths, semantics=SEMANTICS, timeout: float = 30.0, solvers=("z3",), bo
 
 
 def wanted(o, semantics: str, everything: bool = True, slow_only: bool = False, bounds: bool = True) -> bool:
-    """Whether a run asks ``o`` in ``semantics`` (:func:`tasks`)."""
-    if semantics not in o.expect:
+    """Whether a run asks ``o`` in ``semantics`` (:func:`tasks`): a float32 semantics of another
+    build arithmetic as x86-64's ``fp32`` (what is slow there is slow in each)."""
+    declared = "fp32" if is_fp32(semantics) else semantics
+    if declared not in o.expect:
         return False
     if slow_only:
-        return semantics in o.slow or (bounds and o.bound is not None and semantics == "fp32")
-    return everything or semantics not in o.slow
+        return declared in o.slow or (bounds and o.bound is not None and declared == "fp32")
+    return everything or declared not in o.slow
 
 
 def split_decided(paths) -> frozenset:
