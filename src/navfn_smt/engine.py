@@ -128,7 +128,7 @@ def client(eng: Engine):
         eng = Engine(default_jobs())
     # one thread per worker: the tasks are CPU-bound Python, numba and solver code; the
     # scheduler's HTTP server on a free port (its default 8787 may be taken: a warning on stderr)
-    cluster = None
+    cluster, quiet = None, {}
     try:
         with _sigint_blocked():
             cluster = LocalCluster(n_workers=eng.jobs, threads_per_worker=1, processes=True,
@@ -137,9 +137,27 @@ def client(eng: Engine):
                                    host="127.0.0.1")
         with Client(cluster, set_as_default=False) as c:
             yield c
+    except BaseException:
+        quiet = _quiet_shutdown()
+        raise
     finally:
         if cluster is not None:
             cluster.close()
+        for name, level in quiet.items():
+            logging.getLogger(name).setLevel(level)
+
+
+def _quiet_shutdown() -> dict:
+    """A run that ends on an error or a Ctrl-C closes its cluster mid-flight: the scheduler and
+    the nannies live in this process, and their comms, cut while reading, could log tracebacks
+    at ERROR under the error the run reports.  So until the cluster is closed, this process's
+    Dask, Tornado and asyncio loggers say nothing (the workers, which never see Ctrl-C, still log
+    at ERROR); the levels they had are returned, to be put back."""
+    before = {}
+    for name in ("distributed", "tornado", "asyncio"):
+        before[name] = logging.getLogger(name).level
+        logging.getLogger(name).setLevel(logging.CRITICAL + 1)
+    return before
 
 
 @contextlib.contextmanager
