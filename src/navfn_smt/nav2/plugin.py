@@ -643,13 +643,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
     from ..spec.propagation import propagate, setup
 
     ny, nx = run.costs.shape
-    if variant == "fixed":
-        st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal, arith=run.arith.navfn)
-        run.reached, _ = fix.propagate_on(st, navfn_start, navfn_goal, astar, run.cycle_limit, record_trace=False)
-        run.potential = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
-        run.cycles, run.dropped = st.cycles, st.dropped
-        return
-    if backend == "jit":
+    if backend == "jit" and variant != "fixed":
         from ..backends import jit as J
 
         planner = J.JitPlanner(add_border(run.costs), arith=run.arith.navfn)
@@ -662,8 +656,11 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
         run.cycles, run.dropped = int(planner.counters[J.CYCLES]), int(planner.counters[J.DROPPED])
         return
     st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal, arith=run.arith.navfn)
-    run.reached = bool(propagate(st, navfn_start, navfn_goal, astar, run.cycle_limit, at_start=True,
-                                 record_trace=False))
+    if variant == "fixed":
+        run.reached, _ = fix.propagate_on(st, navfn_start, navfn_goal, astar, run.cycle_limit, record_trace=False)
+    else:
+        run.reached = bool(propagate(st, navfn_start, navfn_goal, astar, run.cycle_limit, at_start=True,
+                                     record_trace=False))
     run.potential = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
     run.cycles, run.dropped = st.cycles, st.dropped
 

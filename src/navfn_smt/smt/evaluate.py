@@ -13,6 +13,7 @@ import math
 
 import z3
 
+from ..spec.arithmetic import X86_64
 from ..spec.numeric import c_hypot, c_hypotf
 from .codec import f32_from_bits, f64_from_bits, fp32_val, fp64_val
 from .domains import F32, F64, FPDomain, RealDomain
@@ -104,7 +105,7 @@ def fp32_result(case: T.KernelCase, args: tuple, arithmetic=None):
     """``case``'s results on one input of the table in the bit-precise domain (in the build
     arithmetic ``arithmetic``; None: x86-64's), or a sentence saying why there are none (a result
     the inputs do not determine, the library model refusing what the platform's libm returns)."""
-    D = FPEvalDomain() if arithmetic is None else FPEvalDomain(arithmetic=arithmetic)
+    D = FPEvalDomain(arithmetic=arithmetic or X86_64)
     try:
         got = _results(D, case, args)
     except NotConstant as e:  # the inputs do not determine the symbolic result
