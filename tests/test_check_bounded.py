@@ -22,6 +22,7 @@ from navfn_smt.check.encoding import _interior
 from navfn_smt.check.runner import check_one_size
 from navfn_smt.smt.domains import FPDomain
 from navfn_smt.smt.evaluate import value
+from navfn_smt.under_test import ORIGINAL
 
 
 def _exhaustive(nx, ny, lo, hi, modes):
@@ -122,6 +123,29 @@ def test_exhaustive_evaluation_equals_z3():
         small = {k: (100, 111) for k in v}
         box = [z3.And(z3.UGE(x, 100), z3.ULE(x, 111)) for x in v.values()]
         assert X.solve(a + box, v, small)[0] == B.solve_bitwuzla(a + box, v, 30)[0]
+
+
+def test_the_exhaustive_fused_multiply_add_is_rounded_once():
+    """The evaluator's fp.fma (the builds that contract, ``check --target aarch64``) is Z3's, float
+    and double: on random operands, and where a product and a sum each rounded in double would
+    land on a float tie and round it the wrong way (``(1 + 2**-12)**2 + 2**-60``)."""
+    from navfn_smt.check import exhaustive as X
+    from navfn_smt.smt.domains import F32, F64, RNE
+
+    rng = np.random.default_rng(1)
+    for sort, dt in ((F32, np.float32), (F64, np.float64)):
+        a, b, c = (rng.normal(0, 1e3, 40).astype(dt) for _ in range(3))
+        a[0], b[0], c[0] = 1 + 2.0 ** -12, 1 + 2.0 ** -12, 2.0 ** -60
+        names = [z3.FP(n, sort) for n in "abc"]
+        env = {"a": a, "b": b, "c": c}
+        got = X.evaluate(z3.fpFMA(RNE, *names), env, 40, {})
+        for i in range(40):
+            vals = [z3.FPVal(float(x[i]), sort) for x in (a, b, c)]
+            assert got[i].tobytes() == dt(value(z3.simplify(z3.fpFMA(RNE, *vals)))).tobytes(), (dt, i)
+    tie = np.float32(1 + 2.0 ** -12)
+    assert np.float32(np.float64(tie) * np.float64(tie) + 2.0 ** -60) != X.evaluate(
+        z3.fpFMA(RNE, *[z3.FP(n, F32) for n in "abc"]), {"a": np.array([tie]), "b": np.array([tie]),
+                                                          "c": np.array([np.float32(2.0 ** -60)])}, 1, {})[0]
 
 
 def test_check_command(tmp_path, capsys):
@@ -268,10 +292,50 @@ def test_shortcut_answers_recheck_and_change_no_verdict(monkeypatch):
     plain = explore(case, names, 50, 253, FPDomain, timeout=60, shortcuts=False)
     assert fast.cached_unsat and fast.sampled_sat and not plain.cached_unsat and not plain.sampled_sat
     assert fast.results["start-reached"].status == plain.results["start-reached"].status == "holds"
-    assert recheck_case(case, names, 50, 253, fast.log, 60, "original", order=("bitwuzla",)) == []  # cvc5: 8x slower
+    assert recheck_case(case, names, 50, 253, fast.log, 60, ORIGINAL, order=("bitwuzla",)) == []  # cvc5: 8x slower
     assert learned
     for pc, j, core in learned:
         query = [pc[i] for i in core] + [z3.Not(pc[j])]
         variables = {name: z3.BitVec(name, 8) for name in free_constants(query)}
         box = [z3.And(z3.UGE(v, 50), z3.ULE(v, 253)) for v in variables.values()]
         assert B.solve_bitwuzla(box + query, variables, 60)[0] == "unsat", (j, core)
+
+
+def test_check_in_aarch64s_arithmetic_finds_the_path_from_an_unreached_start(tmp_path, capsys):
+    """``check --target aarch64`` on 4x3: no-path-before-start-potential, proved in x86-64's
+    arithmetic, is refuted in arm64's by a map on which the spec in that arithmetic returns a
+    path from a start it never reached (the committed path-without-potential-*-4x3-aarch64 are
+    such maps); the certificate of the size says its semantics, replays, and an edit of that
+    semantics is refused."""
+    import gzip
+    import json
+
+    from navfn_smt.cli import main
+    from navfn_smt.spec.arithmetic import KNOWN
+    from navfn_smt.spec.constants import POT_HIGH
+
+    name = "no-path-before-start-potential"
+    assert main(["check", name, "--size", "4", "3"]) == 0  # x86-64: proved
+    rep, certs = tmp_path / "r.json", tmp_path / "certs"
+    certs.mkdir()
+    assert main(["check", "all", "--size", "4", "3", "--target", "aarch64", "--json", str(rep),
+                 "--certificates", str(certs)]) == 1
+    assert "aarch64 arithmetic" in capsys.readouterr().out
+    doc = json.loads(rep.read_text())
+    assert doc["semantics"] == "fp32@aarch64" and doc["planner"]["arithmetic"] == "aarch64"
+    got = {r["property"]: r for r in doc["results"]}
+    assert got[name]["status"] == "refuted" and got["start-reached"]["status"] == "proved"
+    cx = got[name]["counterexample"]
+    r = P.run(np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]), cx["mode"] == "astar",
+              arith=KNOWN["aarch64"])
+    assert len(r.path) and r.start_potential >= np.float32(POT_HIGH)
+    cert = certs / "check-4x3-aarch64.cert.json.gz"
+    assert main(["check", "--replay", str(cert), "--solver", "bitwuzla"]) == 0
+    header = json.loads(gzip.decompress(cert.read_bytes()))
+    assert header["semantics"] == "fp32@aarch64" and header["outside"] == 0
+    for other in ("fp32", "fp32@x86-64-v3", "fp32@nowhere"):
+        edited = tmp_path / f"edited-{other}.cert.json.gz"
+        edited.write_bytes(gzip.compress(json.dumps({**header, "semantics": other}).encode()))
+        capsys.readouterr()
+        assert main(["check", "--replay", str(edited), "--solver", "bitwuzla"]) == 1, other
+        assert "refused" in capsys.readouterr().out

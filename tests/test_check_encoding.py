@@ -180,3 +180,54 @@ def test_whole_run_with_gradient_steps(inner, astar):
     pts2 = [(x.conc if hasattr(x, "conc") else x, y.conc if hasattr(y, "conc") else y)
             for x, y, w in ex2.points if (w.conc if hasattr(w, "conc") else w)] + [ex2.goal_point]
     assert [(_bits(x), _bits(y)) for x, y in pts2] == [(_bits(x), _bits(y)) for x, y in ref.path.tolist()]
+
+
+def _counterexample_case(name: str):
+    """The map, start, goal and mode of a committed counterexample (tests/data/counterexamples)."""
+    from conftest import DATA
+    from navfn_smt.maps.suite import load_map
+
+    import json
+
+    d = DATA / "counterexamples" / name
+    doc = json.loads((d / "counterexample.json").read_text())
+    return load_map(d).costs, tuple(doc["start"]), tuple(doc["goal"]), doc["mode"] == "astar"
+
+
+# maps where the arithmetics part: a path on aarch64 only (its saturating (int)), a path on x86-64
+# only (the fused multiply-adds' potentials), and a path with gradient steps that fuse
+ARITHMETIC_MAPS = ["path-without-potential-astar-4x3-aarch64", "cost-astar-5x7", "turn-astar-5x5"]
+
+
+@pytest.mark.parametrize("name", ARITHMETIC_MAPS)
+def test_the_concolic_run_in_each_arithmetic_is_the_specs_there(name):
+    """The whole run in the concolic domain over a build's arithmetic (``check --target``):
+    its concrete side, every potential, the exit and every path point, is the reference spec's
+    run in that arithmetic bit for bit, for x86-64, x86-64-v3 and aarch64; and on each of these
+    maps some arithmetic's run differs from x86-64's, so a concolic domain that ignored the
+    arithmetic would fail here."""
+    from navfn_smt.check import properties as P
+    from navfn_smt.check.bounded import Case, _symbolic_run
+    from navfn_smt.check.concolic import concrete
+    from navfn_smt.smt.domains import DOMAINS, FP32_SEMANTICS
+    from navfn_smt.spec.constants import COST_OBS
+    from navfn_smt.spec.extraction import exit_name
+
+    arr, start, goal, astar = _counterexample_case(name)
+    ny, nx = arr.shape
+    inner = _interior(nx, ny)
+    case = Case(nx, ny, frozenset(k for k in inner if arr.flat[k] >= COST_OBS), start, goal, astar)
+    conc = {k: int(arr.flat[k]) for k in inner if k not in case.lethal}
+    runs = {}
+    for semantics, arith in FP32_SEMANTICS.items():
+        D, _, sp, ex = _symbolic_run(case, conc, 50, 253, DOMAINS[semantics])
+        ref = P.run(arr, start, goal, astar, arith=arith)
+        pot = [_bits(concrete(p)) for p in sp.potential]
+        assert pot == [_bits(v) for v in ref.potential.ravel()], semantics
+        assert exit_name(concrete(ex.exit)) == ref.exit, semantics
+        pts = [(concrete(x), concrete(y)) for x, y, w in ex.points if concrete(w)]
+        if ref.exit == "near_goal":
+            pts.append(tuple(concrete(v) for v in ex.goal_point))
+            assert [(_bits(x), _bits(y)) for x, y in pts] == [(_bits(x), _bits(y)) for x, y in ref.path.tolist()]
+        runs[semantics] = (pot, ref.exit, ref.path.tobytes())
+    assert any(r != runs["fp32"] for r in runs.values()), "the arithmetics plan this map alike"

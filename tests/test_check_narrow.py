@@ -14,6 +14,7 @@ import pytest
 from navfn_smt.check import runner as CR
 from navfn_smt.check.soundness import sample
 from navfn_smt.cli import main
+from navfn_smt.under_test import FIXED
 
 
 @pytest.mark.parametrize("size,narrow", [((4, 5), True), ((5, 4), True), ((4, 6), True), ((6, 4), True),
@@ -21,7 +22,7 @@ from navfn_smt.cli import main
                                          ((5, 5), False), ((14, 3), True)])
 def test_narrow_sizes_are_at_most_two_cells_wide_and_within_the_budget(size, narrow):
     assert CR.narrow(*size) is narrow
-    assert bool(CR.carried_at(*size)) is narrow and not CR.carried_at(*size, variant="fixed")
+    assert bool(CR.carried_at(*size)) is narrow and not CR.carried_at(*size, planner=FIXED)
 
 
 def test_check_complete_on_a_narrow_size_is_decided_by_fallback_path(tmp_path, capsys):

@@ -172,7 +172,7 @@ def _toy_copy(tmp_path) -> Path:
 
 def test_a_split_left_undecided_does_not_fail_the_run(tmp_path, monkeypatch, capsys):
     def slow(job):
-        _, _, _, part, _, _ = job
+        _, _, _, part, _, _, _ = job
         return S.Part(part.box, part.depth, detail="smt: timeout (fake)")
 
     monkeypatch.setattr(S, "check_part", slow)
@@ -184,7 +184,7 @@ def test_a_split_left_undecided_does_not_fail_the_run(tmp_path, monkeypatch, cap
 
 def test_a_split_against_what_is_known_fails_the_run(tmp_path, monkeypatch, capsys):
     def liar(job):
-        _, _, _, part, _, _ = job
+        _, _, _, part, _, _, _ = job
         return S.Part(part.box, part.depth, status="proved", solver="liar")
 
     monkeypatch.setattr(S, "check_part", liar)

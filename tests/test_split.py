@@ -64,6 +64,45 @@ def test_each_toy_split_reaches_its_declared_verdict(name):
         assert witness["replayed_on_spec"] is True
 
 
+@pytest.mark.parametrize("method", ["enumerate", "smt"])
+def test_a_split_is_decided_in_a_builds_arithmetic(method):
+    """``split --target``: the parts are decided in that build's float32 semantics, what is known
+    judged there; a fused multiply-add is the product's rounding error where x86-64's rounded
+    product gives zero, so the toy is proved in fp32 and refuted, by a witness the spec in that
+    arithmetic replays, in each fused one."""
+    from dataclasses import replace
+
+    s = replace(_splits()["product_error_is_zero"], methods=(method,), solvers=("z3",), part_timeout=30.0)
+    assert S.run_split(s, Engine(1)).status == "proved"
+    for semantics in ("fp32@aarch64", "fp32@x86-64-v3"):
+        o = S.run_split(s, Engine(1), semantics=semantics)
+        assert (o.status, o.known, o.semantics, o.judgement) == ("refuted", "refuted", semantics, "confirmed")
+        witness = next(p["witness"] for p in o.parts if p["status"] == "refuted")
+        assert witness["replayed_on_spec"] is True
+
+
+def test_fmaf_array_is_libms_fmaf():
+    """The enumeration's vectorised fmaf (and the check's exhaustive evaluator's) is libm's, bit
+    for bit: on random bit patterns and where rounding the double sum would break a float tie."""
+    import numpy as np
+
+    from navfn_smt.smt.enumerate import fmaf_array
+    from navfn_smt.spec.numeric import c_fmaf
+
+    rng = np.random.default_rng(7)
+    n = 20000
+    bits = rng.integers(0, 2**32, size=(3, n), dtype=np.uint64).astype(np.uint32).view(np.float32)
+    m = rng.integers(1, 2**12, n)
+    tie = (1 + m * 2.0**-12).astype(np.float32)
+    tiny = (rng.choice([-1, 1], n) * 2.0 ** rng.integers(-80, -30, n)).astype(np.float32)
+    for a, b, c in (bits, (tie, tie, tiny)):
+        got = fmaf_array(a, b, c)
+        want = np.array([c_fmaf(float(x), float(y), float(z)) for x, y, z in zip(a, b, c)], np.float32)
+        same = (got.view(np.uint32) == want.view(np.uint32)) | (np.isnan(got) & np.isnan(want))
+        assert same.all(), np.flatnonzero(~same)[:3]
+    assert (fmaf_array(tie, tie, tiny) != (tie.astype(np.float64) ** 2 + tiny).astype(np.float32)).any()
+
+
 def test_a_part_the_cover_misses_makes_the_split_unknown():
     s = _splits()["doubling_is_exact"]
     gap = S.Split(s.obligation, [(S.f32_interval("x", -4.0, 0.0),)], ("x",), "proved", 0, 30.0, ("z3",),
@@ -153,7 +192,7 @@ def test_a_worker_without_the_proof_file_decides_a_part_from_its_contents(tmp_pa
     """A remote worker: the driver's path does not exist there, the file's contents travel with the part."""
     s = _splits()["doubling_is_exact"]
     gone = str(tmp_path / "elsewhere" / "toy_proofs.py")
-    part = S.check_part((gone, TOY.read_bytes(), s.obligation, S.Part(s.boxes[0], 0), (("smt", 30.0),), ("z3",)))
+    part = S.check_part((gone, TOY.read_bytes(), s.obligation, S.Part(s.boxes[0], 0), (("smt", 30.0),), ("z3",), "fp32"))
     assert part.status == "proved"
 
 

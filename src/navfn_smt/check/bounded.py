@@ -121,8 +121,10 @@ class Reduced:
     outside: int
 
 
-def reduce_cases(todo) -> Reduced:
-    """:class:`Reduced` of the enumerated cases ``todo`` (see :func:`representative`)."""
+def reduce_cases(todo, decide_outside: bool = True) -> Reduced:
+    """:class:`Reduced` of the enumerated cases ``todo`` (see :func:`representative`); with
+    ``decide_outside`` False (an arithmetic where a start never reached may get a path), a
+    start outside the goal's component is explored too, by its representative."""
     comps: dict = {}
     reps: dict = {}
     outside = total = 0
@@ -132,7 +134,7 @@ def reduce_cases(todo) -> Reduced:
         if key not in comps:
             comps[key] = component(*key)
         comp = comps[key]
-        if case.start[1] * case.nx + case.start[0] not in comp:
+        if decide_outside and case.start[1] * case.nx + case.start[0] not in comp:
             outside += 1
             continue
         rep = representative(case, comp)

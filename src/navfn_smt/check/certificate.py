@@ -77,6 +77,16 @@ def code_hash(names=None) -> str:
     return h.hexdigest()
 
 
+def planner_of(doc: dict):
+    """The planner a certificate (or its header) is of: its variant, in the arithmetic of its
+    float32 semantics (``semantics``, absent in the certificates written before there were
+    others: x86-64's ``fp32``)."""
+    from ..smt.domains import FP32_SEMANTICS
+    from ..under_test import PlannerUnderTest
+
+    return PlannerUnderTest(doc["variant"], FP32_SEMANTICS[doc.get("semantics", "fp32")])
+
+
 def case_key(case: B.Case) -> list:
     return [case.nx, case.ny, sorted(case.lethal), list(case.start), list(case.goal), case.astar]
 
@@ -237,11 +247,11 @@ def _add(total: dict, part: dict) -> None:
             total[k] += v
 
 
-def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: float, variant: str,
+def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: float, planner,
                  verdicts: Optional[dict] = None, order: tuple = DEFAULT_SOLVERS, check_intervals: bool = False,
                  memo: Optional[dict] = None) -> list[str]:
     """The problems of one case's path log (empty: it re-checks); see :func:`check_case`."""
-    return check_case(case, names, lo, hi, log, timeout, variant, verdicts, order, check_intervals, memo)["problems"]
+    return check_case(case, names, lo, hi, log, timeout, planner, verdicts, order, check_intervals, memo)["problems"]
 
 
 def _log_problem(log, cells: int, properties: int, lo: int, hi: int) -> Optional[str]:
@@ -272,7 +282,7 @@ def _log_problem(log, cells: int, properties: int, lo: int, hi: int) -> Optional
     return None
 
 
-def _marks_problem(names, marks: str, verdicts: dict, run: tuple, conc: dict, variant: str, unsat: dict,
+def _marks_problem(names, marks: str, verdicts: dict, run: tuple, conc: dict, planner, unsat: dict,
                    out: dict, check_intervals: bool) -> Optional[str]:
     """A path's property marks against the verdicts (what is wrong, if anything): held on the box
     re-evaluated by the intervals (and asked of a solver with ``check_intervals``), held by a
@@ -286,7 +296,7 @@ def _marks_problem(names, marks: str, verdicts: dict, run: tuple, conc: dict, va
         if m in (B.REFUTED, B.UNKNOWN):
             if verdicts[n] != "refuted":
                 return f" marks {n} {MARKS[m]}; the certificate calls it {verdicts[n]}"
-            if m == B.REFUTED and n not in out["witnesses"] and run_spec(case, conc, n, variant)[2]:
+            if m == B.REFUTED and n not in out["witnesses"] and run_spec(case, conc, n, planner)[2]:
                 out["witnesses"].append(n)
                 ev["refutations_witnessed"] += 1
             continue
@@ -306,11 +316,13 @@ def _marks_problem(names, marks: str, verdicts: dict, run: tuple, conc: dict, va
     return None
 
 
-def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, variant: str,
+def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, planner,
                verdicts: Optional[dict] = None, order: tuple = DEFAULT_SOLVERS, check_intervals: bool = False,
                memo: Optional[dict] = None) -> dict:
-    """One case's path log re-checked (the module docstring): ``{"problems": [...], "evidence":
-    {...}, "witnesses": [properties refuted at some path's seed on the concrete spec]}``.
+    """One case's path log re-checked (the module docstring) as ``planner`` plans (a
+    :class:`~navfn_smt.under_test.PlannerUnderTest`: its variant, in its arithmetic):
+    ``{"problems": [...], "evidence": {...}, "witnesses": [properties refuted at some path's seed
+    on the concrete spec]}``.
     ``verdicts``: the certificate's verdict of each of ``names`` (default: every one proved)."""
     from .runner import _domain
 
@@ -333,7 +345,7 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, varia
     open_sat: dict = {}  # flip index -> paths whose flip there is recorded sat and has no child yet
     for i, (seed, bound, marks, flips) in enumerate(log):
         conc = dict(zip(inner, seed))
-        D, costs, sp, ex = run(case, conc, lo, hi, _domain("fp32"), variant)
+        D, costs, sp, ex = run(case, conc, lo, hi, _domain(planner.fp32_semantics()), planner.variant)
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches
@@ -351,7 +363,7 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, varia
                 return refuse(f"{at}: its seed does not satisfy flip {j} of path {parent} (evaluated by Z3)")
             ev["sat_flips_witnessed"] += 1
         unsat = {}  # what the certificate says is unsat on this path: name -> conditions
-        wrong = _marks_problem(names, marks, verdicts, (D, case, costs, sp, ex), conc, variant, unsat, out,
+        wrong = _marks_problem(names, marks, verdicts, (D, case, costs, sp, ex), conc, planner, unsat, out,
                                check_intervals)
         if wrong:
             return refuse(f"{at}{wrong}")
@@ -383,6 +395,7 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, varia
 # ---------------------------------------------------------------------------------------
 def header_problems(doc: dict) -> list[str]:
     """What is wrong with a certificate's header (empty: it is well formed)."""
+    from ..smt.domains import FP32_SEMANTICS
     from ..spec.constants import COST_OBS
     from ..spec.fix import VARIANTS
 
@@ -403,6 +416,8 @@ def header_problems(doc: dict) -> list[str]:
         return [f"modes {modes!r} are not distinct modes (astar, dijkstra)"]
     if doc.get("variant") not in VARIANTS:
         return [f"variant {doc.get('variant')!r} is not one of {', '.join(VARIANTS)}"]
+    if doc.get("semantics", "fp32") not in FP32_SEMANTICS:
+        return [f"semantics {doc.get('semantics')!r} is not one of {', '.join(FP32_SEMANTICS)}"]
     if doc.get("ends", "any") not in ("any", "passable"):
         return [f"ends {doc.get('ends')!r} is not any or passable"]
     if not all(_is_int(doc.get(k)) and doc.get(k) >= 0 for k in ("total", "outside")):
@@ -427,13 +442,13 @@ def induction_problems(doc: dict) -> list[str]:
     from .runner import carried_at, carried_status
 
     nx, ny = doc["size"]
-    carried = carried_at(nx, ny, doc["variant"], *doc["costs"])
+    carried = carried_at(nx, ny, planner_of(doc), *doc["costs"])
     for n, v in doc["verdicts"].items():
         if n in doc["properties"]:
             continue
         if n not in carried:
             return [f"{n} is called {v} by induction, and no induction decides it at {nx}x{ny}"]
-        status, why = carried_status(carried[n])
+        status, why = carried_status(carried[n], planner_of(doc).fp32_semantics())
         if (v, doc["induction"][n]) != (status, why):
             return [f"{n} is called {v} ({doc['induction'][n]}); what is known today gives {status} ({why})"]
     return []
@@ -455,10 +470,13 @@ def _case_entries(doc: dict, memo: Optional[dict] = None) -> tuple[list, list]:
         if not ok:
             return [f"case entry {i} is not [[W, H, lethal, start, goal, astar], weight, paths] of this size"], []
         entries.append((case_of(key), weight, log))
-    how = (nx, ny, tuple(doc["modes"]), doc.get("ends", "any"))
+    from .runner import outside_decided
+
+    how = (nx, ny, tuple(doc["modes"]), doc.get("ends", "any"), doc.get("semantics", "fp32"))
     red = None if memo is None else memo.setdefault("reductions", {}).get(how)
     if red is None:
-        red = B.reduce_cases(B.cases(nx, ny, [m == "astar" for m in doc["modes"]], None, None, how[3]))
+        red = B.reduce_cases(B.cases(nx, ny, [m == "astar" for m in doc["modes"]], None, None, how[3]),
+                             outside_decided(planner_of(doc)))
         if memo is not None:
             memo["reductions"][how] = red
     if red.total != doc["total"] or red.outside != doc["outside"]:
@@ -482,17 +500,17 @@ def _case_entries(doc: dict, memo: Optional[dict] = None) -> tuple[list, list]:
 
 
 def _replay_job(args):
-    entries, names, verdicts, lo, hi, timeout, variant, order, check_intervals = args
-    return [check_case(case_of(key), names, lo, hi, log, timeout, variant, verdicts, order, check_intervals)
+    entries, names, verdicts, lo, hi, timeout, planner, order, check_intervals = args
+    return [check_case(case_of(key), names, lo, hi, log, timeout, planner, verdicts, order, check_intervals)
             for key, _, log in entries]
 
 
 def _transcript_job(args):
-    entries, names, verdicts, lo, hi, variant = args
+    entries, names, verdicts, lo, hi, planner = args
     out = []
     for key, _, log in entries:
         _ASKED.clear()
-        got = check_case(case_of(key), names, lo, hi, log, 1.0, variant, verdicts, TRANSCRIBE)
+        got = check_case(case_of(key), names, lo, hi, log, 1.0, planner, verdicts, TRANSCRIBE)
         out.append([key, list(_ASKED), got])
     return out
 
@@ -521,7 +539,7 @@ def transcript(doc: dict, jobs=1, progress=None) -> dict:
     h.update(json.dumps([problems, induction_problems(doc),
                          [[case_key(c), w] for c, w, _ in entries]]).encode())
     lo, hi = doc["costs"]
-    args = (doc["properties"], doc["verdicts"], lo, hi, doc["variant"])
+    args = (doc["properties"], doc["verdicts"], lo, hi, planner_of(doc))
     work = [(tuple([case_key(c), w, log] for c, w, log in entries[k:k + BATCH]), *args)
             for k in range(0, len(entries), BATCH)]
     done = queries = 0
@@ -571,8 +589,9 @@ def _witness_problems(doc: dict, witnessed: set) -> list[str]:
             continue
         w = (doc.get("witnesses") or {}).get(n)
         try:
+            planner = planner_of(doc)
             r = run_spec(np.array(w["costs"], np.uint8), tuple(w["start"]), tuple(w["goal"]), w["mode"] == "astar",
-                         variant=doc["variant"])
+                         variant=planner.variant, arith=planner.navfn_arithmetic())
             ok = np.array(w["costs"]).shape == (doc["size"][1], doc["size"][0]) and judge(n, r) is not None
         except (TypeError, KeyError, ValueError, IndexError):
             ok = False
@@ -604,7 +623,7 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
     from .runner import BATCH, PARALLEL_FROM
 
     doc = read(path) if doc is None else doc
-    head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "verdicts", "induction")
+    head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "semantics", "verdicts", "induction")
             if k in doc}
     order = check_solvers(order)
 
@@ -632,7 +651,8 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
     entries = entries[first:last]
     lo, hi = doc["costs"]
     names, verdicts = doc["properties"], doc["verdicts"]
-    args = (names, verdicts, lo, hi, timeout, doc["variant"], order, check_intervals)
+    planner = planner_of(doc)
+    args = (names, verdicts, lo, hi, timeout, planner, order, check_intervals)
     evidence = new_evidence()
     witnessed: set = set()
     problems = []
@@ -641,9 +661,10 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
         results = []
         known, unsat = memo.setdefault("cases", {}), memo.setdefault("unsat", {})
         for case, w, log in entries:
-            k = json.dumps([case_key(case), log, names, verdicts, lo, hi, doc["variant"], order, check_intervals])
+            k = json.dumps([case_key(case), log, names, verdicts, lo, hi, doc["variant"], doc.get("semantics", "fp32"),
+                            order, check_intervals])
             if k not in known:
-                known[k] = check_case(case, names, lo, hi, log, timeout, doc["variant"], verdicts, order,
+                known[k] = check_case(case, names, lo, hi, log, timeout, planner, verdicts, order,
                                       check_intervals, unsat)
             results.append(known[k])
             if known[k]["problems"]:
@@ -687,7 +708,7 @@ def combine(doc: dict, sha256: str, reports: list) -> dict:
     is of this certificate, replayed, with the same solvers and options, and the parts are
     1..n of one n, each once, tiling the explored cases; the refuted verdicts' witnesses are
     judged over all parts."""
-    head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "verdicts", "induction")
+    head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "semantics", "verdicts", "induction")
             if k in doc}
     problems = []
     n = {tuple(r.get("part", (1, 1)))[1] for r in reports}

@@ -2,8 +2,9 @@
 
 Every value derived from a symbolic cost carries three things at once:
 
-* its concrete value (the C++ arithmetic, :data:`~navfn_smt.spec.numeric.CONCRETE`), which
-  decides every branch the way the planner takes it on this map;
+* its concrete value (the C++ arithmetic, :data:`~navfn_smt.spec.numeric.CONCRETE`, in the
+  build's arithmetic: the symbolic domain's, which fuses the same multiply-adds and converts
+  to int the same way), which decides every branch the way the planner takes it on this map;
 * an interval that holds its value for *every* cost in the box the check covers
   (float32/float64 rounding to nearest is monotone, so applying the C++ operation to the
   interval's ends gives sound bounds; no outward rounding is needed);
@@ -63,11 +64,12 @@ class ConcolicDomain:
         self.branches: list = []
         self._seen: set = set()
         self.assumptions = S.assumptions
+        self._int32 = C.with_arithmetic(getattr(S, "arith", None)).to_int32  # the build's (int)
 
-    @staticmethod
-    def fuses(site: str) -> bool:
-        """The concolic runs compute in x86-64's arithmetic: no multiply-add is fused."""
-        return False
+    def fuses(self, site: str) -> bool:
+        """Whether the build fuses the multiply-add ``site``: as the symbolic domain's arithmetic
+        says (x86-64's fuses none)."""
+        return self.S.fuses(site)
 
     # ------------------------------------------------------------------ lifting
     def _kind(self, x) -> str:
@@ -128,13 +130,18 @@ class ConcolicDomain:
         return self._mono("f32", C.roundf, self.S.roundf, a)
 
     def to_int32(self, a):
-        """Truncation is monotone inside the int range; outside it x86-64 gives INT_MIN."""
+        """Truncation is monotone inside the int range; outside it x86-64 gives INT_MIN, and a
+        saturating conversion (arm64's) stays monotone, clamping, with NaN giving 0."""
         if _plain(a):
-            return C.to_int32(a)
+            return self._int32(a)
         term = self.S.to_int32(a.term)
-        conc = C.to_int32(a.conc)
+        conc = self._int32(a.conc)
+        if getattr(self.S, "arith", None) is not None and self.S.arith.conversion == "saturating":
+            if math.isnan(a.lo) or math.isnan(a.hi):
+                return V("int", conc, INT_MIN, INT_MAX, term)
+            return V("int", conc, self._int32(a.lo), self._int32(a.hi), term)
         if a.lo >= -2.0**31 and a.hi < 2.0**31:
-            return V("int", conc, C.to_int32(a.lo), C.to_int32(a.hi), term)
+            return V("int", conc, self._int32(a.lo), self._int32(a.hi), term)
         if a.lo >= 2.0**31 or a.hi < -2.0**31:
             return V("int", conc, INT_MIN, INT_MIN, term)
         return V("int", conc, INT_MIN, INT_MAX, term)

@@ -3,7 +3,8 @@
 The last resort of the bounded checks: a query no solver decides in time, whose box has few
 enough points, is evaluated at all of them.  The evaluator interprets the query's Z3 terms
 over numpy arrays, one element per point: float32 and float64 operations as numpy performs
-them (IEEE-754, round to nearest even, like the C++ and the solvers), so the answer is
+them (IEEE-754, round to nearest even, like the C++ and the solvers), a fused multiply-add by
+an exact vectorised ``fmaf`` and libm's correctly rounded ``fma`` point by point, so the answer is
 exact.  An operator it does not know raises :class:`Unsupported`; the query then stays
 unknown.  ``tests/test_check_bounded.py`` holds it equal to Z3's own evaluation.
 """
@@ -17,8 +18,12 @@ import z3
 
 from ..smt.codec import free_constants
 from ..smt.evaluate import value
+from ..smt.enumerate import fmaf_array
+from ..spec.numeric import c_fma
 
 CHUNK = 1 << 17
+# the fused multiply-add of a build that contracts (spec.arithmetic), as the concrete spec computes it
+_FMA = {np.float32: lambda a, b, c: fmaf_array(a, b, c), np.float64: np.frompyfunc(c_fma, 3, 1)}
 
 
 class Unsupported(Exception):
@@ -91,6 +96,12 @@ def _eval(t, env, n, memo):  # noqa: C901 - one branch per operator
         _rne(args[0])
         with np.errstate(all="ignore"):
             return fp_bin[k](ev(args[1]), ev(args[2])).astype(_fp_dtype(t.sort()))
+    if k == z3.Z3_OP_FPA_FMA:  # a * b + c rounded once: libm's fmaf / fma (correctly rounded), point by point
+        _rne(args[0])
+        dt = _fp_dtype(t.sort())
+        fma = _FMA[dt]
+        a, b, c = (np.broadcast_to(ev(x), (n,)) for x in args[1:])
+        return fma(a, b, c).astype(dt)
     if k == z3.Z3_OP_FPA_SQRT:
         _rne(args[0])
         with np.errstate(all="ignore"):

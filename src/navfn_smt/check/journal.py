@@ -24,11 +24,14 @@ from .certificate import case_key, case_of, code_hash
 FORMAT = "navfn-smt check journal 1"
 
 
-def header(names, nx: int, ny: int, modes, lo: int, hi: int, variant: str, ends: str, start, goal,
+def header(names, nx: int, ny: int, modes, lo: int, hi: int, planner, ends: str, start, goal,
            timeout: float, exhaustive_limit: int) -> dict:
-    """What a journal's cases depend on: a rerun must give the same header to reuse them."""
+    """What a journal's cases depend on (``planner``: the
+    :class:`~navfn_smt.under_test.PlannerUnderTest` explored): a rerun must give the same header
+    to reuse them."""
     return {"format": FORMAT, "code_hash": code_hash(names), "size": [nx, ny], "properties": list(names),
-            "costs": [lo, hi], "modes": ["astar" if m else "dijkstra" for m in modes], "variant": variant,
+            "costs": [lo, hi], "modes": ["astar" if m else "dijkstra" for m in modes], "variant": planner.variant,
+            "semantics": planner.fp32_semantics(),
             "ends": ends, "start": list(start) if start else None, "goal": list(goal) if goal else None,
             "timeout": timeout, "exhaustive": int(exhaustive_limit)}
 

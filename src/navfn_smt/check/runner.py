@@ -22,6 +22,7 @@ from typing import Callable, Optional
 from ..engine import Engine, as_engine, in_order, stream  # noqa: F401  (Engine: named in docstrings)
 from ..errors import NavfnInputError
 from ..spec.constants import COST_NEUTRAL, COST_OBS
+from ..under_test import ORIGINAL, PlannerUnderTest
 from . import properties as P
 from .bounded import CHECKABLE, Case, cases, check_cost_box, explore, reduce_cases  # noqa: F401  (CHECKABLE: re-exported)
 
@@ -85,31 +86,60 @@ def narrow(nx: int, ny: int) -> bool:
     return min(w, h) <= 2 and w * h <= 4 * nx and w * h < BOUND_CELLS
 
 
-def carried_at(nx: int, ny: int, variant: str = "original", lo: int = COST_NEUTRAL, hi: int = COST_OBS - 1) -> dict:
+def carried_at(nx: int, ny: int, planner: PlannerUnderTest = ORIGINAL, lo: int = COST_NEUTRAL,
+               hi: int = COST_OBS - 1) -> dict:
     """The properties an induction decides on every map of this size without exploring, and
     the predicates that carry each.  The inductions' obligations assume the costs setCostmap
-    produces (COST_NEUTRAL..COST_OBS-1): a wider cost box (``--costs 0..253``) is explored."""
-    if variant != "original" or not narrow(nx, ny) or lo < COST_NEUTRAL or hi >= COST_OBS:
+    produces (COST_NEUTRAL..COST_OBS-1): a wider cost box (``--costs 0..253``) is explored.
+    Whether the induction decides is :func:`carried_status`'s, in the planner's arithmetic."""
+    if planner.variant != "original" or not narrow(nx, ny) or lo < COST_NEUTRAL or hi >= COST_OBS:
         return {}
     return INDUCTION_NARROW
 
 
 @functools.lru_cache(maxsize=None)  # the proof files are read once a run, not once a size
-def carried_status(carriers: tuple) -> tuple[str, str]:
-    """``(status, why)`` of a size decided by the predicates ``carriers``: their fp32 status
-    derived from what is known of their links (declarations, splits, the bound cache: what
-    ``navfn-smt prove`` checks and CI re-checks), ``proved`` for the size when that status is
-    proved or bounded (the bound, potentials below 2**30, holds on a map below BOUND_CELLS
-    passable cells: see FallbackPath), ``unknown`` otherwise."""
+def _verdict_of():
+    """What is known of every obligation (declarations, splits, the bound cache), as
+    :func:`~navfn_smt.smt.chains.known_verdicts` gives it."""
     from ..proofs import PREDICATES
-    from ..smt.chains import STATUS_RANK, derive, known_verdicts
+    from ..smt.chains import known_verdicts
     from ..smt.runner import default_proof_files
     from ..smt.split import known_of_files
 
-    verdict_of = known_verdicts(known_of_files(default_proof_files(), None, PREDICATES))
-    statuses = [derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers]
+    return known_verdicts(known_of_files(default_proof_files(), None, PREDICATES))
+
+
+def _derived(name: str, semantics: str) -> str:
+    """The status of the predicate ``name`` in ``semantics``, derived from what is known."""
+    from ..proofs import PREDICATES
+    from ..smt.chains import derive
+
+    return derive(next(p for p in PREDICATES if p.name == name), semantics, _verdict_of(), PREDICATES)["status"]
+
+
+def outside_decided(planner: PlannerUnderTest = ORIGINAL) -> bool:
+    """Whether a start outside the goal's component is decided without exploring
+    (:func:`~.bounded.reduce_cases`): ReachedWithinComponent gives it no finite potential, and
+    NoPathWithoutFinitePotential then no path, which holds only where its links are proved in the
+    planner's arithmetic (not in aarch64's, whose saturating ``(int)`` lets calcPath's fallback
+    walk from a cell never reached).  Elsewhere those starts are explored like any other."""
+    semantics = planner.fp32_semantics()
+    return all(_derived(p, semantics) == "proved" for p in ("ReachedWithinComponent", "NoPathWithoutFinitePotential"))
+
+
+@functools.lru_cache(maxsize=None)
+def carried_status(carriers: tuple, semantics: str = "fp32") -> tuple[str, str]:
+    """``(status, why)`` of a size decided by the predicates ``carriers``: their status in the
+    float32 ``semantics`` (``fp32``: x86-64's arithmetic), derived from what is known of their
+    links (declarations, splits, the bound cache: what ``navfn-smt prove`` checks and CI
+    re-checks), ``proved`` for the size when that status is proved or bounded (the bound,
+    potentials below 2**30, holds on a map below BOUND_CELLS passable cells: see FallbackPath),
+    ``unknown`` otherwise."""
+    from ..smt.chains import STATUS_RANK
+
+    statuses = [_derived(name, semantics) for name in carriers]
     worst = max(statuses, key=STATUS_RANK.index) if statuses else "open"
-    why = f"induction: {', '.join(carriers)} (fp32 {worst})"
+    why = f"induction: {', '.join(carriers)} ({semantics} {worst})"
     return ("proved" if worst in ("proved", "bounded") else "unknown"), why
 
 
@@ -122,33 +152,37 @@ def check_size(nx: int, ny: int) -> None:
 
 
 def _domain(semantics: str):
-    from ..smt.domains import FPDomain
+    """The symbolic domain of a float32 ``semantics`` (``fp32``, or ``fp32@NAME`` in a build's
+    arithmetic: :data:`~navfn_smt.smt.domains.FP32_SEMANTICS`)."""
+    from ..smt.domains import DOMAINS, is_fp32
 
-    if semantics != "fp32":
+    if not is_fp32(semantics):
         raise NavfnInputError("check: only --semantics fp32 is implemented for whole-planner checks "
                               "(the concolic exploration follows float32 control paths)")
-    return FPDomain
+    return DOMAINS[semantics]
 
 
 def _explore_job(args):
     """The exploration of each case of a batch (a task: run by a worker, or in this process)."""
-    batch, names, lo, hi, semantics, timeout, limit, variant = args
-    return [explore(case, names, lo, hi, _domain(semantics), timeout=timeout, exhaustive_limit=limit,
-                    variant=variant) for case in batch]
+    batch, names, lo, hi, planner, timeout, limit = args
+    return [explore(case, names, lo, hi, _domain(planner.fp32_semantics()), timeout=timeout, exhaustive_limit=limit,
+                    variant=planner.variant) for case in batch]
 
 
-def replay(case: Case, costs: dict, name: str, variant: str = "original"):
-    """The counterexample map run by the reference spec; the judge's reason, or None if it holds."""
+def replay(case: Case, costs: dict, name: str, planner: PlannerUnderTest = ORIGINAL):
+    """The counterexample map run by the reference spec as ``planner`` plans (its variant, in its
+    arithmetic); the judge's reason, or None if it holds."""
     arr = case.costs_array(costs)
-    r = P.run(arr, case.start, case.goal, case.astar, variant=variant)
+    r = P.run(arr, case.start, case.goal, case.astar, variant=planner.variant, arith=planner.navfn_arithmetic())
     return arr, r, P.judge(name, r)
 
 
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
                    timeout: float = 60.0, jobs=1, start=None, goal=None, ends: str = "any",
                    exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None,
-                   variant: str = "original", certificate: Optional[list] = None, journal=None) -> dict:
-    """Every case of the size; returns ``{property: SizeResult}``, the same wherever the cases
+                   planner: PlannerUnderTest = ORIGINAL, certificate: Optional[list] = None, journal=None) -> dict:
+    """Every case of the size as ``planner`` plans (its variant, in its arithmetic: ``semantics``
+    ``fp32`` is float32 in the planner's); returns ``{property: SizeResult}``, the same wherever the cases
     run.  ``jobs``: an :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number
     of cases), or a number of local workers.  One representative per layout of the goal's
     component is explored, and a start outside it decided without exploring
@@ -158,6 +192,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     explored case as it is decided; the cases it already holds are not explored again."""
     check_size(nx, ny)
     _domain(semantics)
+    _domain(planner.fp32_semantics())
     if not (timeout > 0 and math.isfinite(timeout)):
         raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
     if not exhaustive_limit >= 0:
@@ -167,13 +202,13 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
                                   f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
     check_cost_box(lo, hi)
-    red = reduce_cases(cases(nx, ny, modes, start, goal, ends))
-    carried = carried_at(nx, ny, variant, lo, hi)
+    red = reduce_cases(cases(nx, ny, modes, start, goal, ends), outside_decided(planner))
+    carried = carried_at(nx, ny, planner, lo, hi)
     t0 = time.perf_counter()
     out = {}
     for n in names:  # decided by an induction: not explored
         if n in carried:
-            status, why = carried_status(carried[n])
+            status, why = carried_status(carried[n], planner.fp32_semantics())
             out[n] = SizeResult((nx, ny), n, status, cases=red.total, outside=red.outside,
                                 cases_holding=red.total if status == "proved" else 0,
                                 cases_unknown=0 if status == "proved" else red.total, method=why,
@@ -188,17 +223,17 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         if journal is not None:
             from .journal import Journal, header
 
-            book = Journal(journal, header(explored, nx, ny, modes, lo, hi, variant, ends, start, goal, timeout,
+            book = Journal(journal, header(explored, nx, ny, modes, lo, hi, planner, ends, start, goal, timeout,
                                            exhaustive_limit))
         done = {} if book is None else book.known(todo)
         fresh = [c for c in todo if c not in done]
         if done and progress:  # resumed: the journal's cases count as arrived
             progress(len(done), len(todo), None)
-        work = [(tuple(fresh[k:k + BATCH]), tuple(explored), lo, hi, semantics, timeout, exhaustive_limit, variant)
+        work = [(tuple(fresh[k:k + BATCH]), tuple(explored), lo, hi, planner, timeout, exhaustive_limit)
                 for k in range(0, len(fresh), BATCH)]
         try:
             _collect(stream(_explore_job, work, eng.for_work(len(fresh), PARALLEL_FROM)), got, todo, progress,
-                     variant, red.representatives, certificate, done, book)
+                     planner, red.representatives, certificate, done, book)
         finally:
             if book is not None:
                 book.close()
@@ -211,7 +246,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     return {n: out[n] for n in names}
 
 
-def _collect(batches, out: dict, todo: list, progress, variant: str = "original", weight=None,
+def _collect(batches, out: dict, todo: list, progress, planner: PlannerUnderTest = ORIGINAL, weight=None,
              certificate: Optional[list] = None, done: Optional[dict] = None, journal=None) -> None:
     """Fold the results of the cases ``todo`` into ``out`` in their order: counts, unknown cases
     and the counterexample (that of the first case refuting a property) are those of a run in
@@ -237,14 +272,14 @@ def _collect(batches, out: dict, todo: list, progress, variant: str = "original"
     for case in todo:
         cr = got[case]
         w = 1 if weight is None else weight[cr.case]
-        _fold(cr, out, variant, w)
+        _fold(cr, out, planner, w)
         if certificate is not None:
             from .certificate import case_key
 
             certificate.append([case_key(cr.case), w, cr.log])
 
 
-def _fold(cr, out: dict, variant: str = "original", weight: int = 1) -> None:
+def _fold(cr, out: dict, planner: PlannerUnderTest = ORIGINAL, weight: int = 1) -> None:
     """One explored case's results added to ``out``, counting the ``weight`` enumerated cases it
     stands for (the counterexample replayed on the spec first)."""
     case = cr.case
@@ -264,7 +299,7 @@ def _fold(cr, out: dict, variant: str = "original", weight: int = 1) -> None:
             r.cases_unknown += weight
             r.unknown_cases.append(_case_json(case) | {"reason": pr.reason})
         elif pr.status == "refuted" and r.counterexample is None:
-            arr, run, why = replay(case, pr.counterexample, name, variant)
+            arr, run, why = replay(case, pr.counterexample, name, planner)
             if why is None:  # the spec does not confirm it: the encoding is wrong, never report it
                 raise RuntimeError(f"{name}: the solver's counterexample {_case_json(case)} costs "
                                    f"{pr.counterexample} does not replay on the spec")
@@ -292,7 +327,7 @@ def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> l
 def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: float, jobs, start, goal,
                 ends: str, exhaustive_limit: int, budget: float = 0.0, smallest_only: bool = False,
                 progress_of: Callable[[str], Optional[Callable]] = lambda size: None,
-                t0: Optional[float] = None, variant: str = "original",
+                t0: Optional[float] = None, planner: PlannerUnderTest = ORIGINAL,
                 certify: Optional[Callable] = None, journal=None) -> tuple[list, list]:
     """:func:`check_one_size` for each of ``sizes`` in turn until ``budget`` seconds (0: no
     budget) have passed since ``t0``; the results in size order and the sizes not reached.
@@ -315,7 +350,7 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
             break
         entries = [] if certify else None
         got = check_one_size(open_names, nx, ny, modes, lo, hi, semantics, timeout, jobs, start, goal, ends,
-                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), variant=variant,
+                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), planner=planner,
                              certificate=entries, journal=journal)
         if certify and all(r.status in ("proved", "refuted") for r in got.values()) and any(
                 r.status == "proved" for r in got.values()) and any(r.method == "exploration" for r in got.values()):
@@ -344,30 +379,32 @@ def smallest_counterexample(results, name: str) -> Optional[dict]:
     return next((r.counterexample for r in results if r.property == name and r.counterexample), None)
 
 
-def inductive(variant: str = "original") -> dict:
+def inductive(planner: PlannerUnderTest = ORIGINAL) -> dict:
     """The properties proved for every map size, and the predicates that carry them."""
-    return INDUCTION_FIXED if variant == "fixed" else INDUCTION
+    return INDUCTION_FIXED if planner.variant == "fixed" else INDUCTION
 
 
-def induction_status(name: str, verdict_of, variant: str = "original") -> str:
-    """The every-size status of an inductive property: the worst fp32 status of the predicates
+def induction_status(name: str, verdict_of, planner: PlannerUnderTest = ORIGINAL) -> str:
+    """The every-size status of an inductive property: the worst status, in the float32 semantics
+    of ``planner``'s arithmetic, of the predicates
     that carry it (:func:`~navfn_smt.smt.chains.derive`, from ``verdict_of``), the one status
     ``check``, ``prove`` and the invariants page give those predicates."""
     from ..proofs import PREDICATES
     from ..smt.chains import STATUS_RANK, derive
 
-    carriers = inductive(variant)[name]
-    statuses = [derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers]
+    carriers = inductive(planner)[name]
+    semantics = planner.fp32_semantics()
+    statuses = [derive(p, semantics, verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers]
     return max(statuses, key=STATUS_RANK.index) if statuses else "open"
 
 
-def induction(name: str, timeout: float = 30.0, variant: str = "original") -> Optional[dict]:
+def induction(name: str, timeout: float = 30.0, planner: PlannerUnderTest = ORIGINAL) -> Optional[dict]:
     """The every-size proof of an inductive property: its predicates' obligations checked in
-    fp32 by the whole solver portfolio (as ``prove`` asks them) and judged
+    the float32 semantics of ``planner``'s arithmetic by the whole solver portfolio (as ``prove`` asks them) and judged
     against what is known (:mod:`~navfn_smt.smt.knowledge`); the status is derived from their
     standings, so a solver slower today than when the proof was found leaves it as known, and
     only a decision against what is known changes it."""
-    if name not in inductive(variant):
+    if name not in inductive(planner):
         return None
     from ..proofs import PREDICATES
     from ..smt.chains import outcome_verdicts, split_link
@@ -377,15 +414,16 @@ def induction(name: str, timeout: float = 30.0, variant: str = "original") -> Op
     from ..smt.solvers import SOLVERS
     from ..smt.split import known_of_files
 
-    preds = [p for p in PREDICATES if p.name in inductive(variant)[name]]
+    preds = [p for p in PREDICATES if p.name in inductive(planner)[name]]
+    semantics = planner.fp32_semantics()
     wanted = [split_link(x)[1] for p in preds for x in (*p.base, *p.lemmas)]
     files = default_proof_files()
     obligations = {o.name: o for o in load_obligations(files)}
     known = known_of_files(files, list(obligations.values()), PREDICATES)
-    runs = [check(obligations[w], "fp32", timeout, solve_query(SOLVERS), known=known[(w, "fp32")])
+    runs = [check(obligations[w], semantics, timeout, solve_query(SOLVERS), known=known[(w, semantics)])
             for w in wanted]
     return {"predicates": [p.name for p in preds],
-            "status": induction_status(name, outcome_verdicts(runs, known), variant),
+            "status": induction_status(name, outcome_verdicts(runs, known), planner), "semantics": semantics,
             "obligations": {o.name: o.standing for o in runs},
             "this_run": {o.name: o.status for o in runs},
             "contradicted": [o.name for o in runs if o.fails],

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..spec.constants import COST_OBS, POT_HIGH
 from ..spec.extraction import ExtractionExit, exit_code
-from ..under_test import PlannerUnderTest
+from ..under_test import ORIGINAL, PlannerUnderTest
 
 COSTS = (50, 51, 100, 200, 253)  # the reduced set: the ends of 50..253, a neighbour of the low end, two between
 SWEPT = ("complete", "start-reached", "no-path-before-start-potential")
@@ -31,7 +31,7 @@ class Sweep:
 
     size: tuple
     costs: tuple
-    variant: str
+    planner: PlannerUnderTest
     maps: int = 0
     cases: int = 0
     failures: dict = field(default_factory=lambda: {n: 0 for n in SWEPT})
@@ -84,15 +84,16 @@ def _map(nx: int, ny: int, inner, combo) -> np.ndarray:
     return arr
 
 
-def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), variant: str = "original",
+def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), planner: PlannerUnderTest = ORIGINAL,
           progress=None) -> Sweep:
     """Every map of ``nx`` x ``ny`` whose interior cells take a cost of ``costs`` or COST_OBS,
-    every interior start and goal, each mode (``True``: A*)."""
+    every interior start and goal, each mode (``True``: A*), planned as ``planner`` plans (its
+    variant, in its arithmetic)."""
     from ..backends import get_backend
 
-    backend = get_backend("jit", PlannerUnderTest(variant))
+    backend = get_backend("jit", planner)
     inner, pairs = _cells(nx, ny)
-    out = Sweep((nx, ny), tuple(costs), variant)
+    out = Sweep((nx, ny), tuple(costs), planner)
     for k, combo in enumerate(itertools.product(tuple(costs) + (COST_OBS,), repeat=len(inner))):
         _judge(out, backend, _map(nx, ny, inner, combo), pairs, modes)
         if progress and k % 1000 == 0:
@@ -101,17 +102,17 @@ def sweep(nx: int, ny: int, costs=COSTS, modes=(True, False), variant: str = "or
 
 
 def sample(nx: int, ny: int, maps: int, seed: int = 0, lo: int = 50, hi: int = COST_OBS - 1, lethal: float = 0.15,
-           modes=(True, False), variant: str = "original", progress=None) -> Sweep:
+           modes=(True, False), planner: PlannerUnderTest = ORIGINAL, progress=None) -> Sweep:
     """``maps`` random maps of ``nx`` x ``ny`` (``numpy.random.default_rng(seed)``): each interior
     cell lethal with probability ``lethal``, else a cost uniform in ``lo..hi``; every interior
     start and goal, each mode.  Evidence, not a proof: the product of :func:`sweep` is exhaustive
     over its cost set, this covers the whole cost range thinly."""
     from ..backends import get_backend
 
-    backend = get_backend("jit", PlannerUnderTest(variant))
+    backend = get_backend("jit", planner)
     inner, pairs = _cells(nx, ny)
     rng = np.random.default_rng(seed)
-    out = Sweep((nx, ny), (lo, hi), variant)
+    out = Sweep((nx, ny), (lo, hi), planner)
     for k in range(maps):
         combo = np.where(rng.random(len(inner)) < lethal, COST_OBS, rng.integers(lo, hi + 1, len(inner)))
         _judge(out, backend, _map(nx, ny, inner, combo), pairs, modes)

@@ -37,7 +37,11 @@ def cmd_check(args) -> int:
     if unknown:
         raise NavfnInputError(f"check: unknown property {unknown[0]!r} (choose from {', '.join(CR.CHECKABLE)}, all)")
     names = CR.CHECKABLE if "all" in args.property else tuple(dict.fromkeys(args.property))
-    planner = planner_of(args)  # NavFn as shipped or fixed, in x86-64's arithmetic (the encodings' so far)
+    planner = planner_of(args)  # NavFn as shipped or fixed, in the arithmetic of --target (x86-64's by default)
+    if args.semantics != "fp32":
+        raise NavfnInputError("check: only --semantics fp32 is implemented for whole-planner checks "
+                              "(the concolic exploration follows float32 control paths)")
+    semantics = planner.fp32_semantics()
     from ..search.hunt import parse_costs
 
     lo, hi = parse_costs(args.costs)
@@ -55,8 +59,12 @@ def cmd_check(args) -> int:
     if args.journal:
         check_files(args.journal)
     modes = [m == "astar" for m in modes_of(args.mode)]
+    if args.max_cells is not None and not args.max_size:
+        raise NavfnInputError("--max-cells N: give --max-size W H too (the sizes up to W x H of at most N interior cells)")
     if args.max_size:
-        sizes = CR.sizes_up_to(*args.max_size)
+        check_positive("--max-cells", args.max_cells, allow_zero=True)
+        sizes = [(w, h) for w, h in CR.sizes_up_to(*args.max_size)
+                 if args.max_cells is None or (w - 2) * (h - 2) <= args.max_cells]
     else:
         sizes = [tuple(args.size or (4, 4))]
     t0 = time.perf_counter()
@@ -64,10 +72,11 @@ def cmd_check(args) -> int:
         results, skipped = CR.check_sizes(names, sizes, modes, lo, hi, args.semantics, args.timeout, eng, args.start,
                                           args.goal, args.ends, args.exhaustive, args.budget,
                                           smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0,
-                                          variant=planner.variant, certify=_certify(args, planner, lo, hi, modes),
+                                          planner=planner, certify=_certify(args, planner, lo, hi, modes),
                                           journal=args.journal)
     finally:
         report.stop_progress()
+    print(f"planner: {planner.label} (float32 semantics {semantics})")
     report.table(results)
     saved = {}
     if args.out:
@@ -81,23 +90,25 @@ def cmd_check(args) -> int:
                     args.out, np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]),
                     cx["mode"] == "astar", r.property, {"reason": cx["reason"], "exit": cx["exit"]},
                     extra={"found_by": "check", "size_proved_below": CR.proved_sizes(results, r.property),
-                           "variant": planner.variant}))
-    induction = {n: CR.induction(n, timeout=args.timeout, variant=planner.variant)
-                 for n in names if n in CR.inductive(planner.variant)}
+                           "variant": planner.variant, "semantics": semantics}))
+    induction = {n: CR.induction(n, timeout=args.timeout, planner=planner)
+                 for n in names if n in CR.inductive(planner)}
     if args.json:
         report.write_json(args.json, {
-            "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": args.semantics,
-            "variant": planner.variant,
+            "command": "check", "arguments": vars_of(args), "costs": [lo, hi], "semantics": semantics,
+            "variant": planner.variant, "planner": planner.as_dict(),
             "ends": args.ends,
             "results": [report.row(r) for r in results], "sizes_not_reached": skipped,
             "largest_size_proved": {n: CR.largest_proved(results, n) for n in names},
             "smallest_counterexample": {n: CR.smallest_counterexample(results, n) for n in names},
             "every_size_by_induction": induction,
             "not_inductive": {n: CR.NOT_INDUCTIVE[n] for n in names
-                              if n in CR.NOT_INDUCTIVE and n not in CR.inductive(planner.variant)},
+                              if n in CR.NOT_INDUCTIVE and n not in CR.inductive(planner)},
             "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})
     for n, ind in induction.items():
-        print(f"{n}: every map size by induction: {ind['status']} ("
+        says = ("every map size by induction" if ind["status"] != "refuted" else
+                f"no induction in {ind['semantics']}: a link of it is refuted, so it proves nothing there; status")
+        print(f"{n}: {says}: {ind['status']} ("
               + ", ".join(f"{k} {v}" + ("" if ind["this_run"][k] == v else f" [this run: {ind['this_run'][k]}]")
                           for k, v in ind["obligations"].items()) + ")")
         for k in ind["contradicted"]:
@@ -111,6 +122,14 @@ def cmd_check(args) -> int:
     return 0 if all(r.status == "proved" for r in results) else 1
 
 
+def _suffix(planner) -> str:
+    """What a certificate's file name adds for a planner other than NavFn as shipped in x86-64's
+    arithmetic (``-fixed``, ``-aarch64``, ``-fixed-aarch64``): the names stay apart in one folder
+    and in the record of transcripts, which is by file name."""
+    arith = planner.navfn_arithmetic().name
+    return ("" if planner.variant == "original" else f"-{planner.variant}") + ("" if arith == "x86-64" else f"-{arith}")
+
+
 def _certify(args, planner, lo: int, hi: int, modes):
     """The callback that writes a proved size's certificate under ``--certificates DIR``."""
     if not args.certificates:
@@ -120,13 +139,15 @@ def _certify(args, planner, lo: int, hi: int, modes):
     from ..check import certificate
 
     def write(nx: int, ny: int, got: dict, entries: list) -> None:
-        path = Path(args.certificates) / f"check-{nx}x{ny}.cert.json.gz"
+        path = Path(args.certificates) / f"check-{nx}x{ny}{_suffix(planner)}.cert.json.gz"
         r = next(iter(got.values()))
         explored = [n for n, g in got.items() if g.method == "exploration"]  # what the path logs judge
         certificate.write(path, {
             "size": [nx, ny], "properties": explored, "costs": [lo, hi], "modes": ["astar" if m else "dijkstra"
                                                                                   for m in modes],
-            "variant": planner.variant, "ends": args.ends, "total": r.cases, "outside": r.outside,
+            "variant": planner.variant, **({} if planner.fp32_semantics() == "fp32"
+                                           else {"semantics": planner.fp32_semantics()}),
+            "ends": args.ends, "total": r.cases, "outside": r.outside,
             "verdicts": {n: g.status for n, g in got.items()},
             "witnesses": {n: g.counterexample for n, g in got.items() if g.status == "refuted"},
             "induction": {n: g.method for n, g in got.items() if g.method != "exploration"}}, entries)
@@ -277,8 +298,10 @@ def register(sub) -> None:
     csz.add_argument("--max-size", nargs=2, type=int, metavar=("W", "H"),
                      help="every size up to W x H, smallest interior first, until --budget runs out; "
                      "a refuted property stops at its smallest counterexample")
+    ck.add_argument("--max-cells", type=int, metavar="N", help="with --max-size: only the sizes of at most N "
+                    "interior cells")
     ck.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
-    add_planner_arguments(ck, arithmetic=False)
+    add_planner_arguments(ck)
     ck.add_argument("--costs", default="50..253", metavar="LO..HI",
                     help="range of every passable cell's cost (50..253: what setCostmap produces; at least 1: a cost "
                     "of 0 makes a NaN possible, where the intervals are unsound); lethal cells are enumerated")

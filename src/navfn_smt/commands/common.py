@@ -68,11 +68,12 @@ def page_sources(check_reports, split_dir, files=None) -> dict:
     from ..smt.split import known_of_files
 
     checks = [(page.report_label(p), page.read_check_report(p)) for p in check_reports]
+    flavoured = [(page.report_label(p), page.read_check_report(p)) for p in page.flavoured_check_reports(check_reports)]
     split = page.split_beside(split_dir)
     declared = load_obligations(files if files else default_proof_files())
     known = known_of_files(sorted({ob.source for ob in declared if ob.source}), declared, PREDICATES)
     return {"checks": checks, "images": page.images_dir(check_reports), "split": split,
-            "declared": declared, "known": known}
+            "declared": declared, "known": known, "flavoured": flavoured}
 
 
 TARGET_HELP = ("the arithmetic of a build for this machine, in which the spec computes: x86-64 (default: the "

@@ -18,6 +18,7 @@ from ..report.tables import duration
 
 def register(sub) -> None:
     from ..engine import add_arguments
+    from .common import TARGET_HELP
 
     sp = sub.add_parser("split", help="decide the obligations no solver decides whole: parts that cover the input "
                                       "space, each decided, and the cover proved")
@@ -26,6 +27,8 @@ def register(sub) -> None:
     sp.add_argument("--files", nargs="+", metavar="FILE|DIR",
                     help="proof files declaring the splits (default: the package's navfn_smt/proofs)")
     add_arguments(sp, "parts")
+    sp.add_argument("--target", metavar="NAME", help=TARGET_HELP + "; the parts are decided in its float32 "
+                    "semantics (fp32@NAME), what is known of them judged there")
     sp.add_argument("--part-timeout", type=float, default=None, metavar="S",
                     help="seconds per part and method (default: what each split declares)")
     sp.add_argument("--max-depth", type=int, default=None, metavar="N",
@@ -52,6 +55,9 @@ def cmd_split(args) -> int:
         raise NavfnInputError(f"--max-depth {args.max_depth}: must be between 0 and 64")
     if args.report:
         check_writable(args.report)
+    from .common import planner_of
+
+    semantics = planner_of(args).fp32_semantics()  # fp32: x86-64's arithmetic, the default
     eng = engine(args.jobs, args.scheduler)
     splits = load_splits(files)
     unknown = set(args.names) - {s.obligation for s in splits}
@@ -65,10 +71,11 @@ def cmd_split(args) -> int:
     outcomes = []
     for s in chosen:
         used = eng.for_work(len(s.boxes), 2)
-        print(f"{s.obligation}: {len(s.boxes)} parts to start with, methods {', '.join(s.methods)}, on "
-              f"{used.describe()}", flush=True)
+        print(f"{s.obligation}: {len(s.boxes)} parts to start with, methods {', '.join(s.methods)}, in "
+              f"{semantics}, on {used.describe()}", flush=True)
         outcomes.append(run_split(s, used, args.part_timeout, args.max_depth,
-                                  progress=None if args.quiet else _part_line(time.perf_counter())))
+                                  progress=None if args.quiet else _part_line(time.perf_counter()),
+                                  semantics=semantics))
     table(outcomes)
     if args.report:
         write_json(args.report, outcomes, time.perf_counter() - t0, eng.describe())
@@ -81,7 +88,8 @@ def cmd_split(args) -> int:
         from ..smt.knowledge import record
         from ..smt.split import obligation_named
 
-        for line in record((obligation_named(s.source, s.obligation), "fp32", o.status, {"by": "split", "seconds": o.seconds})
+        for line in record((obligation_named(s.source, s.obligation), semantics, o.status,
+                            {"by": "split", "seconds": o.seconds})
                            for s, o in zip(chosen, outcomes) if o.judgement == NEWLY_DECIDED):
             print(line)
     return 1 if any(o.fails for o in outcomes) else 0

@@ -265,7 +265,10 @@ def planner_code(build) -> str:
 def report_label(path) -> str:
     """A report as the page names it: ``reports/NAME`` (a link from docs/) or its file name."""
     p = Path(path)
-    return f"reports/{p.name}" if p.parent.name == "reports" else p.name
+    for up in p.parents:
+        if up.name == "reports":  # reports/NAME, or reports/ARITHMETIC/VARIANT/NAME
+            return f"reports/{p.relative_to(up).as_posix()}"
+    return p.name
 
 
 def _fmt_seconds(s) -> str:
@@ -572,6 +575,69 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
     return out
 
 
+def flavoured_check_reports(check_reports) -> list[Path]:
+    """The check reports of other build arithmetics beside the first x86-64 one:
+    ``NAME/VARIANT/check-*.json`` under its folder, NAME an arithmetic of spec.arithmetic.KNOWN."""
+    from ..spec.arithmetic import KNOWN
+
+    first = next(iter(check_reports), None)
+    if first is None:
+        return []
+    root = Path(first).parent
+    return [f for name in KNOWN if name != "x86-64" for f in sorted((root / name).glob("*/check-*.json"))]
+
+
+def flavoured_section(flavoured: list, checks: list) -> list[str]:
+    """The bounded checks in other build arithmetics (``check --target NAME``): per arithmetic
+    and variant, each size's verdict of each property, x86-64's beside it where it differs (NavFn
+    as shipped), and the smallest counterexample of each property refuted there."""
+    from ..check.runner import CHECKABLE
+    from .check import verdict_text
+
+    if not flavoured:
+        return []
+    x86, _, _ = _merge_checks(checks)
+    groups: dict = {}
+    for label, doc in flavoured:
+        planner = doc.get("planner") or {}
+        key = (planner.get("arithmetic", "?"), doc.get("variant", "original"))
+        groups.setdefault(key, []).append((label, doc))
+    out = ["## Whole-planner properties in other build arithmetics (`navfn-smt check --target NAME`)", "",
+           "The bounded checks again, computing as a build for NAME does (docs/toolchains.md): the concolic "
+           "exploration's concrete side, its intervals and its terms in that arithmetic, every counterexample "
+           "replayed on the spec in it, every certificate replayable (`check --replay`). Where a verdict differs "
+           "from x86-64's at the same size, x86-64's is given after it.", ""]
+    for (arith, variant), docs in sorted(groups.items()):
+        rows, _, _ = _merge_checks(docs)
+        sizes = sorted({s for by_size in rows.values() for s in by_size}, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))
+        names = [n for n in CHECKABLE if n in rows]
+        out += [f"### {arith}, {variant}", "", "Reports read: " + ", ".join(
+            f"[{label}]({label})" for label, _ in docs) + ".", "",
+                "| size | interior cells | " + " | ".join(f"`{n}`" for n in names) + " |",
+                "|---|---|" + "---|" * len(names)]
+        for s in sizes:
+            cells = []
+            for n in names:
+                r = rows[n].get(s)
+                if r is None:
+                    cells.append("-")
+                    continue
+                text = verdict_text(r[0]["status"], r[0].get("method", "exploration"))
+                other = x86.get(n, {}).get(s) if variant == "original" else None
+                if other is not None and other[0]["status"] != r[0]["status"]:
+                    text += f" (x86-64: {other[0]['status']})"
+                cells.append(text)
+            out.append(f"| {_size(s)} | {(s[0] - 2) * (s[1] - 2)} | " + " | ".join(cells) + " |")
+        out.append("")
+        for n in names:
+            refuted = [s for s in sizes if s in rows[n] and rows[n][s][0]["status"] == "refuted"]
+            if refuted:
+                cx = rows[n][refuted[0]][0].get("counterexample") or {}
+                out += [f"*`{n}`, smallest counterexample* ({_size(refuted[0])}, replayed on the spec in {arith}'s "
+                        f"arithmetic): {_cx_text(cx)}.", ""]
+    return out
+
+
 # --------------------------------------------------------------------------- the page
 def judged(outcomes: list, split_doc: Optional[dict], known: dict) -> list:
     """The report's outcomes judged against what is known now, the fp32 verdict of an
@@ -624,12 +690,13 @@ def split_section(split_doc: Optional[dict], label: str) -> list[str]:
 
 
 def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Path] = None, *,
-           declared: list, known: dict, split: Optional[tuple] = None) -> str:
+           declared: list, known: dict, split: Optional[tuple] = None, flavoured: tuple = ()) -> str:
     """The page from a prove report (``prove_label`` names it), the ``(label, doc)`` check
     reports, and the directory where check counterexample pictures are looked up;
     ``declared``: the obligations to list, ``known``: what is known of them
     (:func:`navfn_smt.smt.split.known_of_files`); ``split``: the ``(label, doc)`` of a split
-    report, whose verdicts replace the whole ones.  The caller gathers all of it
+    report, whose verdicts replace the whole ones; ``flavoured``: the ``(label, doc)`` check
+    reports of other build arithmetics (:func:`flavoured_section`).  The caller gathers all of it
     (:func:`navfn_smt.commands.common.page_sources`): the page only renders."""
     split_label, split_doc = split or (None, None)
     outcomes = judged(outcomes_of(prove_doc), split_doc, known)
@@ -678,6 +745,7 @@ def render(prove_doc: dict, prove_label: str, checks: list, images: Optional[Pat
             out += _obligation_lines(ob, by_name.get(ob.name, {}), sems, known)
     out += split_section(split_doc, split_label)
     out += check_section(checks, images, outcome_verdicts(outcomes, known))
+    out += flavoured_section(list(flavoured), checks)
     while out and out[-1] == "":
         out.pop()
     return "\n".join(out) + "\n"

@@ -15,11 +15,34 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..spec.numeric import c_fma
 from .replay import ReplayDomain
 
 # inputs per evaluation: each operation's temporaries (a few hundred KiB) stay in the CPU's cache;
 # a part of 2**25 inputs took 7.4 s in chunks of 2**24 and 1.0 s in chunks of 2**16 (2**14: 1.3 s)
 CHUNK = 1 << 16
+_FMA64 = np.frompyfunc(c_fma, 3, 1)  # libm's fma, point by point (exact, slow)
+
+
+def fmaf_array(a, b, c) -> np.ndarray:
+    """``fmaf`` elementwise, exactly (``a * b + c`` rounded once to float32), vectorised: the
+    product of two floats is exact in double; the double sum ``t`` and its error ``e`` (TwoSum,
+    exact) give the exact result ``t + e``; rounding ``t`` to float is then right unless ``t`` is
+    a midpoint of two floats and ``e`` is not zero, where the next double from ``t`` towards the
+    exact result (no midpoint) rounds right instead.  Held to libm's ``fmaf`` by a test."""
+    with np.errstate(all="ignore"):
+        a, b, c = (np.asarray(x, dtype=np.float32).astype(np.float64) for x in np.broadcast_arrays(a, b, c))
+        s = a * b
+        t = s + c
+        bp = t - s
+        e = (s - (t - bp)) + (c - bp)
+        f = t.astype(np.float32)
+        up = t > f.astype(np.float64)
+        g = np.nextafter(f, np.where(up, np.float32(np.inf), np.float32(-np.inf)))
+        mid = np.isfinite(t) & np.isfinite(f) & (f.astype(np.float64) != t) & (
+            (f.astype(np.float64) + g.astype(np.float64)) * 0.5 == t) & (e != 0)
+        fixed = np.nextafter(t, np.where(e > 0, np.inf, -np.inf)).astype(np.float32)
+    return np.where(mid, fixed, f)
 LIMIT = 1 << 33  # the most inputs a part may have to be enumerated
 
 
@@ -66,6 +89,13 @@ class ArrayDomain(ReplayDomain):
     add, sub, mul, div = (_elementwise(f, np.float32) for f in (np.add, np.subtract, np.multiply, np.divide))
     add64, sub64, mul64, div64 = (_elementwise(f, np.float64) for f in (np.add, np.subtract, np.multiply, np.divide))
 
+    def fma(self, a, b, c):
+        """``a * b + c`` in float rounded once, elementwise (libm's correctly rounded ``fmaf``)."""
+        return fmaf_array(a, b, c)
+
+    def fma64(self, a, b, c):
+        return _FMA64(*np.broadcast_arrays(a, b, c)).astype(np.float64)
+
     def hypotf(self, a, b):
         """glibc's ``hypotf``: the square root in double, rounded once to float; an infinite
         argument gives +inf even beside a NaN (IEEE 754 and C's hypot)."""
@@ -81,9 +111,12 @@ def _floats(lo: int, hi: int) -> np.ndarray:
     return bits.view(np.float32)
 
 
-def decide(ob, box) -> tuple:
-    """``(status, detail, witness)`` of ``ob`` on every input of ``box``: one float32
-    variable, every other variable of the obligation fixed to one value by the box."""
+def decide(ob, box, semantics: str = "fp32") -> tuple:
+    """``(status, detail, witness)`` of ``ob`` on every input of ``box`` in the float32
+    ``semantics`` (a build's arithmetic: smt.domains.FP32_SEMANTICS): one float32 variable,
+    every other variable of the obligation fixed to one value by the box."""
+    from .domains import arithmetic_of
+
     from .checking import judge_model
 
     free = [iv for iv in box if iv.width > 1]
@@ -97,11 +130,11 @@ def decide(ob, box) -> tuple:
     for lo in range(var.lo, var.hi + 1, CHUNK):
         xs = _floats(lo, min(var.hi, lo + CHUNK - 1))
         values = {**{k: np.full(len(xs), v, dtype=np.float32) for k, v in fixed.items()}, var.var: xs}
-        pre, claim = ob.build(ArrayDomain(values))
+        pre, claim = ob.build(ArrayDomain(values).with_arithmetic(arithmetic_of(semantics)))
         bad = np.nonzero(np.broadcast_to(np.logical_and(pre, np.logical_not(claim)), xs.shape))[0]
         count += len(xs)
         if len(bad):
-            status, witness, _ = judge_model(ob, "fp32", {k: float(v[bad[0]]) for k, v in values.items()})
+            status, witness, _ = judge_model(ob, semantics, {k: float(v[bad[0]]) for k, v in values.items()})
             if status != "refuted":
                 return "unknown", "the array domain and the scalar spec disagree on an input", witness
             return "refuted", f"input {count - len(xs) + int(bad[0]) + 1} of {var.width}", witness

@@ -40,11 +40,25 @@ class ErrorModelDomain(RealDomain):
 
     name = "errmodel"
 
-    def __init__(self, hypotf_model: str = "glibc"):
+    def __init__(self, hypotf_model: str = "glibc", arithmetic=None):
         super().__init__()
         self.hypotf_model = hypotf_model
+        self.arith = arithmetic  # the build's (spec.arithmetic.Arithmetic; None: x86-64's, nothing fused)
         self.side: list = []  # the side claims: every rounded result zero or normal and finite
         self.rounded = 0
+
+    def fuses(self, site: str) -> bool:
+        """Whether the build fuses the multiply-add ``site`` (then rounded once, :meth:`fma`)."""
+        return self.arith is not None and self.arith.fuses(site)
+
+    def fma(self, a, b, c):
+        """``a * b + c`` in float, rounded once (a fused multiply-add): one relative error, with the
+        side claim of a product (zero or normal: unlike a sum of two floats, a fused result below
+        the normal range may be inexact)."""
+        return self._round(a * b + c, False)
+
+    def fma64(self, a, b, c):
+        return self._round(a * b + c, True)
 
     # --------------------------------------------------------------------------- rounding
     def _round(self, z, double: bool, sum_: bool = False):
@@ -149,10 +163,11 @@ def _representable(x: Fraction, double: bool) -> bool:
     return Fraction(rounded) == x
 
 
-def query(ob, extra=None):
-    """The error-model query of ``ob`` (``extra(D)`` added to the precondition): unsatisfiable
-    when the claim and every side claim hold in every choice of the deltas."""
-    D = ErrorModelDomain(ob.hypotf_model)
+def query(ob, extra=None, arithmetic=None):
+    """The error-model query of ``ob`` (``extra(D)`` added to the precondition) in the build's
+    ``arithmetic`` (None: x86-64's): unsatisfiable when the claim and every side claim hold in
+    every choice of the deltas."""
+    D = ErrorModelDomain(ob.hypotf_model, arithmetic)
     pre, claim = ob.build(D)
     if extra is not None:
         pre = z3.And(pre, extra(D))

@@ -237,6 +237,7 @@ class SplitOutcome:
     note: str = ""
     undecided: list = field(default_factory=list)
     known_source: str = "split"  # where the knowledge comes from (knowledge.Known.source)
+    semantics: str = "fp32"  # the float32 semantics the parts were decided in (a build's arithmetic)
 
     @property
     def judgement(self) -> str:
@@ -273,15 +274,16 @@ def obligation_named(source: str, name: str, code: Optional[bytes] = None):
 
 def check_part(job: tuple) -> Part:
     """One part, decided in float32 (a worker's task): ``(source, code, name, part, timeouts,
-    solvers)`` with ``code`` the proof file's contents and ``timeouts`` the seconds of each
-    method, tried in turn until one decides the part."""
-    source, code, name, part, timeouts, solvers = job
+    solvers, semantics)`` with ``code`` the proof file's contents, ``timeouts`` the seconds of each
+    method, tried in turn until one decides the part, and ``semantics`` the float32 semantics
+    (``fp32``, or ``fp32@NAME`` in a build's arithmetic)."""
+    source, code, name, part, timeouts, solvers, semantics = job
     ob = obligation_named(source, name, code)
     t0 = time.perf_counter()
     out = Part(part.box, part.depth)
     notes = []
     for method, timeout in timeouts:
-        status, solver, detail, witness = _METHOD[method](ob, part.box, timeout, solvers)
+        status, solver, detail, witness = _METHOD[method](ob, part.box, timeout, solvers, semantics)
         notes.append(f"{method}: {detail or status}")
         if status != "unknown":
             out.status, out.solver, out.witness = status, solver, witness
@@ -292,27 +294,29 @@ def check_part(job: tuple) -> Part:
     return out
 
 
-def _smt(ob, box: Box, timeout: float, solvers) -> tuple:
+def _smt(ob, box: Box, timeout: float, solvers, semantics: str = "fp32") -> tuple:
     """The bit-precise query on the part; a model counts only once the concrete spec confirms it."""
     from .checking import judge_model, query
     from .runner import solve_query
 
-    D, assertions = query(ob, "fp32", lambda D: box_formula(D, box))
+    D, assertions = query(ob, semantics, lambda D: box_formula(D, box))
     answer, values, solver, detail = solve_query(tuple(solvers))(assertions, D.variables, timeout)
     if answer == "unsat":
         return "proved", solver, "", None
     if answer == "sat":
-        status, witness, detail = judge_model(ob, "fp32", values)
+        status, witness, detail = judge_model(ob, semantics, values)
         return status, solver, detail, witness
     return "unknown", solver, detail or "unknown", None
 
 
-def _errmodel(ob, box: Box, timeout: float, solvers) -> tuple:
-    """The error-model query on the part (:mod:`.errmodel`): proves or leaves unknown, never refutes."""
+def _errmodel(ob, box: Box, timeout: float, solvers, semantics: str = "fp32") -> tuple:
+    """The error-model query on the part (:mod:`.errmodel`, in the arithmetic of ``semantics``:
+    a fused multiply-add rounds once): proves or leaves unknown, never refutes."""
     from . import errmodel
+    from .domains import arithmetic_of
 
     try:
-        D, assertions = errmodel.query(ob, lambda D: box_formula(D, box, real=True))
+        D, assertions = errmodel.query(ob, lambda D: box_formula(D, box, real=True), arithmetic_of(semantics))
     except NotImplementedError as e:
         return "unknown", "z3 (error model)", str(e), None
     # nonlinear real arithmetic is sensitive to the order it explores: a query that takes 6 s with
@@ -331,25 +335,26 @@ def _errmodel(ob, box: Box, timeout: float, solvers) -> tuple:
     return "unknown", "z3 (error model)", why, None
 
 
-def _enumerate(ob, box: Box, timeout: float, solvers) -> tuple:
-    """Every input of the part on the concrete float32 arithmetic (:mod:`.enumerate`)."""
+def _enumerate(ob, box: Box, timeout: float, solvers, semantics: str = "fp32") -> tuple:
+    """Every input of the part on the concrete float32 arithmetic of ``semantics`` (:mod:`.enumerate`)."""
     from .enumerate import decide
 
-    status, detail, witness = decide(ob, box)
+    status, detail, witness = decide(ob, box, semantics)
     return status, "enumeration", detail, witness
 
 
 _METHOD = {"smt": _smt, "errmodel": _errmodel, "enumerate": _enumerate}
 
 
-def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z3",)) -> dict:
-    """The cover obligation: ``pre ==> box_1 or ... or box_n``; ``proved`` when unsatisfiable."""
+def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z3",), semantics: str = "fp32") -> dict:
+    """The cover obligation: ``pre ==> box_1 or ... or box_n`` (``pre`` in ``semantics``);
+    ``proved`` when unsatisfiable."""
     from .checking import domain_of
     from .runner import solve_query
 
     ob = obligation_named(source, name)
     t0 = time.perf_counter()
-    D = domain_of(ob, "fp32")
+    D = domain_of(ob, semantics)
     pre, _ = ob.build(D)
     cover = z3.Or(*(box_formula(D, b) for b in boxes))
     answer, values, solver, detail = solve_query(tuple(solvers))([pre, z3.Not(cover)], D.variables, timeout)
@@ -363,8 +368,10 @@ def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z
 
 
 def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Optional[int] = None,
-              progress: Optional[Callable[[int, int, Part], None]] = None, stop_at_refutation: bool = True) -> SplitOutcome:
-    """Decide the split's parts round by round on ``eng``, then its cover."""
+              progress: Optional[Callable[[int, int, Part], None]] = None, stop_at_refutation: bool = True,
+              semantics: str = "fp32") -> SplitOutcome:
+    """Decide the split's parts round by round on ``eng``, then its cover, in the float32
+    ``semantics`` (``fp32``: x86-64's arithmetic; ``fp32@NAME``: a build's, ``split --target``)."""
     from ..engine import session
 
     timeout = s.part_timeout if part_timeout is None else part_timeout
@@ -378,7 +385,7 @@ def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Op
     with session(eng) as run:
         while todo:
             rounds += 1
-            jobs = [(s.source, code, s.obligation, p, per_method, s.solvers) for p in todo]
+            jobs = [(s.source, code, s.obligation, p, per_method, s.solvers, semantics) for p in todo]
             total = done + len(jobs)
             nxt: list[Part] = []
             returned: set = set()
@@ -404,7 +411,7 @@ def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Op
                 break
             todo = nxt
     final.sort(key=lambda p: tuple((iv.var, iv.lo) for iv in p.box))
-    cover = check_cover(s.source, s.obligation, [p.box for p in final], max(timeout, 60.0))
+    cover = check_cover(s.source, s.obligation, [p.box for p in final], max(timeout, 60.0), semantics=semantics)
     statuses = {p.status for p in final}
     if "refuted" in statuses:
         status = "refuted"
@@ -413,11 +420,11 @@ def run_split(s: Split, eng, part_timeout: Optional[float] = None, max_depth: Op
     else:
         status = "unknown"
     parts = [p.as_json() for p in final]
-    known = known_of_files([s.source])[(s.obligation, "fp32")]  # the declaration, or a recorded decision
+    known = known_of_files([s.source])[(s.obligation, semantics)]  # the declaration, or a recorded decision
     return SplitOutcome(s.name, s.obligation, status, known.status, parts, cover, rounds,
                         round(time.perf_counter() - t0, 3), eng.describe(), s.note,
                         [p for p in parts if p["status"] == "unknown"] if status != "refuted" else [],
-                        known_source=known.source)
+                        known_source=known.source, semantics=semantics)
 
 
 def outcome_json(o: SplitOutcome) -> dict:

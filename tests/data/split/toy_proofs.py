@@ -59,3 +59,19 @@ def product_is_close(D):
 product_is_close_split = split(product_is_close, [(f32_interval("a", 1.0, 2.0), f32_interval("b", 1.0, 2.0))],
                                bisect_along=("a", "b"), expect="proved", methods=("errmodel",), max_depth=0,
                                part_timeout=30.0)
+
+
+@obligation("Toy", expect={"real": "proved", "fp32": "proved", "fp32@x86-64-v3": "refuted", "fp32@aarch64": "refuted"},
+            scope="x in [1, 2]")
+def product_error_is_zero(D):
+    """c + x * x with c = -(x * x rounded), at the site ``planar``: zero where the product is
+    rounded first (x86-64), the product's rounding error where the build fuses the site."""
+    from navfn_smt.spec.kernels import add_mul
+
+    x = D.f32("x")
+    pre = D.and_(D.ge(x, D.f32const(1.0)), D.le(x, D.f32const(2.0)))
+    return pre, D.eq(add_mul(D, "planar", D.neg(D.mul(x, x)), x, x), D.f32const(0.0))
+
+
+product_error_is_zero_split = split(product_error_is_zero, [(f32_interval("x", 1.0, 2.0),)], bisect_along=("x",),
+                                    methods=("enumerate",), max_depth=0)
