@@ -113,7 +113,11 @@ def test_an_unreadable_certificate_is_a_clear_error(tmp_path):
     assert r.returncode != 0 and "Traceback" not in r.stderr and "not a check certificate" in r.stderr
 
 
-@pytest.mark.parametrize("path", sorted((REPORTS / "certificates").glob("check-*.cert.json.gz")), ids=lambda p: p.name)
+FLAVOURED = sorted(REPORTS.glob("aarch64/*/certificates/check-*.cert.json.gz"))  # check --target aarch64
+
+
+@pytest.mark.parametrize("path", sorted((REPORTS / "certificates").glob("check-*.cert.json.gz")) + FLAVOURED,
+                         ids=lambda p: p.name)
 def test_every_committed_certificate_is_of_this_code(path):
     """The committed certificates were written by the code as it is, or are carried to it: the
     transcripts recorded under the code that wrote them and under this code are equal (a change
@@ -538,3 +542,25 @@ def test_every_recorded_transcript_is_of_its_committed_certificate(path):
         pytest.skip(f"no transcript recorded for {path.name}")
     assert record["certificate_sha256"] == C.digest(path)
     assert C.read(path)["code_hash"] in record["transcripts"]
+
+
+def test_the_aarch64_certificates_are_its_reports_and_the_small_ones_replay():
+    """docs/reports/aarch64/VARIANT/: each size's report and its certificate are of aarch64's
+    float32 semantics, name the same verdicts, and the certificate's file name says its
+    arithmetic and variant; those of at most 3 interior cells replay here (seconds; the others
+    replayed by hand, figures in the session's note)."""
+    assert len(FLAVOURED) >= 12  # every size of at most 6 interior cells but 4x5 and 5x4, NavFn as shipped
+    for path in FLAVOURED:
+        doc = C.read(path)
+        variant = path.parent.parent.name
+        nx, ny = doc["size"]
+        assert doc["semantics"] == "fp32@aarch64" and doc["variant"] == variant
+        assert path.name == f"check-{nx}x{ny}" + ("" if variant == "original" else "-fixed") + "-aarch64.cert.json.gz"
+        reports = [json.loads(f.read_text()) for f in sorted(path.parent.parent.glob("check-*.json"))]
+        assert reports and all(r["semantics"] == "fp32@aarch64" and r["variant"] == variant for r in reports)
+        got = {r["property"]: r["status"] for rep in reports for r in rep["results"] if r["size"] == [nx, ny]}
+        assert got, f"no report of {nx}x{ny} beside {path.name}"
+        assert {n: v for n, v in doc["verdicts"].items() if n in got} == {n: got[n] for n in doc["verdicts"] if n in got}
+        if (nx - 2) * (ny - 2) <= 3:
+            r = _cli("check", "--replay", str(path), "--solver", "bitwuzla")
+            assert r.returncode == 0 and "replayed" in r.stdout, r.stdout + r.stderr

@@ -122,6 +122,8 @@ def test_a_certificate_is_linked_where_it_certifies_the_property():
     for line in PAGE.read_text().splitlines():
         if m := re.match(r"### `([a-z-]+)`", line):
             section = m.group(1)
+        elif line.startswith("#"):  # another section (the checks in other arithmetics link no certificate)
+            section = None
         elif line.startswith("| ") and section and (m := re.match(r"\| (\d+x\d+) \| \d+ \| proved", line)):
             link = re.search(r"\[(check-\d+x\d+\.cert\.json\.gz)\]", line)
             name = f"check-{m.group(1)}.cert.json.gz"
@@ -246,3 +248,29 @@ def test_parts_replayed_so_far_are_listed_in_their_order():
     for row in rows:
         numbers = [int(k) for k in re.findall(r"\[(\d+)\]\(reports/certificates/parts/", row)]
         assert numbers == sorted(numbers) and len(numbers) == len(set(numbers)), row[:200]
+
+
+def test_the_checks_in_other_arithmetics_have_their_section_with_x86s_verdict_beside():
+    """The committed aarch64 check reports (docs/reports/aarch64/VARIANT/) are read apart from
+    x86-64's (they never replace its rows) and shown per arithmetic and variant; a verdict that
+    differs from x86-64's at the same size has x86-64's beside it, and a refuted property its
+    smallest counterexample; a made-up report that differs shows so."""
+    from navfn_smt.report import invariants_page as page
+
+    x86 = sorted(REPORTS.glob("check*.json"))
+    flavoured = page.flavoured_check_reports(x86)
+    assert flavoured and all(f.parent.parent.name == "aarch64" for f in flavoured)
+    assert "original" in {f.parent.name for f in flavoured} <= {"original", "fixed"}
+    text = PAGE.read_text()
+    assert "## Whole-planner properties in other build arithmetics" in text and "### aarch64, original" in text
+    checks = [(page.report_label(p), page.read_check_report(p)) for p in x86]
+    doc = json.loads(flavoured[0].read_text())
+    size = next(r["size"] for r in doc["results"])
+    mine = {**doc, "planner": {"arithmetic": "aarch64"}, "variant": "original",
+            "results": [{**r, "status": "refuted", "counterexample": {"mode": "astar", "start": [1, 1], "goal": [1, 1],
+                                                                        "reason": "made up"}}
+                        for r in doc["results"] if r["property"] == "start-reached"]}
+    lines = page.flavoured_section([("made-up.json", mine)], checks)
+    row = next(line for line in lines if line.startswith(f"| {size[0]}x{size[1]} |"))
+    assert "refuted (x86-64: proved)" in row
+    assert any("smallest counterexample" in line and "made up" in line for line in lines)
