@@ -325,6 +325,8 @@ def test_check_in_aarch64s_arithmetic_finds_the_path_from_an_unreached_start(tmp
     assert doc["semantics"] == "fp32@aarch64" and doc["planner"]["arithmetic"] == "aarch64"
     got = {r["property"]: r for r in doc["results"]}
     assert got[name]["status"] == "refuted" and got["start-reached"]["status"] == "proved"
+    enumerated = got[name]["enumerated"]  # every case explored: x86-64 decides 8 of 32 by their outside start
+    assert enumerated["start_outside_component"] == 0 and enumerated["explored"] == enumerated["cases"] == 32
     cx = got[name]["counterexample"]
     r = P.run(np.array(cx["costs"], np.uint8), tuple(cx["start"]), tuple(cx["goal"]), cx["mode"] == "astar",
               arith=KNOWN["aarch64"])

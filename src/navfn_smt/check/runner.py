@@ -60,6 +60,7 @@ class SizeResult:
     cases: int = 0
     representatives: int = 0  # cases explored (one per layout of the goal's component, start, goal, mode)
     outside: int = 0  # cases whose start lies outside the goal's component: decided without exploring
+    outside_explored: bool = False  # those starts explored instead (outside_decided: not in this arithmetic)
     cases_holding: int = 0
     cases_unknown: int = 0
     paths: int = 0
@@ -217,7 +218,8 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     if explored:  # alone, a property of the propagation ends each control path where propagation does
         todo = list(red.representatives)
         got = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
-                             cases_holding=red.outside) for n in explored}
+                             cases_holding=red.outside, outside_explored=not outside_decided(planner))
+               for n in explored}
         eng = as_engine(jobs)
         book = None
         if journal is not None:
