@@ -108,3 +108,21 @@ def test_a_build_without_layers_says_so_when_their_arithmetic_is_asked(tmp_path)
         p.layers_arithmetic()
     with pytest.raises(NavfnInputError, match="has no navfn-plugin"):
         p.plugin_arithmetic()
+
+
+def test_the_float32_semantics_of_each_arithmetic_is_the_symbolic_domains_name_for_it():
+    """PlannerUnderTest.fp32_semantics names a build's arithmetic as smt.domains.FP32_SEMANTICS
+    does (check and split look the domain up by it); an arithmetic the domains do not have is a
+    clear error."""
+    from navfn_smt.errors import NavfnInputError
+    from navfn_smt.smt.domains import FP32_SEMANTICS
+    from navfn_smt.spec.arithmetic import KNOWN, Arithmetic
+    from navfn_smt.under_test import PlannerUnderTest
+
+    for target, arith in KNOWN.items():
+        semantics = PlannerUnderTest.of_target(target).fp32_semantics()
+        assert FP32_SEMANTICS[semantics] == arith
+    assert sorted(PlannerUnderTest.of_target(t).fp32_semantics() for t in KNOWN) == sorted(FP32_SEMANTICS)
+    odd = PlannerUnderTest(arithmetic=Arithmetic(frozenset({"planar"})))
+    with pytest.raises(NavfnInputError, match="none the symbolic encodings compute in"):
+        odd.fp32_semantics()
