@@ -606,7 +606,8 @@ def flavoured_section(flavoured: list, checks: list) -> list[str]:
            "The bounded checks again, computing as a build for NAME does (docs/toolchains.md): the concolic "
            "exploration's concrete side, its intervals and its terms in that arithmetic, every counterexample "
            "replayed on the spec in it, every certificate replayable (`check --replay`). Where a verdict differs "
-           "from x86-64's at the same size, x86-64's is given after it.", ""]
+           "from x86-64's at the same size, x86-64's is given after it. A dash: not checked at that size (a "
+           "`--max-size` run leaves a property at its smallest counterexample).", ""]
     for (arith, variant), docs in sorted(groups.items()):
         rows, _, _ = _merge_checks(docs)
         sizes = sorted({s for by_size in rows.values() for s in by_size}, key=lambda s: ((s[0] - 2) * (s[1] - 2), s))
