@@ -10,6 +10,7 @@
   (:mod:`navfn_smt.check.soundness`).
 """
 
+import functools
 import json
 from pathlib import Path
 
@@ -147,14 +148,19 @@ def _proved_sizes():
     return sorted(set(out))
 
 
+@functools.lru_cache(maxsize=None)  # one sweep judges every property: run once per size and planner
+def _sweep(size: tuple, variant: str, semantics: str):
+    from navfn_smt.smt.domains import FP32_SEMANTICS
+    from navfn_smt.under_test import PlannerUnderTest
+
+    return sweep(*size, planner=PlannerUnderTest(variant, FP32_SEMANTICS[semantics]))
+
+
 @pytest.mark.parametrize("size,name,variant,semantics",
                          [s for s in _proved_sizes() if (s[0][0] - 2) * (s[0][1] - 2) <= 5])
 def test_a_proved_size_shows_no_failure_in_the_concrete_sweep(size, name, variant, semantics):
     """Every map of the size over a reduced cost set, planned in the report's arithmetic."""
-    from navfn_smt.smt.domains import FP32_SEMANTICS
-    from navfn_smt.under_test import PlannerUnderTest
-
-    got = sweep(*size, planner=PlannerUnderTest(variant, FP32_SEMANTICS[semantics]))
+    got = _sweep(tuple(size), variant, semantics)
     assert got.cases == 6 ** ((size[0] - 2) * (size[1] - 2)) * 2 * ((size[0] - 2) * (size[1] - 2)) ** 2
     assert got.failures[name] == 0, got.first.get(name)
     assert got.costs == COSTS
