@@ -18,12 +18,11 @@ import z3
 
 from ..smt.codec import free_constants
 from ..smt.evaluate import value
-from ..smt.enumerate import fmaf_array
-from ..spec.numeric import c_fma
+from ..smt.enumerate import fma_array, fmaf_array
 
 CHUNK = 1 << 17
 # the fused multiply-add of a build that contracts (spec.arithmetic), as the concrete spec computes it
-_FMA = {np.float32: lambda a, b, c: fmaf_array(a, b, c), np.float64: np.frompyfunc(c_fma, 3, 1)}
+_FMA = {np.float32: fmaf_array, np.float64: fma_array}
 
 
 class Unsupported(Exception):
@@ -96,12 +95,11 @@ def _eval(t, env, n, memo):  # noqa: C901 - one branch per operator
         _rne(args[0])
         with np.errstate(all="ignore"):
             return fp_bin[k](ev(args[1]), ev(args[2])).astype(_fp_dtype(t.sort()))
-    if k == z3.Z3_OP_FPA_FMA:  # a * b + c rounded once: libm's fmaf / fma (correctly rounded), point by point
+    if k == z3.Z3_OP_FPA_FMA:  # a * b + c rounded once, exactly (the enumeration's fmaf and fma)
         _rne(args[0])
         dt = _fp_dtype(t.sort())
-        fma = _FMA[dt]
         a, b, c = (np.broadcast_to(ev(x), (n,)) for x in args[1:])
-        return fma(a, b, c).astype(dt)
+        return _FMA[dt](a, b, c).astype(dt)
     if k == z3.Z3_OP_FPA_SQRT:
         _rne(args[0])
         with np.errstate(all="ignore"):

@@ -203,7 +203,8 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
             raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
                                   f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
     check_cost_box(lo, hi)
-    red = reduce_cases(cases(nx, ny, modes, start, goal, ends), outside_decided(planner))
+    decide_outside = outside_decided(planner)
+    red = reduce_cases(cases(nx, ny, modes, start, goal, ends), decide_outside)
     carried = carried_at(nx, ny, planner, lo, hi)
     t0 = time.perf_counter()
     out = {}
@@ -218,7 +219,7 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     if explored:  # alone, a property of the propagation ends each control path where propagation does
         todo = list(red.representatives)
         got = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
-                             cases_holding=red.outside, outside_explored=not outside_decided(planner))
+                             cases_holding=red.outside, outside_explored=not decide_outside)
                for n in explored}
         eng = as_engine(jobs)
         book = None

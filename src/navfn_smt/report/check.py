@@ -84,6 +84,13 @@ REDUCTION_EXPLORING_OUTSIDE = (
     "(NoPathWithoutFinitePotential does not hold in this arithmetic: a start never reached may still get a path)")
 
 
+def _reduction(r) -> str:
+    """How the size's cases were reduced, in words."""
+    if r.representatives >= r.cases:
+        return "none"
+    return REDUCTION_EXPLORING_OUTSIDE if getattr(r, "outside_explored", False) else REDUCTION
+
+
 def row(r) -> dict:
     return {
         "property": r.property, "size": list(r.size), "status": r.status, "method": r.method,
@@ -91,8 +98,7 @@ def row(r) -> dict:
         "enumerated": {"cases": r.cases, "what": "every layout of lethal interior cells x every start x every goal "
                                                   "x each mode",
                        "explored": r.representatives, "start_outside_component": r.outside,
-                       "reduction": REDUCTION_EXPLORING_OUTSIDE if getattr(r, "outside_explored", False) and
-                                    r.representatives < r.cases else REDUCTION if r.representatives < r.cases else "none"},
+                       "reduction": _reduction(r)},
         "solved": {"control_paths": r.paths, "solver_queries": r.queries,
                    "decided_by_intervals": r.decided_by_intervals,
                    "flips_by_earlier_unsat_core": r.flips_by_core, "flips_by_sampled_map": r.flips_by_sample},

@@ -21,7 +21,12 @@ from .replay import ReplayDomain
 # inputs per evaluation: each operation's temporaries (a few hundred KiB) stay in the CPU's cache;
 # a part of 2**25 inputs took 7.4 s in chunks of 2**24 and 1.0 s in chunks of 2**16 (2**14: 1.3 s)
 CHUNK = 1 << 16
-_FMA64 = np.frompyfunc(c_fma, 3, 1)  # libm's fma, point by point (exact, slow)
+_FMA64 = np.frompyfunc(c_fma, 3, 1)
+
+
+def fma_array(a, b, c) -> np.ndarray:
+    """``fma`` elementwise (``a * b + c`` rounded once to double): libm's, point by point (exact, slow)."""
+    return _FMA64(*np.broadcast_arrays(a, b, c)).astype(np.float64)
 
 
 def fmaf_array(a, b, c) -> np.ndarray:
@@ -90,11 +95,11 @@ class ArrayDomain(ReplayDomain):
     add64, sub64, mul64, div64 = (_elementwise(f, np.float64) for f in (np.add, np.subtract, np.multiply, np.divide))
 
     def fma(self, a, b, c):
-        """``a * b + c`` in float rounded once, elementwise (libm's correctly rounded ``fmaf``)."""
+        """``a * b + c`` in float rounded once, elementwise (:func:`fmaf_array`, exact)."""
         return fmaf_array(a, b, c)
 
     def fma64(self, a, b, c):
-        return _FMA64(*np.broadcast_arrays(a, b, c)).astype(np.float64)
+        return fma_array(a, b, c)
 
     def hypotf(self, a, b):
         """glibc's ``hypotf``: the square root in double, rounded once to float; an infinite
