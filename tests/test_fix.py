@@ -29,7 +29,7 @@ CX = REPO / "tests" / "data" / "counterexamples"
 DIAG = REPO / "tests" / "data" / "diagnose"
 EXAMPLE = REPO / "src" / "navfn_smt" / "examples" / "suite"
 PATCHES = REPO / "src" / "navfn_smt" / "patches" / "navfn-fix"
-DISTROS = ("humble", "jazzy", "kilted", "rolling")
+DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
 FAILING = ("incomplete-astar-5x5", "incomplete-dijkstra-5x6", "start-reached-astar-7x7", "start-reached-dijkstra-7x7",
            "unreached-astar-7x8", "unreached-dijkstra-7x8")
 
@@ -273,20 +273,32 @@ def test_the_patched_plugin_equals_the_fixed_model(builds):
         assert s["failed"] == 0 and s["passed"] > 500, (distro, s)
 
 
-def test_sources_that_already_carry_the_fix_build_without_the_fixed_programs(nav2_src, tmp_path):
-    """A navigation2 checkout with the patch applied: its NavFn is the fixed one; the build leaves
-    the fixed programs out, naming why, instead of patching twice."""
+def test_a_contributors_branch_that_carries_the_fix_is_difftested_as_the_fixed_planner(nav2_src, tmp_path, capsys):
+    """A navigation2 checkout with the patch applied (a pull request's branch): its own NavFn is
+    built as the fixed programs, without patching twice; ``difftest --variant fixed`` compares it
+    with the fixed spec and passes; running it as NavFn as shipped is refused, naming why, and so is
+    running Nav2's own tests on it as shipped."""
     import shutil
 
     from navfn_smt.oracle.build import build
+    from navfn_smt.oracle.client import Oracle
 
     src = tmp_path / "src"
     for pkg in ("nav2_navfn_planner", "nav2_core", "nav2_costmap_2d"):
         shutil.copytree(nav2_src / "rolling" / pkg, src / pkg)
     subprocess.run(["patch", "-p1", "-i", str(PATCHES / "rolling.patch")], cwd=src, check=True, capture_output=True)
-    doc = build(src, tmp_path / "out", programs=("navfn-plain", "navfn-fixed"))
-    assert doc["programs"] == ["navfn-plain"]
-    assert "does not apply" in doc["skipped"]["navfn-fixed"] and "already applied" in doc["skipped"]["navfn-fixed"]
+    out = tmp_path / "out"
+    doc = build(src, out, programs=("navfn-plain", "navfn-fixed"))
+    assert doc["programs"] == ["navfn-plain", "navfn-fixed"] and not doc["skipped"]
+    assert doc["sources_carry_fix"] and doc["fix_patch"]["applied_by"] == "the sources"
+    assert main(["difftest", str(EXAMPLE), "--oracle", str(out), "--variant", "fixed"]) == 0
+    assert " 0 failed" in capsys.readouterr().out
+    with pytest.raises(NavfnInputError, match="carry the fix already.*--variant fixed"):
+        Oracle(out, traced=False)
+    assert main(["difftest", str(EXAMPLE), "--oracle", str(out)]) == 2
+    assert "carry the fix already" in capsys.readouterr().err
+    assert main(["oracle", "nav2-tests", str(src), "--variant", "original", "--out", str(tmp_path / "t")]) == 2
+    assert "no NavFn as shipped to test" in capsys.readouterr().err and not (tmp_path / "t").exists()
 
 
 # --------------------------------------------------------------------------- in arm64's arithmetic

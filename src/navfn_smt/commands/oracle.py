@@ -1,12 +1,15 @@
-"""``navfn-smt oracle build NAV2_SRC``: build the user's own Nav2 NavFn as an oracle.
+"""``navfn-smt oracle build NAV2_SRC``: build the user's own Nav2 NavFn as an oracle;
+``navfn-smt oracle nav2-tests NAV2_SRC``: build and run Nav2's own NavFn tests against it, as it
+is and with the fix.
 
 The sources are compiled unchanged (:mod:`navfn_smt.oracle.build`); ``difftest --oracle DIR``
-and ``suite record --oracle DIR`` then run them live.
+and ``suite record --oracle DIR`` then run them live.  Nav2's tests: :mod:`navfn_smt.oracle.nav2_tests`.
 """
 
 from __future__ import annotations
 
 DEFAULT_OUT = "build/nav2-oracle"
+DEFAULT_TESTS_OUT = "build/nav2-tests"
 
 
 def cmd_oracle_build(args) -> int:
@@ -24,6 +27,60 @@ def cmd_oracle_build(args) -> int:
     for name, why in doc.get("skipped", {}).items():
         print(f"  left out {name}: {why}")
     return 0
+
+
+def cmd_oracle_nav2_tests(args) -> int:
+    from ..oracle.nav2_tests import VARIANTS, failed, run_nav2_tests
+    from .common import toolchain_of
+
+    doc = run_nav2_tests(args.nav2_src, args.out, VARIANTS if args.variant == "both" else (args.variant,),
+                         tc=toolchain_of(args))
+    variants = doc["variants"]
+    runs = f", run under {' '.join(doc['runner'])}" if doc["runner"] else ""
+    print(f"Nav2's own tests of nav2_navfn_planner, {doc['distribution']} ({doc['sources']}), built for "
+          f"{doc['target']}{runs} with {doc['compiler_version'] or doc['compiler']} {' '.join(doc['flags'])} into "
+          f"{args.out}" + (f"; fixed: {doc['fix_patch']['file']}" if "fix_patch" in doc else "") + ":")
+    rows = {}
+    for r in doc["results"]:
+        rows.setdefault((r["program"], r["case"] or "(the program)"), {})[r["variant"]] = r["status"]
+    print("| program | test | " + " | ".join(variants) + " |")
+    print("|---|---|" + "---|" * len(variants))
+    for (program, case), status in rows.items():
+        print(f"| {program} | {case} | " + " | ".join(status.get(v, "-") for v in variants) + " |")
+    bad = failed(doc)
+    for r in bad:
+        print(f"{r['variant']}: {r['program']} {r['case'] or ''} {r['status']}: {r.get('message', '')}")
+    print(f"{len(doc['results']) - len(bad)} passed, {len(bad)} failed or crashed")
+    if args.json:
+        import json
+
+        from ..fileio import atomic_write_text
+
+        atomic_write_text(args.json, json.dumps(doc, indent=1) + "\n")
+    return 1 if bad else 0
+
+
+def cmd_oracle_lint(args) -> int:
+    from ..oracle.lint import lint_fix
+
+    doc = lint_fix(args.nav2_src, args.patch)
+    print(f"Nav2's lint on {doc['patch']} for {doc['distribution']} ({doc['sources']}): {doc['uncrustify']['version']} "
+          f"with ament's {doc['uncrustify']['config']}, cpplint with ament_cpplint's arguments:")
+    print("| file | linter | findings as shipped | patched | added by the patch |")
+    print("|---|---|---|---|---|")
+    for r in doc["files"]:
+        print(f"| {r['file']} | {r['tool']} | {r['shipped']} | {r['patched']} | {len(r['added'])} |")
+    added = [(r, f) for r in doc["files"] for f in r["added"]]
+    for r, f in added:
+        print(f"{r['file']}:{f['line']}: {r['tool']}: {f['message']}")
+    print(f"{len(added)} findings added by the patch")
+    if args.json:
+        import json
+
+        from ..fileio import atomic_write_text
+
+        atomic_write_text(args.json, json.dumps(doc, indent=1) + "\n")
+    return 1 if added else 0
 
 
 def register(sub) -> None:
@@ -46,3 +103,26 @@ def register(sub) -> None:
                    "library (as a package build makes it, -fPIC -O2 -g), built from NAV2_SRC; its target is read from "
                    "the file and its arithmetic from its machine code; only navfn-plain is built")
     b.set_defaults(func=cmd_oracle_build)
+    t = osub.add_parser("nav2-tests", help="build and run nav2_navfn_planner's own gtests, as shipped and with the fix",
+                        description="Build every gtest that nav2_navfn_planner/test/CMakeLists.txt of NAV2_SRC declares "
+                        "against NavFn as it is (original) and as the fix's patch makes it (fixed), with googletest "
+                        "from its sources (Debian: libgtest-dev) and, for the tests that make the planner plugin, the "
+                        "project's ROS stub headers; run each and report every gtest case.  Exit 1 when a case fails.")
+    t.add_argument("nav2_src", metavar="NAV2_SRC",
+                   help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
+    t.add_argument("--out", metavar="DIR", default=DEFAULT_TESTS_OUT, help="the build folder (default: %(default)s)")
+    t.add_argument("--variant", choices=("original", "fixed", "both"), default="both",
+                   help="NavFn as shipped, with the fix (patches/navfn-fix/), or both (default: %(default)s)")
+    t.add_argument("--json", metavar="FILE", help="write the report (every case, its status and message) as JSON")
+    add_toolchain_arguments(t)
+    t.set_defaults(func=cmd_oracle_nav2_tests)
+    lint = osub.add_parser("lint", help="Nav2's lint (ament's uncrustify and cpplint) on the fix's patch",
+                           description="Run uncrustify with ament's configuration and cpplint with ament_cpplint's "
+                           "arguments on each file the fix's patch touches, as shipped and patched, and report the "
+                           "findings the patch adds (the same message, line numbers aside).  Exit 1 when it adds one.")
+    lint.add_argument("nav2_src", metavar="NAV2_SRC",
+                      help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
+    lint.add_argument("--patch", metavar="FILE", help="another patch to judge (default: the distribution's "
+                      "patches/navfn-fix/ patch)")
+    lint.add_argument("--json", metavar="FILE", help="write the report (counts and added findings) as JSON")
+    lint.set_defaults(func=cmd_oracle_lint)

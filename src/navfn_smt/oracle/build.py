@@ -26,7 +26,10 @@ content (:mod:`.objects`):
 - ``navfn-fixed`` and ``navfn-plugin-fixed``: the traced NavFn and the plugin with the fix of
   ``docs/fix.md``: copies of ``navfn.cpp`` and ``navfn.hpp`` in the build folder, patched by
   ``patch -p1`` with the distribution's ``patches/navfn-fix/<distribution>.patch``; the NavFn
-  driver then calls the patched ``calcNavFnAstar`` / ``calcNavFnDijkstra``;
+  driver then calls the patched ``calcNavFnAstar`` / ``calcNavFnDijkstra``.  Sources that carry
+  the fix already (a contributor's branch: the patch applies in reverse) give them from their
+  own files, and ``build.json`` says ``sources_carry_fix``: the other NavFn programs are then
+  fixed too, and the clients refuse to run them as NavFn as shipped;
 - ``eigen-sqrt``: where the version's inflation layer uses Eigen, Eigen's square root built with
   the layers' flags (``eigen_sqrt.cpp``), to tell which one this machine takes.
 
@@ -173,13 +176,23 @@ def _patch_applies(src: Path) -> bool:
     return r.returncode == 0
 
 
-def patched_copy(src: Path, root: Path) -> Path:
-    """Copies of ``navfn.cpp`` and ``navfn.hpp`` under ``root`` with the fix applied by
-    ``patch -p1`` (no fuzz); a clear error when the patch does not apply."""
+def carries_fix(src: Path) -> bool:
+    """Whether the sources already carry the fix (a contributor's branch): its patch applies to
+    them in reverse, without fuzz."""
+    if not fix_patch(src).is_file() or shutil.which("patch") is None:
+        return False
+    r = subprocess.run(["patch", "-p1", "-F0", "-R", "--dry-run", "-d", str(src), "-i", str(fix_patch(src))],
+                       capture_output=True, text=True)
+    return r.returncode == 0
+
+
+def patched_copy(src: Path, root: Path, patch: Optional[Path] = None) -> Path:
+    """Copies of ``navfn.cpp`` and ``navfn.hpp`` under ``root`` with the fix (or ``patch``)
+    applied by ``patch -p1`` (no fuzz); a clear error when the patch does not apply."""
     for rel in NAVFN_FILES:
         (root / rel).parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(src / rel, root / rel)
-    patch = fix_patch(src)
+    patch = Path(patch).absolute() if patch is not None else fix_patch(src)
     r = subprocess.run(["patch", "-p1", "-F0", "--no-backup-if-mismatch", "-d", str(root), "-i", str(patch)],
                        capture_output=True, text=True)
     if r.returncode != 0:
@@ -253,7 +266,7 @@ def _jobs(src: Path, tmp: Path) -> dict:
     plugin_defines = plugin_api(src)
     fixed = {}
     if _skipped(src, "navfn-fixed") is None:
-        root = patched_copy(src, tmp / "fixed")
+        root = src if carries_fix(src) else patched_copy(src, tmp / "fixed")
         fixed_pkg = root / "nav2_navfn_planner"
         fixed_cpp = traced_copy(fixed_pkg / "src" / "navfn.cpp", tmp / "navfn_fixed_traced.cpp")
         fixed = {
@@ -327,13 +340,15 @@ def _skipped(src: Path, name: str) -> Optional[str]:
     Eigen, ``eigen-sqrt`` for a version whose inflation layer does not use it, the fixed
     programs for a version without a patch or without the ``patch`` program."""
     if name in FIXED_PROGRAMS:
+        if carries_fix(src):
+            return None  # built from the sources as they are
         if not fix_patch(src).is_file():
             return f"no patch of the fix for {distribution(src)} (patches/navfn-fix/ has {', '.join(sorted(p.stem for p in PATCHES.glob('*.patch')))})"
         if shutil.which("patch") is None:
             return "the fix is applied with the patch program, which is not installed"
         if not _patch_applies(src):
-            return (f"{fix_patch(src).name} does not apply to these sources without fuzz (already applied, or the "
-                    f"sources changed)")
+            return (f"{fix_patch(src).name} does not apply to these sources without fuzz, nor in reverse (the sources "
+                    f"changed where it patches)")
         return None
     if name not in EIGEN_PROGRAMS:
         return None
@@ -412,7 +427,11 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
                               "target": tc.target}
             doc["source_sha256"] = {k: v for k, v in doc["source_sha256"].items() if k.endswith(".hpp")}
         if any(p in programs for p in FIXED_PROGRAMS):
-            doc["fix_patch"] = {"file": fix_patch(src).name, "sha256": _sha256(fix_patch(src))}
+            carried = carries_fix(src)
+            doc["fix_patch"] = {"file": fix_patch(src).name, "sha256": _sha256(fix_patch(src)),
+                                "applied_by": "the sources" if carried else "this build"}
+            if carried:  # every NavFn program of the build is the fixed one
+                doc["sources_carry_fix"] = True
         (tmp / "build.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
         if out.exists():
             shutil.rmtree(out)

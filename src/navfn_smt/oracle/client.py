@@ -25,6 +25,9 @@ from ..spec.planner import PlanResult
 from .build import load_build
 
 
+AS_SHIPPED = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin")  # NavFn as the sources have it
+
+
 class _Program:
     """One program of an oracle build, running, answering requests on its pipes."""
 
@@ -39,6 +42,10 @@ class _Program:
     def __init__(self, folder):
         self.folder = Path(folder)
         self.build = load_build(self.folder)
+        if self.build.get("sources_carry_fix") and self.program in AS_SHIPPED:
+            raise NavfnInputError(f"{self.folder}: the sources of this build carry the fix already "
+                                  f"({self.build['fix_patch']['file']} applies to them in reverse), so its "
+                                  f"{self.program} is not NavFn as shipped; compare it with --variant fixed")
         if self.program not in self.build["programs"]:
             raise NavfnInputError(f"{self.folder}: this build has no {self.program} (it has "
                                   f"{', '.join(self.build['programs'])}); build it again with `navfn-smt oracle build`")

@@ -14,6 +14,7 @@ class LifecycleNode : public rclcpp_lifecycle::LifecycleNode
 public:
   using SharedPtr = std::shared_ptr<LifecycleNode>;
   using WeakPtr = std::weak_ptr<LifecycleNode>;
+  using rclcpp_lifecycle::LifecycleNode::LifecycleNode;
   // declare the parameter unless it is declared, then read it
   template<typename T>
   T declare_or_get_parameter(const std::string & name, const T & default_value)

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -142,6 +143,9 @@ class Parameter
 public:
   Parameter() = default;
   Parameter(const std::string & name, const ParameterValue & value) : name_(name), value_(value) {}
+  // a value of a parameter type, as rclcpp::Parameter("test.tolerance", 1.0) in Nav2's tests
+  template<typename T, typename = std::enable_if_t<!std::is_same_v<std::decay_t<T>, ParameterValue>>>
+  Parameter(const std::string & name, T && value) : name_(name), value_(ParameterValue(std::forward<T>(value))) {}
   const std::string & get_name() const {return name_;}
   uint8_t get_type() const {return value_.get_type();}
   bool as_bool() const {return value_.as_bool();}
@@ -189,12 +193,28 @@ struct OnSetParametersCallbackHandle
   using SharedPtr = std::shared_ptr<OnSetParametersCallbackHandle>;
   using OnParametersSetCallbackType =
     std::function<rcl_interfaces::msg::SetParametersResult(const std::vector<rclcpp::Parameter> &)>;
+  OnParametersSetCallbackType callback;
 };
 struct PostSetParametersCallbackHandle
 {
   using SharedPtr = std::shared_ptr<PostSetParametersCallbackHandle>;
+  using PostSetParametersCallbackType = std::function<void(const std::vector<rclcpp::Parameter> &)>;
+  PostSetParametersCallbackType callback;
 };
 }  // namespace node_interfaces
+
+// The process of Nav2's own tests (nav2_navfn_planner/test): init and shutdown have nothing
+// to start; a parameter request is answered when it is made, so its future is ready when
+// spun (the node's parameters: rclcpp_lifecycle/lifecycle_node.hpp).
+inline void init(int, char **) {}
+inline bool shutdown() {return true;}
+enum class FutureReturnCode {SUCCESS, INTERRUPTED, TIMEOUT};
+template<typename NodeT, typename FutureT>
+FutureReturnCode spin_until_future_complete(const NodeT &, const FutureT & future)
+{
+  future.wait();
+  return FutureReturnCode::SUCCESS;
+}
 }  // namespace rclcpp
 
 #define RCLCPP_DEBUG(logger, ...) do {(void)(logger);} while (0)

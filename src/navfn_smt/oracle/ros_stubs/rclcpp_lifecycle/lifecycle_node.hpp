@@ -1,6 +1,10 @@
 // navfn-smt: a lifecycle node holding parameters, for the oracle build (no ROS installation).
 // The driver sets the overrides a params file would give; declare_parameter returns the
 // override when there is one (of the declared type, as rclcpp demands), else the default.
+// A parameter request (set_parameters_atomically, as rclcpp's parameter service answers it):
+// every parameter declared and of its declared type, then the set callbacks, the last added
+// first, each able to refuse the whole request; only then the values change and the post-set
+// callbacks run.
 #ifndef NAVFN_SMT_PLUGIN_STUB_LIFECYCLE_NODE_HPP_
 #define NAVFN_SMT_PLUGIN_STUB_LIFECYCLE_NODE_HPP_
 
@@ -17,11 +21,31 @@
 
 namespace rclcpp_lifecycle
 {
+class LifecycleNode;
+struct State {};  // a lifecycle transition's state, as the tests pass it to on_configure
+}  // namespace rclcpp_lifecycle
+
+namespace rclcpp
+{
+namespace node_interfaces
+{
+// each interface a parameter client is made of names the node it was taken from
+struct NodeInterface
+{
+  rclcpp_lifecycle::LifecycleNode * node;
+};
+using NodeBaseInterface = NodeInterface;
+}  // namespace node_interfaces
+}  // namespace rclcpp
+
+namespace rclcpp_lifecycle
+{
 class LifecycleNode
 {
 public:
   using SharedPtr = std::shared_ptr<LifecycleNode>;
   using WeakPtr = std::weak_ptr<LifecycleNode>;
+  explicit LifecycleNode(const std::string & name = "global_costmap") : name_(name) {}
   virtual ~LifecycleNode() = default;
 
   std::map<std::string, rclcpp::ParameterValue> overrides;  // set by the driver
@@ -60,19 +84,65 @@ public:
     return rclcpp::Parameter(name, params_.at(name));
   }
   rclcpp::node_interfaces::OnSetParametersCallbackHandle::SharedPtr add_on_set_parameters_callback(
-    rclcpp::node_interfaces::OnSetParametersCallbackHandle::OnParametersSetCallbackType)
+    rclcpp::node_interfaces::OnSetParametersCallbackHandle::OnParametersSetCallbackType callback)
   {
-    return std::make_shared<rclcpp::node_interfaces::OnSetParametersCallbackHandle>();
+    auto handle = std::make_shared<rclcpp::node_interfaces::OnSetParametersCallbackHandle>();
+    handle->callback = callback;
+    on_set_.insert(on_set_.begin(), handle);
+    return handle;
   }
-  void remove_on_set_parameters_callback(const rclcpp::node_interfaces::OnSetParametersCallbackHandle *) {}
+  void remove_on_set_parameters_callback(const rclcpp::node_interfaces::OnSetParametersCallbackHandle * handle)
+  {
+    for (auto it = on_set_.begin(); it != on_set_.end(); ++it) {
+      if (it->get() == handle) {on_set_.erase(it); return;}
+    }
+  }
   template<typename CallbackT>
-  rclcpp::node_interfaces::PostSetParametersCallbackHandle::SharedPtr add_post_set_parameters_callback(CallbackT)
+  rclcpp::node_interfaces::PostSetParametersCallbackHandle::SharedPtr add_post_set_parameters_callback(
+    CallbackT callback)
   {
-    return std::make_shared<rclcpp::node_interfaces::PostSetParametersCallbackHandle>();
+    auto handle = std::make_shared<rclcpp::node_interfaces::PostSetParametersCallbackHandle>();
+    handle->callback = callback;
+    post_set_.insert(post_set_.begin(), handle);
+    return handle;
   }
-  void remove_post_set_parameters_callback(const rclcpp::node_interfaces::PostSetParametersCallbackHandle *) {}
+  void remove_post_set_parameters_callback(const rclcpp::node_interfaces::PostSetParametersCallbackHandle * handle)
+  {
+    for (auto it = post_set_.begin(); it != post_set_.end(); ++it) {
+      if (it->get() == handle) {post_set_.erase(it); return;}
+    }
+  }
+  rcl_interfaces::msg::SetParametersResult set_parameters_atomically(const std::vector<rclcpp::Parameter> & parameters)
+  {
+    rcl_interfaces::msg::SetParametersResult result;
+    for (const auto & p : parameters) {
+      auto it = params_.find(p.get_name());
+      if (it == params_.end()) {
+        result.reason = "parameter " + p.get_name() + " is not declared";
+        return result;
+      }
+      if (it->second.get_type() != p.get_type()) {
+        result.reason = "parameter " + p.get_name() + " set to another type than declared";
+        return result;
+      }
+    }
+    result.successful = true;
+    for (const auto & handle : std::vector<decltype(on_set_)::value_type>(on_set_)) {
+      result = handle->callback(parameters);
+      if (!result.successful) {return result;}
+    }
+    for (const auto & p : parameters) {params_[p.get_name()] = p.get_parameter_value();}
+    for (const auto & handle : std::vector<decltype(post_set_)::value_type>(post_set_)) {
+      handle->callback(parameters);
+    }
+    return result;
+  }
+  rclcpp::node_interfaces::NodeInterface * get_node_base_interface() {return &self_;}
+  rclcpp::node_interfaces::NodeInterface * get_node_topics_interface() {return &self_;}
+  rclcpp::node_interfaces::NodeInterface * get_node_graph_interface() {return &self_;}
+  rclcpp::node_interfaces::NodeInterface * get_node_services_interface() {return &self_;}
   const char * get_namespace() const {return "/";}
-  const char * get_name() const {return "global_costmap";}
+  const char * get_name() const {return name_.c_str();}
 
   // Subscriptions: the callback is kept under its topic; the driver delivers a message to it
   // as a publisher would (``deliver``).
@@ -109,6 +179,10 @@ public:
   }
 
 protected:
+  std::string name_;
+  rclcpp::node_interfaces::NodeInterface self_{this};
+  std::vector<rclcpp::node_interfaces::OnSetParametersCallbackHandle::SharedPtr> on_set_;
+  std::vector<rclcpp::node_interfaces::PostSetParametersCallbackHandle::SharedPtr> post_set_;
   std::map<std::string, rclcpp::ParameterValue> params_;
   struct Subscriber
   {
@@ -119,5 +193,27 @@ protected:
   std::vector<Subscriber> subscribers_;
 };
 }  // namespace rclcpp_lifecycle
+
+namespace rclcpp
+{
+// a client of a node's parameter service: its requests answered by the node at once
+class AsyncParametersClient
+{
+public:
+  using SharedPtr = std::shared_ptr<AsyncParametersClient>;
+  template<typename... Interfaces>
+  explicit AsyncParametersClient(node_interfaces::NodeInterface * base, Interfaces...) : node_(base->node) {}
+  std::shared_future<rcl_interfaces::msg::SetParametersResult> set_parameters_atomically(
+    const std::vector<Parameter> & parameters)
+  {
+    std::promise<rcl_interfaces::msg::SetParametersResult> answer;
+    answer.set_value(node_->set_parameters_atomically(parameters));
+    return answer.get_future().share();
+  }
+
+private:
+  rclcpp_lifecycle::LifecycleNode * node_;
+};
+}  // namespace rclcpp
 
 #endif  // NAVFN_SMT_PLUGIN_STUB_LIFECYCLE_NODE_HPP_

@@ -10,6 +10,9 @@ namespace tf2_ros
 class Buffer
 {
 public:
+  Buffer() = default;
+  template<typename ClockT>
+  explicit Buffer(const ClockT &) {}  // a node's clock, as Nav2's tests make one
   template<typename... Args>
   geometry_msgs::msg::TransformStamped lookupTransform(Args && ...) const {std::abort();}
 };
