@@ -30,7 +30,7 @@ def cmd_oracle_build(args) -> int:
 
 
 def cmd_oracle_nav2_tests(args) -> int:
-    from ..oracle.nav2_tests import VARIANTS, failed, run_nav2_tests
+    from ..oracle.nav2_tests import PASSED, VARIANTS, failed, run_nav2_tests, without_fix
     from .common import toolchain_of
 
     doc = run_nav2_tests(args.nav2_src, args.out, VARIANTS if args.variant == "both" else (args.variant,),
@@ -43,14 +43,19 @@ def cmd_oracle_nav2_tests(args) -> int:
     rows = {}
     for r in doc["results"]:
         rows.setdefault((r["program"], r["case"] or "(the program)"), {})[r["variant"]] = r["status"]
-    print("| program | test | " + " | ".join(variants) + " |")
-    print("|---|---|" + "---|" * len(variants))
+    print("| program | from | test | " + " | ".join(variants) + " |")
+    print("|---|---|---|" + "---|" * len(variants))
     for (program, case), status in rows.items():
-        print(f"| {program} | {case} | " + " | ".join(status.get(v, "-") for v in variants) + " |")
+        print(f"| {program} | {doc['programs'][program]['from']} | {case} | "
+              + " | ".join(status.get(v, "-") for v in variants) + " |")
     bad = failed(doc)
     for r in bad:
         print(f"{r['variant']}: {r['program']} {r['case'] or ''} {r['status']}: {r.get('message', '')}")
-    print(f"{len(doc['results']) - len(bad)} passed, {len(bad)} failed or crashed")
+    shown = [r for r in doc["results"] if without_fix(doc, r)]
+    fix_line = (f"; the fix's own tests as shipped: {sum(r['status'] != PASSED for r in shown)} of {len(shown)} fail "
+                f"(they show what the fix changes)") if shown else ""
+    print(f"{sum(r['status'] == PASSED for r in doc['results'] if not without_fix(doc, r))} passed, {len(bad)} failed "
+          f"or crashed{fix_line}")
     if args.json:
         import json
 
@@ -107,7 +112,9 @@ def register(sub) -> None:
                         description="Build every gtest that nav2_navfn_planner/test/CMakeLists.txt of NAV2_SRC declares "
                         "against NavFn as it is (original) and as the fix's patch makes it (fixed), with googletest "
                         "from its sources (Debian: libgtest-dev) and, for the tests that make the planner plugin, the "
-                        "project's ROS stub headers; run each and report every gtest case.  Exit 1 when a case fails.")
+                        "project's ROS stub headers; the tests the fix's patch adds are run against both too.  Report every gtest "
+                        "case; exit 1 when one fails where it should pass (every test patched, the sources' own as "
+                        "shipped).")
     t.add_argument("nav2_src", metavar="NAV2_SRC",
                    help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
     t.add_argument("--out", metavar="DIR", default=DEFAULT_TESTS_OUT, help="the build folder (default: %(default)s)")

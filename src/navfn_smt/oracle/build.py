@@ -186,13 +186,20 @@ def carries_fix(src: Path) -> bool:
     return r.returncode == 0
 
 
+def patched_files(patch: Path) -> list[str]:
+    """The files a patch changes or adds, relative to the sources' root (its ``+++ b/...`` lines)."""
+    return [line.split()[1][2:] for line in patch.read_text(encoding="utf-8").splitlines() if line.startswith("+++ b/")]
+
+
 def patched_copy(src: Path, root: Path, patch: Optional[Path] = None) -> Path:
-    """Copies of ``navfn.cpp`` and ``navfn.hpp`` under ``root`` with the fix (or ``patch``)
-    applied by ``patch -p1`` (no fuzz); a clear error when the patch does not apply."""
-    for rel in NAVFN_FILES:
-        (root / rel).parent.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(src / rel, root / rel)
+    """Copies under ``root`` of the files the fix (or ``patch``) touches, with the patch applied
+    by ``patch -p1`` (no fuzz): ``navfn.cpp``, ``navfn.hpp``, and the tests it adds to
+    ``nav2_navfn_planner/test``; a clear error when the patch does not apply."""
     patch = Path(patch).absolute() if patch is not None else fix_patch(src)
+    for rel in dict.fromkeys([*NAVFN_FILES, *patched_files(patch)]):
+        (root / rel).parent.mkdir(parents=True, exist_ok=True)
+        if (src / rel).is_file():
+            shutil.copyfile(src / rel, root / rel)
     r = subprocess.run(["patch", "-p1", "-F0", "--no-backup-if-mismatch", "-d", str(root), "-i", str(patch)],
                        capture_output=True, text=True)
     if r.returncode != 0:

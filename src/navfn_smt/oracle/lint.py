@@ -10,7 +10,7 @@ distribution's patch touches is linted twice, as shipped and patched:
   filters, ``--root`` the package's ``include`` folder), run from the package's folder.
 
 A finding counts against the patch only when the patched file has more of it than the shipped
-one (the same message, line numbers aside): a linter's version may find things in Nav2's own
+one (the same message, line numbers aside; every finding in a file the patch adds): a linter's version may find things in Nav2's own
 code that Nav2's CI does not, and those are not the patch's.
 """
 
@@ -26,18 +26,14 @@ from collections import Counter
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from .build import distribution, find_sources, fix_patch, patched_copy
+from .build import distribution, find_sources, fix_patch, patched_copy, patched_files
 
 CONFIGS = Path(__file__).resolve().parent / "lint"
 CPPLINT_ARGS = ("--linelength=100", "--extensions=c,cc,cpp,cxx", "--headers=h,hh,hpp,hxx",
                 "--filter=-build/c++11,-runtime/references,-whitespace/braces,-whitespace/indent,"
                 "-whitespace/parens,-whitespace/semicolon")
+CXX_FILES = (".cpp", ".hpp", ".h", ".cc")  # the files of a patch the two linters read
 CPPLINT_LINE = re.compile(r"^(?P<file>[^:]+):(?P<line>\d+):\s+(?P<message>.*)$")
-
-
-def patched_files(patch: Path) -> list[str]:
-    """The files a patch changes, relative to the sources' root (its ``+++ b/...`` lines)."""
-    return [line.split()[1][2:] for line in patch.read_text(encoding="utf-8").splitlines() if line.startswith("+++ b/")]
 
 
 def uncrustify_config() -> tuple[Path, str]:
@@ -104,17 +100,19 @@ def lint_fix(nav2_src, patch=None) -> dict:
     if not patch.is_file():
         raise NavfnInputError(f"no patch {patch.name} of the fix for {distribution(src)} (patches/navfn-fix/)")
     cfg, version = uncrustify_config()
-    files = patched_files(patch)
+    files = [f for f in patched_files(patch) if f.endswith(CXX_FILES)]
     with tempfile.TemporaryDirectory() as tmp:
         fixed = patched_copy(src, Path(tmp), patch)
         rows = []
         for rel in files:
             package, inner = rel.split("/", 1)
             for tool in ("uncrustify", "cpplint"):
+                new = not (src / rel).is_file()  # a file the patch adds: all its findings are the patch's
                 if tool == "uncrustify":
-                    before, after = uncrustify_findings(src / rel, cfg), uncrustify_findings(fixed / rel, cfg)
+                    before, after = [] if new else uncrustify_findings(src / rel, cfg), uncrustify_findings(fixed / rel, cfg)
                 else:
-                    before, after = cpplint_findings(src / package, inner), cpplint_findings(fixed / package, inner)
+                    before = [] if new else cpplint_findings(src / package, inner)
+                    after = cpplint_findings(fixed / package, inner)
                 rows.append({"file": rel, "tool": tool, "shipped": len(before), "patched": len(after),
                              "added": added(before, after)})
     return {"sources": str(src.resolve()), "distribution": distribution(src), "patch": patch.name,

@@ -5,7 +5,8 @@ Each ``nav2_add_gtest(NAME SOURCES...)`` (``ament_add_gtest`` in older versions)
 ``nav2_navfn_planner/test/CMakeLists.txt`` is one program, compiled as the oracle's programs are
 (:mod:`.objects`, one source at a time, each object kept once per content):
 
-- the test's own sources, unchanged;
+- the test's own sources, unchanged: those the sources declare, and those the fix's patch adds
+  (each run against both variants, to show that it fails as shipped and passes patched);
 - NavFn: ``navfn.cpp`` as it is (``original``) or the copy the fix's patch makes (``fixed``,
   :func:`.build.patched_copy`); sources that carry the fix already (a contributor's branch) are
   the fixed variant as they are, and have no original;
@@ -58,18 +59,22 @@ class Nav2Test:
         return any(re.search(r"^\s*int\s+main\s*\(", Path(s).read_text(encoding="utf-8"), re.M) for s in self.sources)
 
 
-def nav2_tests(src: Path) -> list[Nav2Test]:
-    """The gtest programs ``nav2_navfn_planner/test/CMakeLists.txt`` declares, in its order."""
+def nav2_tests(src: Path, beside: Optional[Path] = None) -> list[Nav2Test]:
+    """The gtest programs ``nav2_navfn_planner/test/CMakeLists.txt`` of ``src`` declares, in its
+    order; a source it names that ``src`` lacks is taken from the same folder of ``beside`` (a
+    patched copy holds only the files its patch touches)."""
     folder = src / "nav2_navfn_planner" / "test"
     cmake = folder / "CMakeLists.txt"
     if not cmake.is_file():
         raise NavfnInputError(f"{src}: no nav2_navfn_planner/test/CMakeLists.txt (the sources' own tests)")
+    other = beside / "nav2_navfn_planner" / "test" if beside is not None else folder
     out = []
     for name, args in GTEST_CALL.findall(cmake.read_text(encoding="utf-8")):
-        sources = tuple(folder / a for a in args.split() if a.endswith(".cpp"))
+        sources = tuple(folder / a if (folder / a).is_file() else other / a for a in args.split() if a.endswith(".cpp"))
         missing = [s.name for s in sources if not s.is_file()]
         if missing:
-            raise NavfnInputError(f"{cmake}: {name} names {missing[0]}, which is not in {folder}")
+            raise NavfnInputError(f"{cmake}: {name} names {missing[0]}, which is not in {folder}"
+                                  + (f" nor in {other}" if other != folder else ""))
         text = "".join(s.read_text(encoding="utf-8") for s in sources)
         out.append(Nav2Test(name, sources, "navfn_planner.hpp" in text))
     if not out:
@@ -86,7 +91,17 @@ def googletest() -> Path:
                           + "); Debian: apt-get install libgtest-dev")
 
 
-def _programs(src: Path, tests, variants, tmp: Path) -> dict:
+def _fixed_root(src: Path, tmp: Path) -> Optional[Path]:
+    """The tree of the fixed variant: the sources themselves when they carry the fix, else a
+    patched copy of the files the patch touches; None when the fix cannot be built."""
+    if carries_fix(src):
+        return src
+    if _skipped(src, "navfn-fixed"):
+        return None
+    return patched_copy(src, tmp / "fixed")
+
+
+def _programs(src: Path, fixed: Optional[Path], tests, variants, tmp: Path) -> dict:
     """Each ``(test, variant)`` program's job, as :func:`.build._compile_all` takes them."""
     base = _jobs(src, tmp / "oracle")
     gtest = googletest()
@@ -94,14 +109,8 @@ def _programs(src: Path, tests, variants, tmp: Path) -> dict:
     gtest_inc = [gtest / "include", gtest]
     jobs, names = {}, {}
     for variant in variants:
-        if variant == "fixed":
-            why = _skipped(src, "navfn-fixed")
-            if why:
-                raise NavfnInputError(f"the fixed variant cannot be built: {why}")
-            root = src if carries_fix(src) else patched_copy(src, tmp / "fixed")
-            navfn_cpp, navfn_inc = root / "nav2_navfn_planner" / "src" / "navfn.cpp", root / "nav2_navfn_planner" / "include"
-        else:
-            navfn_cpp, navfn_inc = src / "nav2_navfn_planner" / "src" / "navfn.cpp", src / "nav2_navfn_planner" / "include"
+        root = fixed if variant == "fixed" else src
+        navfn_cpp, navfn_inc = root / "nav2_navfn_planner" / "src" / "navfn.cpp", root / "nav2_navfn_planner" / "include"
         for t in tests:
             main = [] if t.has_main else [gtest / "src" / "gtest_main.cc"]
             if t.plugin:
@@ -142,7 +151,7 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
     out = Path(out)
     if out.exists() and not (out / "nav2-tests.json").is_file():
         raise NavfnInputError(f"{out}: exists and is not a folder of Nav2's tests (no nav2-tests.json); name a new folder")
-    tests = nav2_tests(src)
+    shipped = {t.name for t in nav2_tests(src)}
     if carries_fix(src):  # a contributor's branch: its NavFn as it is is the fixed one
         if "original" in variants and len(variants) == 1:
             raise NavfnInputError(f"{src}: these sources carry the fix already ({fix_patch(src).name} applies to them "
@@ -155,7 +164,13 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
     tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent)).absolute()
     try:
         (tmp / "oracle").mkdir()
-        jobs, names = _programs(src, tests, variants, tmp)
+        fixed = _fixed_root(src, tmp)
+        if fixed is None and "fixed" in variants:
+            raise NavfnInputError(f"the fixed variant cannot be built: {_skipped(src, 'navfn-fixed')}")
+        # the shipped tests and those the fix's patch adds, each run against every variant: a
+        # test of the patch should fail as shipped and pass patched
+        tests = nav2_tests(fixed, src) if fixed is not None else nav2_tests(src)
+        jobs, names = _programs(src, fixed, tests, variants, tmp)
         compiler = Compiler(tc, {src: ROOT_NAMES["src"], HERE: ROOT_NAMES["package"], tmp: ROOT_NAMES["build"],
                                  googletest(): "/googletest"}, cache_dir())
         _compile_all(compiler, jobs, list(jobs), tmp)
@@ -177,8 +192,9 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
             "googletest": str(googletest()),
             "objects": {"cache": str(compiler.cache) if compiler.cache else None, "compiled": compiler.compiled,
                         "reused": compiler.reused},
-            "programs": {t.name: {"sources": [s.name for s in t.sources], "plugin": t.plugin} for t in tests},
-            "source_sha256": {str(s.relative_to(src)): _sha256(s) for t in tests for s in t.sources},
+            "programs": {t.name: {"sources": [s.name for s in t.sources], "plugin": t.plugin,
+                                  "from": "the sources" if t.name in shipped else "the fix's patch"} for t in tests},
+            "source_sha256": {str(s.relative_to(s.parents[2])): _sha256(s) for t in tests for s in t.sources},
             "variants": list(variants), "results": results, **({"sources_carry_fix": True} if carries_fix(src) else {}),
             **({"fix_patch": {"file": fix_patch(src).name, "sha256": _sha256(fix_patch(src))}} if "fixed" in variants else {}),
         }
@@ -194,6 +210,13 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
     return doc
 
 
+def without_fix(doc: dict, r: dict) -> bool:
+    """Whether the result ``r`` is of a test the fix's patch adds, run as shipped (where it is
+    meant to fail: it shows what the fix changes)."""
+    return r["variant"] == "original" and doc["programs"][r["program"]]["from"] == "the fix's patch"
+
+
 def failed(doc: dict) -> list[dict]:
-    """The results of a report that are not passes."""
-    return [r for r in doc["results"] if r["status"] != PASSED]
+    """The results of a report that are not passes where a pass is due: every test patched,
+    and the sources' own tests as shipped."""
+    return [r for r in doc["results"] if r["status"] != PASSED and not without_fix(doc, r)]
