@@ -37,6 +37,26 @@ def atomic_path(path, suffix: str = ""):
         raise
 
 
+@contextlib.contextmanager
+def atomic_folder(path):
+    """Yield a new temporary folder beside the folder ``path``; on success it replaces ``path``
+    (which, when it exists, the caller has judged replaceable); on failure it is removed."""
+    import shutil
+    import tempfile
+
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{p.name}.", dir=p.parent)).absolute()
+    try:
+        yield tmp
+        if p.exists():
+            shutil.rmtree(p)
+        tmp.rename(p)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
 def atomic_write_bytes(path, data: bytes) -> None:
     with atomic_path(path) as tmp:
         with open(tmp, "wb") as f:

@@ -88,6 +88,11 @@ def cmd_oracle_lint(args) -> int:
     return 1 if added else 0
 
 
+def _sources_argument(parser) -> None:
+    parser.add_argument("nav2_src", metavar="NAV2_SRC",
+                        help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
+
+
 def register(sub) -> None:
     """The ``oracle`` command and its ``build`` subcommand."""
     from .common import add_toolchain_arguments
@@ -100,8 +105,7 @@ def register(sub) -> None:
                         "line in a copy; with priority buffers that never drop (a copy of navfn.hpp); and the "
                         "planner plugin (navfn_planner.cpp with Nav2's costmap_2d.cpp).  Record the compiler, "
                         "flags, source hashes, git commit and distribution in DIR/build.json.")
-    b.add_argument("nav2_src", metavar="NAV2_SRC",
-                   help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
+    _sources_argument(b)
     b.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="the build folder (default: %(default)s)")
     add_toolchain_arguments(b)
     b.add_argument("--library", metavar="FILE.so", help="your own NavFn binary: link the driver against this shared "
@@ -115,8 +119,7 @@ def register(sub) -> None:
                         "project's ROS stub headers; the tests the fix's patch adds are run against both too.  Report every gtest "
                         "case; exit 1 when one fails where it should pass (every test patched, the sources' own as "
                         "shipped).")
-    t.add_argument("nav2_src", metavar="NAV2_SRC",
-                   help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
+    _sources_argument(t)
     t.add_argument("--out", metavar="DIR", default=DEFAULT_TESTS_OUT, help="the build folder (default: %(default)s)")
     t.add_argument("--variant", choices=("original", "fixed", "both"), default="both",
                    help="NavFn as shipped, with the fix (patches/navfn-fix/), or both (default: %(default)s)")
@@ -127,8 +130,7 @@ def register(sub) -> None:
                            description="Run uncrustify with ament's configuration and cpplint with ament_cpplint's "
                            "arguments on each file the fix's patch touches, as shipped and patched, and report the "
                            "findings the patch adds (the same message, line numbers aside).  Exit 1 when it adds one.")
-    lint.add_argument("nav2_src", metavar="NAV2_SRC",
-                      help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
+    _sources_argument(lint)
     lint.add_argument("--patch", metavar="FILE", help="another patch to judge (default: the distribution's "
                       "patches/navfn-fix/ patch)")
     lint.add_argument("--json", metavar="FILE", help="write the report (counts and added findings) as JSON")

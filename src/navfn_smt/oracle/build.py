@@ -48,13 +48,13 @@ import os
 import re
 import shutil
 import subprocess
-import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
+from ..fileio import atomic_folder
 from .arithmetic import find as find_arithmetic
 from .arithmetic import layers_find, plugin_find
 from .arithmetic import record as record_arithmetic
@@ -385,9 +385,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
     runner = tc.runner()
     skipped = {name: why for name in programs if (why := _skipped(src, name))}
     programs = tuple(p for p in programs if p not in skipped)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent)).absolute()
-    try:
+    with atomic_folder(out) as tmp:
         jobs = _jobs(src, tmp)
         if library is not None:  # the driver alone, linked with a copy of the library beside it
             lib = tmp / Path(library).name
@@ -440,12 +438,6 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             if carried:  # every NavFn program of the build is the fixed one
                 doc["sources_carry_fix"] = True
         (tmp / "build.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
-        if out.exists():
-            shutil.rmtree(out)
-        tmp.rename(out)
-    finally:
-        if tmp.exists():
-            shutil.rmtree(tmp, ignore_errors=True)
     return doc
 
 

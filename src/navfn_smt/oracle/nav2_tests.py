@@ -26,13 +26,13 @@ import json
 import re
 import shutil
 import subprocess
-import tempfile
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
+from ..fileio import atomic_folder
 from .build import (HERE, ROOT_NAMES, _compile_all, _jobs, _sha256, _skipped, carries_fix, cxx_standard, distribution,
                     find_sources, fix_patch, patched_copy)
 from .objects import Compiler, cache_dir
@@ -160,9 +160,7 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
     tc = replace(tc or toolchain(), std=cxx_standard(src))
     tc.check()
     runner = tc.runner()
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent)).absolute()
-    try:
+    with atomic_folder(out) as tmp:
         (tmp / "oracle").mkdir()
         fixed = _fixed_root(src, tmp)
         if fixed is None and "fixed" in variants:
@@ -201,12 +199,6 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
         for stale in (tmp / "oracle", tmp / "fixed"):
             shutil.rmtree(stale, ignore_errors=True)
         (tmp / "nav2-tests.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
-        if out.exists():
-            shutil.rmtree(out)
-        tmp.rename(out)
-    finally:
-        if tmp.exists():
-            shutil.rmtree(tmp, ignore_errors=True)
     return doc
 
 
