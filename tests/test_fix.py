@@ -350,3 +350,29 @@ def test_in_arm64s_arithmetic_the_fix_still_returns_a_path_from_a_lethal_start()
         x86 = plan(costs, s, g, astar, variant="fixed")
         assert len(arm.path) and not arm.start_potential < POT_HIGH and costs[s[1], s[0]] == COST_OBS, name
         assert not len(x86.path), name
+
+
+def test_the_fixed_plugin_warns_only_when_it_finds_no_path(builds):
+    """Rolling's calcPath warns "Path extraction exhausted" and the plugin throws; patched, the
+    gradient's exhaustion is a DEBUG line and the descent plans, with no WARN at all, in the C++
+    and in the model alike (generated configuration 33, pair 18: the first of its kind)."""
+    from dataclasses import replace
+
+    from navfn_smt.difftest.plugin_live import generated_configs
+    from navfn_smt.nav2.plugin import create_plan
+    from navfn_smt.oracle.client import PluginOracle
+
+    cfg = next(c for k, c in enumerate(generated_configs("rolling", 34, 0)) if k == 33)
+    start, goal = cfg.pairs[18]
+    _, folder = builds["rolling"]
+    for variant in ("original", "fixed"):
+        params = replace(cfg.params, variant=variant)
+        model = create_plan(cfg.costmap, start, goal, params)
+        with PluginOracle(folder, variant) as oracle:
+            (cpp,) = oracle.create_plans(cfg.costmap, params, [(start, goal)])
+        warns = [text for level, text in cpp.lines]
+        assert warns == [text for level, text in model.lines]
+        if variant == "original":
+            assert cpp.error == "NoValidPathCouldBeFound" and any("Path extraction exhausted" in w for w in warns)
+        else:
+            assert cpp.error is None and len(cpp.poses) > 0 and warns == []

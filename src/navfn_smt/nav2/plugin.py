@@ -89,6 +89,10 @@ FLAVOURS = {
 UNCHECKED_FLAVOURS = ("iron",)
 
 
+# the patched calcPath's one WARN (patches/navfn-fix/): neither calcPathGradient nor the descent found a path
+FIXED_NO_PATH_WARNING = "[PathCalc] No path: neither the gradient nor the descent reached the goal"
+
+
 def flavour_of(distro: str) -> Flavour:
     if distro not in FLAVOURS:
         raise NavfnInputError(f"no planner plugin model for distribution {distro!r} (known: {', '.join(FLAVOURS)})")
@@ -564,12 +568,15 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
     try:
         planner = get_backend(backend, PlannerUnderTest(arithmetic=run.arith.navfn)).prepare(run.costs)
         run.extraction, path = planner.extract(run.potential, cell, run.robot_cell, n)
-        if run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
-            run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
         if params.variant == "fixed" and run.extraction is not ExtractionExit.NEAR_GOAL:
-            # the patched calcPath: calcPathGradient (above, with its WARN), then calcPathDescent
+            # the patched calcPath: calcPathGradient (its exhaustion logged at DEBUG only), then
+            # calcPathDescent, and one WARN when that fails too
             run.extraction, path = get_backend(backend, PlannerUnderTest("fixed", run.arith.navfn)).prepare(run.costs).extract(
                 run.potential, cell, run.robot_cell, 0)
+            if run.extraction is not ExtractionExit.NEAR_GOAL:
+                run.lines.append((WARN, FIXED_NO_PATH_WARNING))
+        elif run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
+            run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
         return []
