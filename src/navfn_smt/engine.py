@@ -128,7 +128,11 @@ def client(eng: Engine):
         eng = Engine(default_jobs())
     # one thread per worker: the tasks are CPU-bound Python, numba and solver code; the
     # scheduler's HTTP server on a free port (its default 8787 may be taken: a warning on stderr)
-    cluster, quiet = None, {}
+    # the scheduler and the nannies run on this process's event loop thread: a Ctrl-C cuts the
+    # driver's waits, and their cancelled callbacks could log a traceback (tornado's "Exception
+    # in callback") before the handler below quiets them; the loop's loggers say nothing while
+    # the cluster lives (a task's error still reaches the driver as its exception)
+    cluster, quiet = None, _quiet_shutdown(("tornado", "asyncio"))
     try:
         with _sigint_blocked():
             cluster = LocalCluster(n_workers=eng.jobs, threads_per_worker=1, processes=True,
@@ -138,7 +142,7 @@ def client(eng: Engine):
         with Client(cluster, set_as_default=False) as c:
             yield c
     except BaseException:
-        quiet = _quiet_shutdown()
+        quiet = {**_quiet_shutdown(), **quiet}  # the levels from before the cluster are the ones to put back
         raise
     finally:
         if cluster is not None:
@@ -147,14 +151,14 @@ def client(eng: Engine):
             logging.getLogger(name).setLevel(level)
 
 
-def _quiet_shutdown() -> dict:
+def _quiet_shutdown(names=("distributed", "tornado", "asyncio")) -> dict:
     """A run that ends on an error or a Ctrl-C closes its cluster mid-flight: the scheduler and
     the nannies live in this process, and their comms, cut while reading, could log tracebacks
     at ERROR under the error the run reports.  So until the cluster is closed, this process's
     Dask, Tornado and asyncio loggers say nothing (the workers, which never see Ctrl-C, still log
     at ERROR); the levels they had are returned, to be put back."""
     before = {}
-    for name in ("distributed", "tornado", "asyncio"):
+    for name in names:
         before[name] = logging.getLogger(name).level
         logging.getLogger(name).setLevel(logging.CRITICAL + 1)
     return before
