@@ -22,7 +22,7 @@ from navfn_smt.spec import fix as F
 from navfn_smt.spec.constants import COST_OBS, POT_HIGH
 from navfn_smt.spec.costs import add_border
 from navfn_smt.spec.extraction import ExtractionExit
-from navfn_smt.spec.planner import plan
+from navfn_smt.spec.planner import path_cycle_limit, plan
 
 REPO = Path(__file__).resolve().parent.parent
 CX = REPO / "tests" / "data" / "counterexamples"
@@ -86,7 +86,7 @@ def test_every_failing_counterexample_plans_when_fixed(name):
 
 
 def test_the_fix_never_changes_what_the_original_plans_and_plans_every_connected_start():
-    acted = {"propagation": 0, "descent": 0}
+    acted = {"propagation": 0, "descent": 0, "over budget": 0}
     for costs, s, g in _cases():
         for astar in (True, False):
             o = plan(costs, s, g, astar)
@@ -102,16 +102,22 @@ def test_the_fix_never_changes_what_the_original_plans_and_plans_every_connected
             connected = reaches(regions(add_border(costs)), s, g)
             if connected and f.dropped == 0:  # ConnectedStartReached: no push dropped on maps this small
                 assert f.start_potential < POT_HIGH, (s, g)
-            if f.start_potential < POT_HIGH:  # DescentPath
-                assert len(f.path) and f.exit is ExtractionExit.NEAR_GOAL, (s, g)
-    assert acted["propagation"] > 20 and acted["descent"] > 5, acted  # the cases exercise both parts
+            if f.start_potential < POT_HIGH:  # DescentPath, within calcPath's budget of 4 * nx points
+                walk = F.descend([float(v) for v in f.potential.ravel()], costs.shape[1], costs.shape[0], s, g,
+                                 costs.size)
+                assert walk.exit is ExtractionExit.NEAR_GOAL, (s, g)
+                fits = len(walk.path) <= path_cycle_limit(costs.shape[1])
+                acted["over budget"] += not fits
+                assert bool(len(f.path)) == fits and (f.exit is ExtractionExit.NEAR_GOAL) == fits, (s, g)
+    # the cases exercise both parts, and descents longer than the budget
+    assert acted["propagation"] > 20 and acted["descent"] > 5 and acted["over budget"] > 0, acted
 
 
 def test_descent_steps_strictly_down_to_the_goal():
     seen = 0
     for costs, s, g in _cases():
         r = P.run(costs, s, g, True, variant="fixed")
-        ext = F.descend([float(v) for v in r.potential.ravel()], costs.shape[1], costs.shape[0], s, g)
+        ext = F.descend([float(v) for v in r.potential.ravel()], costs.shape[1], costs.shape[0], s, g, costs.size)
         if not r.start_potential < POT_HIGH:
             assert ext.exit is ExtractionExit.HIGH_POTENTIAL and not ext.path
             continue
@@ -119,7 +125,7 @@ def test_descent_steps_strictly_down_to_the_goal():
         pts = [tuple(int(v) for v in p) for p in ext.path]
         assert ext.exit is ExtractionExit.NEAR_GOAL and pts[0] == s and pts[-1] == g and len(pts) <= costs.size
         for a, b in zip(pts, pts[1:]):
-            assert abs(a[0] - b[0]) + abs(a[1] - b[1]) == 1 and r.potential[b[1], b[0]] < r.potential[a[1], a[0]]
+            assert max(abs(a[0] - b[0]), abs(a[1] - b[1])) == 1 and r.potential[b[1], b[0]] < r.potential[a[1], a[0]]
         assert all(costs[y, x] < COST_OBS for x, y in pts[:-1])  # PositionSafe: the goal alone may be lethal
     assert seen > 100
 

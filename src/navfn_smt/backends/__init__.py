@@ -133,7 +133,8 @@ class FixedMapPlanner:
             res = self.inner.run_fixed(start, goal, astar, trace, path_cycles, cycles)
         elif len(res.path):
             return res
-        return res if len(res.path) else F.with_descent(res, start, goal)
+        n = path_cycle_limit(self.costs.shape[1]) if path_cycles is None else path_cycles
+        return res if len(res.path) else F.with_descent(res, start, goal, n)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
         """calcPath and, where it returns no path, the fix's descent (``calcPathDescent``)."""
@@ -142,7 +143,7 @@ class FixedMapPlanner:
             return exit_, path
         ny, nx = self.costs.shape
         ext = F.descend([float(v) for v in np.asarray(potential, np.float32).ravel()], nx, ny,
-                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])))
+                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), int(path_cycles))
         return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
 
     def run_batch(self, cases, astar: bool) -> dict:

@@ -238,23 +238,24 @@ def propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb,
 def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters,
                  memo):
     """The fix's ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), compiled: :func:`propagate`,
-    then ``propNavFn*(cycles)`` again (A*: ``curT += dist`` at its entry, a cycle count from 0)
-    while the start is unreached and a buffer holds cells.  Returns what the last call returns
-    and the calls the fix added; ``tests/test_fix.py`` holds it equal to the spec."""
+    then, when the start is unreached and a buffer holds cells, ``propNavFn*(nx * ny)`` once (A*:
+    ``curT += dist`` at its entry, a cycle count from 0).  Returns what the last call returns and
+    the calls the fix added (0 or 1); ``tests/test_fix.py`` holds it equal to the spec."""
     done = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace,
                      counters, memo)
     high = D.f32const(POT_HIGH)
     start_cell = sy * nx + sx
     no_watch = pb[0, :0]
     calls = 0
-    while D.ge(pot[start_cell], high) and (fill[role[CUR]] > 0 or fill[role[NXT]] > 0):
+    if D.ge(pot[start_cell], high) and (fill[role[CUR]] > 0 or fill[role[NXT]] > 0):
         if astar:
             curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), curt[0])
         counters[CYCLE] = 0
-        run_cycles(D, costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace,
+        extra = nx * ny  # spec.fix.extra_cycles
+        run_cycles(D, costs, nx, ny, sx, sy, astar, True, extra, extra, pot, pending, pb, fill, role, curt, trace,
                    counters, memo, no_watch, no_watch)
-        done = D.lt(pot[start_cell], high) if astar else counters[CYCLE] < cycles
-        calls += 1
+        done = D.lt(pot[start_cell], high) if astar else counters[CYCLE] < extra
+        calls = 1
     return done, calls
 
 

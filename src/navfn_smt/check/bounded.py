@@ -419,9 +419,10 @@ def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callabl
     costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}
     fixed = variant == "fixed"
     sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar, fixed)
-    ex = extract(D, sp.potential, case.nx, case.ny, case.start, case.goal, path_cycle_limit(case.nx))
+    n = path_cycle_limit(case.nx)
+    ex = extract(D, sp.potential, case.nx, case.ny, case.start, case.goal, n)
     if fixed and concrete(ex.exit) != NEAR_GOAL and concrete(ex.exit) != EXIT_UNDEFINED:
-        ex = descend(D, sp.potential, case.nx, case.ny, case.start, case.goal)
+        ex = descend(D, sp.potential, case.nx, case.ny, case.start, case.goal, n)
     return D, costs, sp, ex
 
 

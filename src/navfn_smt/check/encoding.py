@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
+from ..spec.fix import descent_ring, extra_cycles
 from ..spec.numeric import CONCRETE
 from ..spec.propagation import cycle_limit
 
@@ -82,15 +83,12 @@ def _choose(D, c, a: Buffer, b: Buffer) -> Buffer:
     return Buffer([D.ite(c, x, y) for x, y in zip(a.slots, b.slots)], D.ite(c, a.fill, b.fill))
 
 
-FIXED_CALLS = 1000  # the fixed variant's encoding refuses a run that calls propNavFn* more often
-
-
 def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed: bool = False) -> SymbolicPropagation:
     """Propagation on an ``nx`` x ``ny`` map; ``costs[k]`` is interior cell k's cost as a domain
     byte (``D.cost(...)``) or an int.  Border cells are COST_OBS.  ``fixed``: the fix's
-    ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), which calls ``propNavFn*`` again
-    while the start is unreached and a buffer holds cells: only in a domain that follows one
-    control path (the concolic domain), which decides each further call."""
+    ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), which calls ``propNavFn*(nx*ny)``
+    once more when the start is unreached and a buffer holds cells: only in a domain that follows
+    one control path (the concolic domain), which decides whether it calls."""
     inner = _interior(nx, ny)
     n_slots = len(inner)
     empty = Buffer([0] * n_slots, 0)
@@ -124,8 +122,8 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
     limit, calls, in_call = cycle_limit(nx, ny), 0, 0
     certain = None
     while True:
-        if in_call == limit:  # propNavFn* returns; the fix calls it again while it must
-            if not fixed:
+        if in_call == limit:  # propNavFn* returns; the fix calls it once more where it must
+            if not fixed or calls:
                 break
             again = _fix(D, D.and_(D.not_(D.lt(pot[start_cell], high)),
                                    D.not_(D.and_(D.eq(cur.fill, 0), D.eq(nxt.fill, 0)))))
@@ -133,9 +131,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
                 break
             if again is not True:
                 raise ValueError("the fixed variant is encoded only in a domain that follows one control path")
-            calls += 1
-            if calls > FIXED_CALLS:
-                raise ValueError(f"the fixed variant called propNavFn* more than {FIXED_CALLS} times")
+            calls, limit = 1, extra_cycles(nx, ny)
             if astar:  # curT += dist at the entry of propNavFnAstar
                 cur_t = D.add(heuristic(goal[0] - start[0], goal[1] - start[1]), cur_t)
             running, in_call = True, 0
@@ -316,10 +312,10 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
     return SymbolicExtraction(code, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
 
 
-def descend(D, pot: list, nx: int, ny: int, start, goal) -> SymbolicExtraction:
-    """The fix's ``calcPathDescent`` on potentials ``pot`` (terms), as
+def descend(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtraction:
+    """The fix's ``calcPathDescent(n)`` on potentials ``pot`` (terms), as
     :func:`navfn_smt.spec.fix.descend`: only in a domain that follows one control path (each
-    step's choice, the kernel ``lowest_of_four``, is decided, so the cell stays a plain int)."""
+    step's choice, the kernel ``lowest_neighbour``, is decided, so the cell stays a plain int)."""
     ns = nx * ny
     zero = D.f32const(0.0)
     stc, goal_cell = start[1] * nx + start[0], goal[1] * nx + goal[0]
@@ -330,20 +326,22 @@ def descend(D, pot: list, nx: int, ny: int, start, goal) -> SymbolicExtraction:
 
     if _decided(D, K.unreached(D, pot[stc])):
         return end(ExtractionExit.HIGH_POTENTIAL)
-    while stc != goal_cell:
-        if len(points) >= ns - 1:
+    while True:
+        if len(points) >= n:  # no room for another point: the budget is spent
             return end(ExtractionExit.EXHAUSTED)
-        if stc < nx or stc >= ns - nx:
-            return SymbolicExtraction(EXIT_UNDEFINED, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
+        if stc == goal_cell:  # the goal point is the extraction's own last point (SymbolicExtraction)
+            return end(ExtractionExit.NEAR_GOAL)
+        if stc <= nx or stc >= ns - nx - 1:
+            return end(ExtractionExit.OUT_OF_BOUNDS)
         px, py = K.path_point(D, stc, nx, zero, zero)
         points.append((px, py, True))
-        ring = (stc - nx, stc - 1, stc + 1, stc + nx)
-        best = K.lowest_of_four(D, pot[stc], [pot[m] for m in ring])
-        k = best if isinstance(best, int) else next((j for j in (-1, 0, 1, 2) if _decided(D, D.eq(best, j))), 3)
+        ring = descent_ring(stc, nx)
+        best = K.lowest_neighbour(D, pot[stc], [pot[m] for m in ring])
+        k = best if isinstance(best, int) else next(
+            (j for j in range(-1, len(ring) - 1) if _decided(D, D.eq(best, j))), len(ring) - 1)
         if k < 0:
             return end(ExtractionExit.ZERO_GRADIENT)
         stc = ring[k]
-    return end(ExtractionExit.NEAR_GOAL)
 
 
 def _decided(D, c) -> bool:

@@ -76,7 +76,7 @@ def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = N
     try:
         ext = calc_path(st.potential, nx, ny, start, goal, path_cycle_limit(nx), arith=arith)
         if fixed and ext.exit is not ExtractionExit.NEAR_GOAL:
-            ext = F.descend(st.potential, nx, ny, start, goal)
+            ext = F.descend(st.potential, nx, ny, start, goal, path_cycle_limit(nx))
         path, exit_ = np.array(ext.path, np.float32).reshape(-1, 2), ext.exit.value
     except UndefinedBehaviour:
         path, exit_ = np.zeros((0, 2), np.float32), "undefined"

@@ -572,7 +572,7 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
             # the patched calcPath: calcPathGradient (its exhaustion logged at DEBUG only), then
             # calcPathDescent, and one WARN when that fails too
             run.extraction, path = get_backend(backend, PlannerUnderTest("fixed", run.arith.navfn)).prepare(run.costs).extract(
-                run.potential, cell, run.robot_cell, 0)
+                run.potential, cell, run.robot_cell, n)
             if run.extraction is not ExtractionExit.NEAR_GOAL:
                 run.lines.append((WARN, FIXED_NO_PATH_WARNING))
         elif run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:

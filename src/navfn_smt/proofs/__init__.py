@@ -148,52 +148,59 @@ ValidPath = Predicate(
 
 DescentPath = Predicate(
     "DescentPath",
-    statement="From a start with a finite potential, the fix's descent (calcPathDescent) returns a path: the "
-              "centres of at most nx*ny - 1 reached cells, each a 4-neighbour of the one before, ending at the "
-              "goal; no point is an obstacle but the goal. Needs every potential below 2**30.",
+    statement="From a start with a finite potential, the fix's descent (calcPathDescent(n)) returns a path when "
+              "the walk fits in calcPath's budget of n points: the centres of reached cells, each one of the 8 "
+              "neighbours of the one before and strictly lower, ending at the goal; no point is an obstacle but "
+              "the goal. Needs every potential below 2**30.",
     applies="the fix: calcPath's fallback calcPathDescent (spec/fix.py: descend), by induction over its steps, "
-            "for every map size",
+            "for every map size, within calcPath's budget n",
     lemmas=("descent_step_goes_strictly_lower", "Progress.update_keeps_a_lower_neighbour",
             "Monotone.update_never_raises"),
     rests_on=("Progress", "PositionSafe"),
     trusted=("the descent starts only from a reached start (potarr[start] < POT_HIGH), and stops at the goal",
              "potentials strictly fall along the walk (descent_step_goes_strictly_lower), so no cell repeats and "
-             "the walk passes at most the reached cells, at most nx*ny - 1 before the goal: its guard "
-             "npath < ns - 1 never fires",
+             "the walk passes only reached cells: on a map with at most n - 1 passable cells besides the goal "
+             "(every map of up to 6 interior cells, whose n = 4*nx is at least 12) its guard npath < n - 1 never "
+             "fires",
              "by Progress (under its bound 2**30) every reached cell but the goal has a strictly lower "
-             "4-neighbour, so the walk stops only at the goal",
+             "4-neighbour, one of the 8 the step reads, so the walk stops only at the goal or at the budget",
              "a reached cell other than the goal is no obstacle (PositionSafe), hence not on the border (setupNavFn "
-             "makes the border COST_OBS): its four neighbours are inside potarr"),
+             "makes the border COST_OBS): its eight neighbours are inside potarr and its guard "
+             "stc <= nx || stc >= ns - nx - 1 never fires"),
     open=("that every potential stays below 2**30 is a run-time condition (the largest finite potential of the "
-          "run), not an obligation: a path of more than 2**30 / 253 = 4.2 million cells can exceed it",),
+          "run), not an obligation: a path of more than 2**30 / 253 = 4.2 million cells can exceed it",
+          "that the walk fits in n points is a run-time condition: a descent longer than calcPath's budget "
+          "(4 * nx, or max_cycles_factor times the larger side on Rolling and Lyrical) fails, as the gradient "
+          "does"),
 )
 
 ConnectedStartReached = Predicate(
     "ConnectedStartReached",
     statement="With the fix's propagation, a start joined to the goal by a 4-connected chain of passable cells "
-              "gets a finite potential, when no push is dropped for want of room and every potential stays below "
-              "2**30; and the propagation ends.",
-    applies="the fix: calcNavFnAstar / calcNavFnDijkstra call propNavFn* again while the start is unreached and a "
-            "buffer holds cells (spec/fix.py: propagate_on), for every map size",
+              "gets a finite potential, when no push is dropped for want of room, every potential stays below "
+              "2**30 and the wave empties its buffers within the fix's cap (nx*ny more cycles).",
+    applies="the fix: calcNavFnAstar / calcNavFnDijkstra call propNavFn* once more, for nx*ny cycles, when the "
+            "start is unreached and a buffer holds cells (spec/fix.py: propagate_on), for every map size",
     lemmas=("update_wants_an_unreached_neighbour", "unreached_cell_beside_a_reached_one_gets_reached",
             "update_lowers_when_it_changes", "Monotone.update_never_raises"),
     rests_on=("PendingMatchesBuffers",),
     trusted=("initCost pushes the goal's passable 4-neighbours; every later push happens in an update that "
              "changed its cell (inside updateCell's `if (pot < potarr[n])`)",
-             "the fix's loop stops only with the start reached or both buffers empty; a buffered cell leaves the "
-             "buffers only by its update (between cycles the overflow buffer is empty whenever the current one "
-             "is: the swap pulls it in)",
-             "the induction: were the start unreached at the end, the first unreached cell c of the chain has a "
-             "reached predecessor p; when p's potential was last set, c was unreached (potentials only fall), so "
-             "its push was wanted (update_wants_an_unreached_neighbour) and either admitted or c was already "
-             "buffered (PendingMatchesBuffers), no push being dropped; the buffers being empty, c was updated "
-             "after, beside p below the bound, and reached (unreached_cell_beside_a_reached_one_gets_reached)",
-             "termination: each cycle updates at least one buffered cell, each buffered cell was paid for by a "
-             "strict fall of a potential (update_lowers_when_it_changes), and a float32 potential in "
-             "[0, POT_HIGH] falls at most 2**31 times: at most 4 + 4 * nx*ny * 2**31 cycles in all"),
+             "the fix's second call stops only with the start reached, both buffers empty or its cap spent; a "
+             "buffered cell leaves the buffers only by its update (between cycles the overflow buffer is empty "
+             "whenever the current one is: the swap pulls it in)",
+             "the induction: were the start unreached with both buffers empty, the first unreached cell c of the "
+             "chain has a reached predecessor p; when p's potential was last set, c was unreached (potentials "
+             "only fall), so its push was wanted (update_wants_an_unreached_neighbour) and either admitted or c "
+             "was already buffered (PendingMatchesBuffers), no push being dropped; the buffers being empty, c "
+             "was updated after, beside p below the bound, and reached "
+             "(unreached_cell_beside_a_reached_one_gets_reached)"),
     open=("no push dropped for want of room (PRIORITYBUFSIZE): a run-time condition the spec counts "
           "(PlanResult.dropped) and the C++ does not report; overflow maps break it (docs/overflow.md)",
-          "every potential below 2**30: a run-time condition, as for DescentPath"),
+          "every potential below 2**30: a run-time condition, as for DescentPath",
+          "the wave empties its buffers or reaches the start within the cap of nx*ny more cycles: a run-time "
+          "condition (each cycle updates at least one buffered cell, but a cell can be buffered more than once, "
+          "so nx*ny cycles are not shown to suffice; the bounded checks explore it on every map of their sizes)"),
 )
 
 FallbackPath = Predicate(

@@ -2,15 +2,17 @@
 
 Two predicates, each for every map size:
 
-* ``DescentPath``: the descent ``calcPathDescent`` goes from a reached start to the goal.  Each
-  step moves to a strictly lower 4-neighbour, and moves whenever one is lower
-  (``descent_step_goes_strictly_lower``); ``Progress`` gives every reached cell but the goal
-  a lower neighbour (below the potential bound 2**30, the bound its float32 link is proved
-  under).  Potentials strictly fall along the walk, so no cell repeats and the walk ends at the
-  goal within ``nx*ny - 1`` cells; every cell it passes is below a reached one, so reached
+* ``DescentPath``: the descent ``calcPathDescent(n)`` goes from a reached start to the goal
+  when the walk fits in ``n`` points.  Each step moves to a strictly lower one of the 8
+  neighbours, and moves whenever one is lower (``descent_step_goes_strictly_lower``);
+  ``Progress`` gives every reached cell but the goal a lower 4-neighbour (below the potential
+  bound 2**30, the bound its float32 link is proved under).  Potentials strictly fall along the
+  walk, so no cell repeats and the walk ends at the goal after at most ``nx*ny - 1`` cells, or
+  earlier at calcPath's budget ``n``; every cell it passes is below a reached one, so reached
   (the same obligation), so no obstacle (``PositionSafe``).
-* ``ConnectedStartReached``: the fix's propagation (``propNavFn*`` again while the start is
-  unreached and a buffer holds cells) reaches a start joined to the goal by passable cells.
+* ``ConnectedStartReached``: the fix's propagation (``propNavFn*`` once more, for ``nx*ny``
+  cycles, when the start is unreached and a buffer holds cells) reaches a start joined to the
+  goal by passable cells when the wave needs no more cycles than that.
   An update that lowers a cell below the bound asks to push each unreached neighbour
   (``update_wants_an_unreached_neighbour``); an unreached passable cell updated beside a
   reached one becomes reached (``unreached_cell_beside_a_reached_one_gets_reached``); the loop
@@ -36,13 +38,15 @@ def descent_step_goes_strictly_lower(D):
     """The descent steps only to a strictly lower neighbour, which is then reached, and it steps
     whenever some neighbour is lower.
 
-    valid potentials, k = lowest_of_four(centre; up, left, right, down)
+    valid potentials, k = lowest_neighbour(centre; the 8 neighbours in calcPathDescent's order)
     ==>  (k >= 0 implies n_k < centre, and n_k reached when the centre is)
          and (some n_j < centre implies k >= 0)
+
+    Progress gives a lower 4-neighbour, one of the 8, so the step always moves.
     """
     centre = D.f32("centre")
-    ring = [D.f32(f"n{k}") for k in range(4)]
-    best = K.lowest_of_four(D, centre, ring)
+    ring = [D.f32(f"n{k}") for k in range(8)]
+    best = K.lowest_neighbour(D, centre, ring)
     moved_lower = any_of(D, *(all_of(D, D.eq(best, k), D.lt(p, centre),
                                      any_of(D, D.not_(Reached(D, centre)), Reached(D, p)))
                               for k, p in enumerate(ring)))

@@ -64,7 +64,7 @@ KERNEL_CODE = {
     "path_point": "`NavFn::calcPath`: the point appended to the path",
     "lowest_of_eight": "`NavFn::calcPath`: the grid-following fallback",
     "near_goal": "`NavFn::calcPath`: the goal test",
-    "lowest_of_four": "`NavFn::calcPathDescent` (the fix, `patches/navfn-fix/`): the descent's step",
+    "lowest_neighbour": "`NavFn::calcPathDescent` (the fix, `patches/navfn-fix/`): the descent's step",
     "unreached": "`potarr[n] >= POT_HIGH` tests",
     "add_mul": "`NavFn::updateCell` (`ta + hf * v`) and `calcPath` (`dx += x * ss`): a float multiply-add a build "
                "may fuse",

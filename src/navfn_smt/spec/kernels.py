@@ -258,10 +258,11 @@ def lowest_of_eight(D, centre, neighbours):
     return best
 
 
-def lowest_of_four(D, centre, neighbours):
-    """The fix's descent step (``calcPathDescent``): index into ``neighbours`` (up, left,
-    right, down: ``stc - nx, stc - 1, stc + 1, stc + nx``) of the lowest potential strictly
-    below ``centre``, the first on ties; -1 when none is lower.  Float comparisons only::
+def lowest_neighbour(D, centre, neighbours):
+    """The fix's descent step (``calcPathDescent``): index into ``neighbours`` (the 8 around the
+    cell in calcPath's order: up-left, up, up-right, left, right, down-left, down, down-right)
+    of the lowest potential strictly below ``centre``, the first on ties; -1 when none is lower.
+    Float comparisons only, no truncation (unlike :func:`lowest_of_eight`)::
 
         next = stc;  if (potarr[m] < potarr[next]) next = m;   // for each m in order
     """

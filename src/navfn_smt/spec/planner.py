@@ -95,10 +95,10 @@ def plan(
     else:
         reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
                             record_trace=record_trace)
-    ext = calc_path(st.potential, nx, ny, start, goal,
-                    path_cycle_limit(nx) if path_cycles is None else path_cycles, arith=arith)
+    n = path_cycle_limit(nx) if path_cycles is None else path_cycles
+    ext = calc_path(st.potential, nx, ny, start, goal, n, arith=arith)
     if fixed and descent and ext.exit is not ExtractionExit.NEAR_GOAL:
-        ext = F.descend(st.potential, nx, ny, start, goal)
+        ext = F.descend(st.potential, nx, ny, start, goal, n)
         if ext.exit is ExtractionExit.NEAR_GOAL:
             acted.append("descent")
     pot = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
