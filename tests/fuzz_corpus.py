@@ -580,6 +580,7 @@ def corpus() -> list[FuzzCase]:
     add("bench --size 5", "bench", ["bench", "--size", "5"])
     add("bench --size 100000", "bench", ["bench", "--size", "100000", "--backend", "reference"], fast=True)
     add("bench --repeat 0", "bench", ["bench", "--size", "12", "--repeat", "0"])
+    add("bench --worst-cases without a build", "bench", ["bench", "--worst-cases", "100"])
     add("bench --sweep 0", "bench", ["bench", "--sweep", "0"])
     add("bench --sweep 100000", "bench", ["bench", "--sweep", "100000"], fast=True)
     add("bench --sweep-astar-goals many", "bench", ["bench", "--sweep", "20", "--sweep-astar-goals", "many"])

@@ -382,3 +382,32 @@ def test_the_fixed_plugin_warns_only_when_it_finds_no_path(builds):
             assert cpp.error == "NoValidPathCouldBeFound" and any("Path extraction exhausted" in w for w in warns)
         else:
             assert cpp.error is None and len(cpp.poses) > 0 and warns == []
+
+
+def test_the_worst_cases_bench_measures_what_the_fix_changes(builds):
+    """bench --worst-cases on a small size: the fix reaches the serpentine's far start where the
+    original's cycle limit stops, its descent keeps calcPath's budget there (no path, as the
+    original), it floods without reaching a start on a wall, and it plans #4655's room; each
+    case's C++ reports a peak memory. The spec agrees on each."""
+    from navfn_smt.bench import bench_worst_cases, worst_case_maps
+
+    _, folder = builds["rolling"]
+    rows = bench_worst_cases([41], folder)
+    assert [r["case"] for r in rows] == [m[0] for m in worst_case_maps(41)]
+    for r, (_, costs, case, astar) in zip(rows, worst_case_maps(41)):
+        f = plan(costs, case[:2], case[2:], astar, variant="fixed")
+        o = plan(costs, case[:2], case[2:], astar)
+        assert (r["fixed"]["start_reached"], r["fixed"]["path_points"]) == (bool(f.start_reached), len(f.path))
+        assert (r["original"]["start_reached"], r["original"]["path_points"]) == (bool(o.start_reached), len(o.path))
+        assert all(r[v]["peak_memory_bytes"] > 0 for v in ("original", "fixed"))
+    serpentine, _, wall, room = rows
+    assert not serpentine["original"]["start_reached"] and serpentine["fixed"]["start_reached"]
+    assert serpentine["fixed"]["path_points"] == 0  # about 41*41/2 cells: more than 4 * 41 points
+    assert not wall["fixed"]["start_reached"] and room["fixed"]["path_points"] == 3 == room["original"]["path_points"] + 3
+
+
+def test_bench_worst_cases_needs_a_build_and_sizes_it_can_make():
+    for argv, says in ((["bench", "--worst-cases", "2000"], "give --oracle DIR"),
+                       (["bench", "--worst-cases", "5", "--oracle", "nowhere"], "at least 12 cells")):
+        r = subprocess.run(["navfn-smt", *argv], capture_output=True, text=True)
+        assert r.returncode == 2 and says in r.stderr and "Traceback" not in r.stderr, r.stderr

@@ -7,6 +7,10 @@
   a random-cost one (costs 50..253 from ``numpy.random.default_rng(12345)``), both with
   a lethal border, from start (5, 5) to goal (N-6, N-6), and reports seconds per plan
   and the planner's working memory (its arrays; no trace is recorded when timing);
+* worst-case mode (``--worst-cases N ... --oracle DIR``): the fix's added work and memory on
+  generated NxN maps where it acts or floods (:func:`worst_case_maps`), on the C++ of a build as
+  shipped (``navfn-plain``) and as patched (``navfn-plain-fixed``), each case in a fresh
+  process: planning seconds, path points and peak memory;
 * climb mode (``--climb [MAPS]``): the cost climb of ``search cost`` on 5x7 maps, MAPS maps
   per mode with the compiled plateau steps and again with the Python step, from the same
   seed: maps per second of each, and a check that both made the same climb.
@@ -40,6 +44,67 @@ def generated_map(kind: str, n: int) -> np.ndarray:
         raise ValueError(kind)
     c[0, :] = c[-1, :] = c[:, 0] = c[:, -1] = COST_OBS
     return c
+
+
+def serpentine(n: int) -> np.ndarray:
+    """An NxN map of one-cell corridors joined at alternate ends (a wall row between corridor
+    rows, its gap at the right, then the left end), lethal border: the longest path an NxN
+    map can force, about N*N/2 cells."""
+    c = np.full((n, n), COST_OBS, dtype=np.uint8)
+    c[1:n - 1:2, 1:n - 1] = 50
+    for k, y in enumerate(range(2, n - 2, 2)):
+        c[y, n - 2 if k % 2 == 0 else 1] = 50
+    c[0, :] = c[-1, :] = c[:, 0] = c[:, -1] = COST_OBS
+    return c
+
+
+def _room_4655(n: int) -> np.ndarray:
+    """Nav2 #4655's 3x3 room (the gradient fails there, the descent plans) walled off in the
+    corner of an otherwise open NxN map: the map's size is what a map-sized buffer would cost."""
+    c = generated_map("open", n)
+    c[0:5, 0:5] = np.array([[254] * 5, [254, 50, 240, 121, 254], [254, 253, 50, 50, 254],
+                            [254, 252, 51, 50, 254], [254] * 5], dtype=np.uint8)
+    return c
+
+
+def worst_case_maps(n: int) -> list[tuple[str, np.ndarray, tuple, bool]]:
+    """The worst cases of the fix at size ``n``: (name, costs, (sx, sy, gx, gy), astar).
+
+    * ``serpentine``: NavFn's start at the far end of :func:`serpentine` from the goal (A* and
+      Dijkstra): the cycle limit stops the original's wave; the fix propagates on, and its
+      descent meets calcPath's budget of 4*N points;
+    * ``serpentine, start on a wall``: the same with the start on a wall cell (the plugin's
+      goal pose on a lethal cell): never reached, so the fix's one further call floods the
+      goal's component;
+    * ``#4655 room``: the gradient fails from a reached start and the descent plans, on an NxN map.
+    """
+    s = serpentine(n)
+    last = n - 2 if (n - 2) % 2 == 1 else n - 3  # the last corridor row
+    gap = n - 2 if ((last - 1) // 2 - 1) % 2 == 0 else 1  # where the wall row above it opens
+    far = (1 if gap == n - 2 else n - 2, last)  # that corridor's other end
+    wall = (far[0], last - 1)
+    return [("serpentine", s, (*far, 1, 1), True), ("serpentine", s, (*far, 1, 1), False),
+            ("serpentine, start on a wall", s, (*wall, 1, 1), True),
+            ("#4655 room", _room_4655(n), (3, 1, 1, 2), True)]
+
+
+def bench_worst_cases(sizes, folder) -> list[dict]:
+    """Each of :func:`worst_case_maps` at each size on the build ``folder``'s C++, as shipped and
+    patched, each case in a fresh program (its peak memory is that case's)."""
+    from .oracle.client import Oracle
+
+    rows = []
+    for n in sizes:
+        for name, costs, case, astar in worst_case_maps(n):
+            row = {"size": n, "case": name, "mode": "astar" if astar else "dijkstra", "start": case[:2],
+                   "goal": case[2:]}
+            for variant, program in (("original", "plain"), ("fixed", "plain-fixed")):
+                with Oracle(folder, variant=program) as o:
+                    res = o.plan(costs, [case], astar)[0]
+                    row[variant] = {"seconds": round(o.planning_seconds, 4), "path_points": len(res.path),
+                                    "start_reached": res.start_reached, "peak_memory_bytes": o.peak_memory_bytes()}
+            rows.append(row)
+    return rows
 
 
 def backends_of(choice: str) -> tuple[str, ...]:

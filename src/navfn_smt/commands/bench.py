@@ -38,6 +38,23 @@ def cmd_bench(args) -> int:
         if args.json:
             report.write_sweep_json(args.json, 0, rows)
         return 0
+    if args.worst_cases:
+        if not args.oracle:
+            raise NavfnInputError("bench --worst-cases times the C++ as shipped and as patched: give --oracle DIR")
+        from ..bench import bench_worst_cases
+        from ..oracle.build import load_build
+
+        check_sizes(args.worst_cases, 1)
+        check_files(args.json)
+        build = load_build(args.oracle)
+        if "navfn-plain-fixed" not in build["programs"]:
+            raise NavfnInputError(f"{args.oracle}: this build has no navfn-plain-fixed; build it again with "
+                                  f"`navfn-smt oracle build`")
+        rows = bench_worst_cases(args.worst_cases, args.oracle)
+        report.worst_cases_table(args.oracle, rows)
+        if args.json:
+            report.write_worst_cases_json(args.json, args.oracle, build, rows)
+        return 0
     if args.size:
         check_sizes(args.size, args.repeat)
         check_files(args.json)
@@ -86,6 +103,10 @@ def register(sub) -> None:
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
     be.add_argument("--size", nargs="+", type=int, metavar="N",
                     help="instead of a suite, plan on generated NxN open and random-cost maps")
+    be.add_argument("--worst-cases", nargs="+", type=int, metavar="N",
+                    help="with --oracle: the fix's worst cases on generated NxN maps (a serpentine, a start on a "
+                         "wall, Nav2 #4655's room), on the C++ as shipped and as patched, each case in a fresh "
+                         "process: time, path points, peak memory")
     be.add_argument("--backend", choices=(*BACKENDS, "all"), default="all", help="planner implementations timed")
     be.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
     be.add_argument("--repeat", type=int, default=3, metavar="K", help="plans per map and mode with --size (best is kept)")

@@ -23,8 +23,8 @@ content (:mod:`.objects`):
 - ``costmap-layers``: the global costmap's sources and its static and inflation layers
   (:data:`LAYER_SOURCES`, those the version has) with ``layers_driver.cpp``, ``ros_stubs/``,
   ``-fopenmp`` and Eigen 3 where the version's inflation layer needs it;
-- ``navfn-fixed`` and ``navfn-plugin-fixed``: the traced NavFn and the plugin with the fix of
-  ``docs/fix.md``: copies of ``navfn.cpp`` and ``navfn.hpp`` in the build folder, patched by
+- ``navfn-fixed``, ``navfn-plugin-fixed`` and ``navfn-plain-fixed``: the traced NavFn, the
+  plugin and the plain NavFn (to time the fix as Nav2 compiles it) with the fix of ``docs/fix.md``: copies of ``navfn.cpp`` and ``navfn.hpp`` in the build folder, patched by
   ``patch -p1`` with the distribution's ``patches/navfn-fix/<distribution>.patch``; the NavFn
   driver then calls the patched ``calcNavFnAstar`` / ``calcNavFnDijkstra``.  Sources that carry
   the fix already (a contributor's branch: the patch applies in reverse) give them from their
@@ -67,8 +67,8 @@ ANCHOR = "// reset pending flags on current priority buffer"  # once in each pro
 ANCHORS_EXPECTED = 2
 HOOK = "NAVFN_SMT_CYCLE(curP, curPe);"
 PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers", "eigen-sqrt",
-            "navfn-fixed", "navfn-plugin-fixed")
-FIXED_PROGRAMS = ("navfn-fixed", "navfn-plugin-fixed")  # left out, and named, without a patch for the version
+            "navfn-fixed", "navfn-plugin-fixed", "navfn-plain-fixed")
+FIXED_PROGRAMS = ("navfn-fixed", "navfn-plugin-fixed", "navfn-plain-fixed")  # left out, and named, without a patch for the version
 PATCHES = HERE.parent / "patches" / "navfn-fix"  # the fix, one patch per distribution
 NAVFN_FILES = ("nav2_navfn_planner/src/navfn.cpp", "nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp")
 EIGEN_PROGRAMS = ("costmap-layers", "eigen-sqrt")  # left out, and named, when Eigen is missing
@@ -281,6 +281,8 @@ def _jobs(src: Path, tmp: Path) -> dict:
                             [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_FIXED"]),
             "navfn-plugin-fixed": ([plugin[0], plugin[1], fixed_pkg / "src" / "navfn.cpp", *plugin[3:]],
                                    [plugin_includes[0], fixed_pkg / "include", *plugin_includes[1:]], plugin_defines),
+            "navfn-plain-fixed": ([driver, fixed_pkg / "src" / "navfn.cpp"],
+                                  [HERE / "stubs", fixed_pkg / "include", *includes[1:]], [*defines, "NAVFN_SMT_FIXED"]),
         }
     layer_defines = [d for d in plugin_defines if d == "NAVFN_SMT_NAV2_NODE"] + (
         ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])

@@ -68,6 +68,19 @@ class _Program:
         except subprocess.TimeoutExpired:
             self.proc.kill()
 
+    def peak_memory_bytes(self) -> Optional[int]:
+        """The program's peak resident memory so far (``VmHWM``), or None where it cannot be read
+        (a program run under qemu-user: qemu's own memory is not the program's)."""
+        if self.build.get("runner") or self.proc.poll() is not None:
+            return None
+        try:
+            for line in Path(f"/proc/{self.proc.pid}/status").read_text().splitlines():
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) * 1024
+        except (OSError, ValueError, IndexError):
+            return None
+        return None
+
     def __enter__(self):
         return self
 
@@ -114,18 +127,20 @@ class _Program:
         return self._pending[:n]
 
 
-VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded", "fixed": "navfn-fixed"}
+VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded", "fixed": "navfn-fixed",
+            "plain-fixed": "navfn-plain-fixed"}
 
 
 class Oracle(_Program):
     """A running C++ NavFn of an oracle build folder: ``traced`` (with the white-box trace),
     ``plain`` (as Nav2 compiles it), ``unbounded`` (traced, buffers that never drop a push) or
-    ``fixed`` (traced, with the fix of ``patches/navfn-fix/``)."""
+    ``fixed`` (traced, with the fix of ``patches/navfn-fix/``) or ``plain-fixed`` (untraced, with the fix: to
+    time and measure the fix as Nav2 would compile it)."""
 
     def __init__(self, folder, traced: bool = True, variant: Optional[str] = None):
         variant = variant or ("traced" if traced else "plain")
         self.program = VARIANTS[variant]
-        self.traced = variant != "plain"
+        self.traced = variant not in ("plain", "plain-fixed")
         self.planning_seconds = 0.0  # the C++'s own time planning the last request's cases
         super().__init__(folder)
 

@@ -88,6 +88,23 @@ def fix_table(suite, rows: list[dict]) -> None:
                 "cpp_fixed_over_original": ratio, "jit_fixed_over_original": ratio})
 
 
+def worst_cases_table(folder, rows: list[dict]) -> None:
+    """Print the fix's worst cases: time, path points and peak memory, as shipped and patched."""
+    _table(f"bench: the fix's worst cases, C++ of {folder} as shipped (navfn-plain) and patched (navfn-plain-fixed)",
+           rows, ["size", "case", "mode", "t_original", "t_fixed", "points_original", "points_fixed", "mem_original",
+                  "mem_fixed"],
+           headers={"t_original": "time", "t_fixed": "time fixed", "points_original": "path points",
+                    "points_fixed": "path points fixed", "mem_original": "peak memory", "mem_fixed": "peak memory fixed"},
+           fmt={"t_original": duration, "t_fixed": duration, "mem_original": size_in_bytes, "mem_fixed": size_in_bytes},
+           extra={f"{k}_{v}": (lambda r, key=key, v=v: r[v][key]) for k, key in (
+               ("t", "seconds"), ("points", "path_points"), ("mem", "peak_memory_bytes")) for v in ("original", "fixed")})
+
+
+def write_worst_cases_json(path, folder, build: dict, rows: list[dict]) -> None:
+    """Write the worst cases with the build they ran on (its compiler, flags and patch)."""
+    atomic_write_text(path, json.dumps({"oracle": str(folder), "build": build, "results": rows}, indent=1))
+
+
 def write_suite_json(path, suite, rows: list[dict]) -> None:
     """Write a suite benchmark as one JSON document."""
     atomic_write_text(path, json.dumps({"suite": str(suite), "results": rows}, indent=1))
