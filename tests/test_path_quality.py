@@ -36,7 +36,9 @@ def test_the_descent_path_of_the_5x5_astar_map_is_in_its_group():
     doc = measure_suite([sm], ("astar",))
     assert doc["counts"] == {"cases": 1, "original_fails": 1, "fixed_fails_too": 0, "fixed_fails_from_a_reached_start": 0}
     row = doc["groups"]["fix: descent"]
-    assert row["paths"] == 1 and row["spacing"]["max"] == 1.0 and row["final_heading_on_an_axis"] == 1.0
+    # the descent's 8-connected steps: (3, 1) -> (2, 2) diagonally, then (1, 2), the grid optimum
+    assert row["paths"] == 1 and row["spacing"]["max"] == math.sqrt(2) and row["length_over_optimum"]["max"] == 1.0
+    assert row["final_heading_on_an_axis"] == 1.0
     assert doc["groups"]["gradient"]["paths"] == 0
 
 
