@@ -71,9 +71,12 @@ def test_the_command_reports_and_exits_1_on_a_failure(tmp_path, capsys):
     assert {r["property"] for r in doc["results"]} == set(PLUGIN_PROPERTIES)
     assert "plugin-poses-passable" in capsys.readouterr().out
     assert main(["plugin-check", "plugin-complete", "--max-size", "4", "4", "--quiet"]) == 0
-    # with the fix, plugin-complete holds for every size by the two predicates (below Progress's bound)
-    assert ("plugin-complete (fixed): every costmap size by induction: bounded (DescentPath bounded, "
-            "ConnectedStartReached proved)") in capsys.readouterr().out
+    # with the fix, plugin-complete holds for every size by the two predicates, under their run-time
+    # conditions (below Progress's bound, the descent within calcPath's budget, ...), each said
+    out = capsys.readouterr().out
+    assert ("plugin-complete (fixed): every costmap size by induction, under 5 run-time conditions: bounded "
+            "(DescentPath bounded, ConnectedStartReached proved)") in out
+    assert "  condition: that the walk fits in n points is a run-time condition" in out
     assert doc["every_size_by_induction_fixed"]["plugin-complete"]["status"] == "bounded"
     assert main(["plugin-check", "--values", "0,300"]) == 2
     assert "costmap values 0..255" in capsys.readouterr().err

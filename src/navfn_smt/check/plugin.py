@@ -99,7 +99,8 @@ def ends_at_robot_and_goal(cm, start, goal, params, run: PluginRun) -> Optional[
     return None
 
 
-# plugin-complete with the fix holds for every costmap size by induction: the plugin's NavFn run
+# plugin-complete with the fix holds for every costmap size by induction, under its predicates'
+# run-time conditions (the descent within max_cycles points among them): the plugin's NavFn run
 # is NavFn's on the costs setCostmap makes (COST_NEUTRAL..COST_OBS-1 for passable cells: the
 # range the predicates assume), from the robot's cell to each candidate cell
 FIXED_PLUGIN_INDUCTION = {
@@ -136,7 +137,8 @@ def induction_known(name: str) -> Optional[dict]:
     carriers = FIXED_PLUGIN_INDUCTION[name]["predicates"]
     statuses = {p.name: derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers}
     return {"status": max(statuses.values(), key=STATUS_RANK.index), "predicates": statuses,
-            "trusted": list(FIXED_PLUGIN_INDUCTION[name]["trusted"])}
+            "trusted": list(FIXED_PLUGIN_INDUCTION[name]["trusted"]),
+            "conditions": [o for p in PREDICATES if p.name in carriers for o in p.open]}
 
 
 PLUGIN_PROPERTIES = {p.name: p for p in (

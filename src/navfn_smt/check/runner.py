@@ -37,6 +37,16 @@ INDUCTION_FIXED = {
     "complete": ("DescentPath",),
     "start-reached": ("ConnectedStartReached",),
 }
+# ... each under the run-time conditions its predicate lists as open (proofs/__init__.py): said
+# with the every-size verdict, which holds only where they do
+def conditions(name: str, planner: PlannerUnderTest = ORIGINAL) -> list[str]:
+    """The run-time conditions under which an inductive property's every-size verdict holds:
+    the open items of the predicates that carry it."""
+    from ..proofs import PREDICATES
+
+    carriers = inductive(planner).get(name, ())
+    return [o for p in PREDICATES if p.name in carriers for o in p.open]
+
 # ... and on a narrow size (interior at most two cells wide or tall, at most 4*nx cells), NavFn as
 # shipped: calcPath takes its fallback at every step there (every cell has a border neighbour)
 INDUCTION_NARROW = {"complete": ("FallbackPath",)}
@@ -430,4 +440,5 @@ def induction(name: str, timeout: float = 30.0, planner: PlannerUnderTest = ORIG
             "obligations": {o.name: o.standing for o in runs},
             "this_run": {o.name: o.status for o in runs},
             "contradicted": [o.name for o in runs if o.fails],
-            "trusted": [t for p in preds for t in p.trusted]}
+            "trusted": [t for p in preds for t in p.trusted],
+            "conditions": conditions(name, planner)}

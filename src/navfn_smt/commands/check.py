@@ -103,11 +103,14 @@ def cmd_check(args) -> int:
                               if n in CR.NOT_INDUCTIVE and n not in CR.inductive(planner)},
             "saved": saved, "seconds": round(time.perf_counter() - t0, 1)})
     for n, ind in induction.items():
-        says = ("every map size by induction" if ind["status"] != "refuted" else
+        says = ("every map size by induction" + (f", under {len(ind['conditions'])} run-time conditions"
+                                                  if ind.get("conditions") else "") if ind["status"] != "refuted" else
                 f"no induction in {ind['semantics']}: a link of it is refuted, so it proves nothing there; status")
         print(f"{n}: {says}: {ind['status']} ("
               + ", ".join(f"{k} {v}" + ("" if ind["this_run"][k] == v else f" [this run: {ind['this_run'][k]}]")
                           for k, v in ind["obligations"].items()) + ")")
+        for c in ind.get("conditions", []) if ind["status"] != "refuted" else []:
+            print(f"  condition: {c}")
         for k in ind["contradicted"]:
             print(f"CONTRADICTION: {k} decided against what is known")
     if skipped:

@@ -54,8 +54,10 @@ def cmd_plugin_check(args) -> int:
     report.table(f"plugin-check: {what}, values {','.join(map(str, values))} ({seconds} s)", counts)
     induction = {n: ind for n in names if "fixed" in variants and (ind := induction_known(n))}
     for n, ind in induction.items():
-        print(f"{n} (fixed): every costmap size by induction: {ind['status']} ("
-              + ", ".join(f"{p} {st}" for p, st in ind["predicates"].items()) + ")")
+        print(f"{n} (fixed): every costmap size by induction, under {len(ind['conditions'])} run-time conditions: "
+              f"{ind['status']} (" + ", ".join(f"{p} {st}" for p, st in ind["predicates"].items()) + ")")
+        for c in ind["conditions"]:
+            print(f"  condition: {c}")
     if args.json:
         report.write_json(args.json, {
             "command": "plugin-check", "arguments": vars_of(args), "sizes": [list(s) for s in sizes],
