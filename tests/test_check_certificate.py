@@ -564,3 +564,12 @@ def test_the_aarch64_certificates_are_its_reports_and_the_small_ones_replay():
         if (nx - 2) * (ny - 2) <= 3:
             r = _cli("check", "--replay", str(path), "--solver", "bitwuzla")
             assert r.returncode == 0 and "replayed" in r.stdout, r.stdout + r.stderr
+
+
+def test_certificates_go_into_a_folder_made_for_them(tmp_path):
+    """--certificates DIR names a folder that may not exist yet: it is made when the first
+    certificate is written, not refused at the end of a long run (a 4x4 run once lost 20 minutes
+    so)."""
+    out = tmp_path / "new" / "certificates"
+    r = _cli("check", "start-reached", "--size", "3", "4", "--jobs", "1", "--certificates", str(out))
+    assert r.returncode == 0 and (out / "check-3x4.cert.json.gz").is_file(), r.stdout + r.stderr

@@ -139,6 +139,8 @@ def _certify(args, planner, lo: int, hi: int, modes):
     from ..check import certificate
 
     def write(nx: int, ny: int, got: dict, entries: list) -> None:
+        # the folder is made when the first certificate is written (check_writable_dir said it can be)
+        Path(args.certificates).mkdir(parents=True, exist_ok=True)
         path = Path(args.certificates) / f"check-{nx}x{ny}{_suffix(planner)}.cert.json.gz"
         r = next(iter(got.values()))
         explored = [n for n, g in got.items() if g.method == "exploration"]  # what the path logs judge
