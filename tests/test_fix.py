@@ -231,7 +231,8 @@ def test_there_is_one_patch_per_distribution_touching_navfn_and_adding_its_tests
         files = [line.split()[1] for line in p.read_text().splitlines() if line.startswith("+++ ")]
         assert files == ["b/nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp",
                          "b/nav2_navfn_planner/src/navfn.cpp", "b/nav2_navfn_planner/test/CMakeLists.txt",
-                         "b/nav2_navfn_planner/test/test_navfn_fix.cpp"], p.name
+                         "b/nav2_navfn_planner/test/test_navfn_fix.cpp",
+                         "b/nav2_navfn_planner/test/test_navfn_planner_fix.cpp"], p.name
 
 
 @pytest.mark.parametrize("distro", DISTROS)

@@ -15,6 +15,7 @@ from conftest import DISTROS
 # and Lyrical's test_max_cycles (Nav2 #6308) expects calcPath(1) == 0 on a free 20x20 map: the
 # fix's descent keeps calcPath's budget, so it passes patched too (it failed with the descent of
 # the patch's first revision, which ignored the budget).  The patch's own tests (test_navfn_fix)
+# (test_navfn_fix on NavFn, test_navfn_planner_fix on the planner plugin with a stubbed node)
 # fail as shipped where the fix acts, and pass patched; the disconnected start is a guard (no
 # path either way, and the fix's propagation ends).
 DYNAMIC = ("test_dynamic_parameters", "NavfnTest.testDynamicParameter")
@@ -22,7 +23,8 @@ MAX_CYCLES = ("test_max_cycles", "NavFnMaxCyclesTest.PathExtractionRespectsCycle
 FIX_TESTS = {("test_navfn_fix", "NavFnFixTest.AstarPlansWhereTheGradientFails"): ("failed", "passed"),
              ("test_navfn_fix", "NavFnFixTest.DijkstraReachesTheEndOfALongCorridor"): ("failed", "passed"),
              ("test_navfn_fix", "NavFnFixTest.DisconnectedStartGivesNoPath"): ("passed", "passed"),
-             ("test_navfn_fix", "NavFnFixTest.DescentKeepsCalcPathsBudget"): ("failed", "passed")}
+             ("test_navfn_fix", "NavFnFixTest.DescentKeepsCalcPathsBudget"): ("failed", "passed"),
+             ("test_navfn_planner_fix", "NavfnPlannerFixTest.PlansTheLengthOfALongCorridor"): ("failed", "passed")}
 KNOWN = {d: {DYNAMIC: ("passed", "passed"), **({MAX_CYCLES: ("passed", "passed")} if d in ("lyrical", "rolling") else {}),
              **FIX_TESTS} for d in DISTROS}
 
@@ -49,12 +51,14 @@ def test_nav2s_own_tests_pass_as_shipped_and_say_what_the_fix_changes(builds, tm
         got.setdefault((r["program"], r["case"]), {})[r["variant"]] = r["status"]
     assert {k: (v["original"], v["fixed"]) for k, v in got.items()} == KNOWN[distro]
     assert doc["programs"]["test_navfn_fix"]["from"] == "the fix's patch"
+    assert doc["programs"]["test_navfn_planner_fix"] == {"sources": ["test_navfn_planner_fix.cpp"], "plugin": True,
+                                                         "from": "the fix's patch"}
     assert doc["programs"][DYNAMIC[0]]["from"] == "the sources"
     # a failure counts only where a pass is due: the patch's tests as shipped do not
     assert rc == 0
     assert doc["distribution"] == distro and doc["fix_patch"]["file"] == f"{distro}.patch"
     out = capsys.readouterr().out
-    assert "the fix's own tests as shipped: 3 of 4 fail" in out
+    assert "the fix's own tests as shipped: 4 of 5 fail" in out
     if distro in ("lyrical", "rolling"):
         assert ("| test_max_cycles | the sources | NavFnMaxCyclesTest.PathExtractionRespectsCycleLimit | passed | passed |"
                 in out)
@@ -111,7 +115,8 @@ def test_the_fix_adds_no_finding_of_nav2s_linters(nav2_src, distro):
     doc = lint_fix(nav2_src / distro)
     assert [(r["file"].rsplit("/", 1)[1], r["tool"]) for r in doc["files"]] == [
         ("navfn.hpp", "uncrustify"), ("navfn.hpp", "cpplint"), ("navfn.cpp", "uncrustify"), ("navfn.cpp", "cpplint"),
-        ("test_navfn_fix.cpp", "uncrustify"), ("test_navfn_fix.cpp", "cpplint")]  # the patch's test: all its own
+        ("test_navfn_fix.cpp", "uncrustify"), ("test_navfn_fix.cpp", "cpplint"),  # the patch's tests: all their own
+        ("test_navfn_planner_fix.cpp", "uncrustify"), ("test_navfn_planner_fix.cpp", "cpplint")]
     assert all(r["added"] == [] for r in doc["files"]), doc["files"]
 
 
