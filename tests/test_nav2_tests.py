@@ -25,8 +25,10 @@ FIX_TESTS = {("test_navfn_fix", "NavFnFixTest.AstarPlansWhereTheGradientFails"):
              ("test_navfn_fix", "NavFnFixTest.DisconnectedStartGivesNoPath"): ("passed", "passed"),
              ("test_navfn_fix", "NavFnFixTest.DescentKeepsCalcPathsBudget"): ("failed", "passed"),
              ("test_navfn_planner_fix", "NavfnPlannerFixTest.PlansTheLengthOfALongCorridor"): ("failed", "passed")}
+# the further propagation call polls the cancel checker (Jazzy on: Humble's NavFn takes none)
+CANCEL = {("test_navfn_fix", "NavFnFixTest.FurtherPropagationHonoursTheCancelChecker"): ("failed", "passed")}
 KNOWN = {d: {DYNAMIC: ("passed", "passed"), **({MAX_CYCLES: ("passed", "passed")} if d in ("lyrical", "rolling") else {}),
-             **FIX_TESTS} for d in DISTROS}
+             **FIX_TESTS, **(CANCEL if d != "humble" else {})} for d in DISTROS}
 
 
 def _gtest():
@@ -58,7 +60,8 @@ def test_nav2s_own_tests_pass_as_shipped_and_say_what_the_fix_changes(builds, tm
     assert rc == 0
     assert doc["distribution"] == distro and doc["fix_patch"]["file"] == f"{distro}.patch"
     out = capsys.readouterr().out
-    assert "the fix's own tests as shipped: 4 of 5 fail" in out
+    fixes = sum(1 for k in KNOWN[distro] if k[0].startswith("test_navfn"))
+    assert f"the fix's own tests as shipped: {fixes - 1} of {fixes} fail" in out  # all but the disconnected start
     if distro in ("lyrical", "rolling"):
         assert ("| test_max_cycles | the sources | NavFnMaxCyclesTest.PathExtractionRespectsCycleLimit | passed | passed |"
                 in out)
