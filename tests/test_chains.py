@@ -27,6 +27,7 @@ EXPECTED = {
     "ConnectedStartReached": ("proved", "proved"),
     "ReachedWithinComponent": ("proved", "proved"),
     "QueuedStartReached": ("proved", "proved"),
+    "PositionSafeAndProgressInductive": ("proved", "proved"),  # float32: under the run-time bound 2**30
 }
 
 

@@ -21,10 +21,9 @@ PositionSafe = Predicate(
               "costarr[n] < COST_OBS, the goal excepted.",
     applies="propagation: the potential array after setupNavFn, initCost and every updateCell / "
             "updateCellAstar; the paper's PositionSafe",
+    base=("PositionSafeAndProgressInductive.setup_and_init_cost_establish_the_invariant",),
     lemmas=("update_keeps_obstacles_unreached",),
-    trusted=("base case: setupNavFn sets every potential to POT_HIGH, and initCost sets only the goal's to 0 "
-             "(the one exception: a lethal goal has a finite potential)",
-             "after initCost, updateCell is the only write to the potential array"),
+    trusted=("after initCost, updateCell is the only write to the potential array",),
 )
 
 Monotone = Predicate(
@@ -32,21 +31,21 @@ Monotone = Predicate(
     statement="Potentials only go down, and the goal keeps potential 0.",
     applies="propagation: every updateCell / updateCellAstar; Progress relies on it (a lower neighbour "
             "stays lower)",
+    base=("PositionSafeAndProgressInductive.setup_and_init_cost_establish_the_invariant",),
     lemmas=("update_never_raises", "goal_stays_zero"),
-    trusted=("base case: initCost sets the goal's potential to 0, setupNavFn every other to POT_HIGH",),
 )
 
 Progress = Predicate(
     "Progress",
     statement="A reached cell other than the goal has a 4-neighbour with a strictly lower potential.",
     applies="propagation, for path extraction, which descends the potential; the paper's Progress",
-    lemmas=("update_keeps_a_lower_neighbour", "Monotone.update_never_raises"),
-    trusted=("base case: after initCost the goal is the only reached cell",
-             "the lowest neighbour is named l without loss of generality: the update depends on min(l, r) and "
-             "min(u, d) only, symmetrically",
-             "a cell's potential changes only through its own update (then update_keeps_a_lower_neighbour "
-             "applies); its neighbours' updates only lower them (update_never_raises), so a lower neighbour "
-             "stays lower"),
+    base=("PositionSafeAndProgressInductive.setup_and_init_cost_establish_the_invariant",),
+    lemmas=("update_keeps_a_lower_neighbour", "Monotone.update_never_raises",
+            "PositionSafeAndProgressInductive.update_keeps_the_invariant_at_the_updated_cell",
+            "PositionSafeAndProgressInductive.update_keeps_the_invariant_at_every_other_cell"),
+    trusted=("after initCost, updateCell is the only write to the potential array (the two array lemmas then "
+             "carry Progress from one update to the next at every cell, with all four neighbours read as the "
+             "kernel reads them)",),
     open=("that every passable cell's cost is in [COST_NEUTRAL, COST_OBS) (what setCostmap produces, the "
           "precondition of update_keeps_a_lower_neighbour) rests on the spec's setCostmap, tested by difftest, "
           "not on an obligation",),
@@ -283,7 +282,22 @@ QueuedStartReached = Predicate(
           "cells",),
 )
 
+PositionSafeAndProgressInductive = Predicate(
+    "PositionSafeAndProgressInductive",
+    statement="PositionSafe and Progress, with valid potentials and the goal's 0, hold of the whole potential "
+              "array after setup and are kept by every updateCell, on a map of any width.",
+    applies="propagation, stated over arrays (proofs/induction.py): the loop induction of PositionSafe and "
+            "Progress machine-checked as one invariant (issue #39), beside their per-update chains",
+    base=("setup_and_init_cost_establish_the_invariant",),
+    lemmas=("update_keeps_the_invariant_at_the_updated_cell", "update_keeps_the_invariant_at_every_other_cell"),
+    trusted=("the base case's array is what setupNavFn and initCost write (spec/propagation.py's setup; the "
+             "difftest compares the potentials every run ends with), and after initCost updateCell is the only "
+             "write to the potential array",),
+    open=("in float32, that every potential an update writes stays below 2**30 is a run-time condition, as for "
+          "Progress",),
+)
+
 # in the order the invariants page lists them: propagation, then path extraction, then the fix
 PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
               NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, FallbackPath, DescentPath,
-              ConnectedStartReached, ReachedWithinComponent, QueuedStartReached)
+              ConnectedStartReached, ReachedWithinComponent, QueuedStartReached, PositionSafeAndProgressInductive)
