@@ -58,8 +58,9 @@ def serpentine(n: int) -> np.ndarray:
     return c
 
 
-def _room_4655(n: int) -> np.ndarray:
-    """Nav2 #4655's 3x3 room (the gradient fails there, the descent plans) walled off in the
+def _gradient_trap_room(n: int) -> np.ndarray:
+    """A 3x3 room where the gradient fails from a reached start and the descent plans (found by
+    search: the failure Nav2 #4655 reports, not the reporter's map) walled off in the
     corner of an otherwise open NxN map: the map's size is what a map-sized buffer would cost."""
     c = generated_map("open", n)
     c[0:5, 0:5] = np.array([[254] * 5, [254, 50, 240, 121, 254], [254, 253, 50, 50, 254],
@@ -76,7 +77,8 @@ def worst_case_maps(n: int) -> list[tuple[str, np.ndarray, tuple, bool]]:
     * ``serpentine, start on a wall``: the same with the start on a wall cell (the plugin's
       goal pose on a lethal cell): never reached, so the fix's one further call floods the
       goal's component;
-    * ``#4655 room``: the gradient fails from a reached start and the descent plans, on an NxN map.
+    * ``gradient-trap room``: the gradient fails from a reached start and the descent plans, on an
+      NxN map (a room found by search, of the kind Nav2 #4655 reports).
     """
     s = serpentine(n)
     last = n - 2 if (n - 2) % 2 == 1 else n - 3  # the last corridor row
@@ -85,7 +87,7 @@ def worst_case_maps(n: int) -> list[tuple[str, np.ndarray, tuple, bool]]:
     wall = (far[0], last - 1)
     return [("serpentine", s, (*far, 1, 1), True), ("serpentine", s, (*far, 1, 1), False),
             ("serpentine, start on a wall", s, (*wall, 1, 1), True),
-            ("#4655 room", _room_4655(n), (3, 1, 1, 2), True)]
+            ("gradient-trap room", _gradient_trap_room(n), (3, 1, 1, 2), True)]
 
 
 def bench_worst_cases(sizes, folder) -> list[dict]:
