@@ -63,14 +63,15 @@ def model_planner(params_variant: str, arith=None) -> Planner:
     from dataclasses import replace
 
     from .benchmark import poses_array
-    from .plugin import create_plan
+    from .plugin import EMPTY_PATH, create_plan
 
     def plan(cm, params, pairs):
         p = replace(params, variant=params_variant)
         out = []
         for s, g in pairs:
             run = create_plan(cm, s, g, p, arith=arith)
-            out.append(Answer(run.error, poses_array(run.poses)))
+            # Humble's createPlan throws nothing: a failed plan is an empty path, as its C++ returns
+            out.append(Answer(None if run.error == EMPTY_PATH else run.error, poses_array(run.poses)))
         return out
 
     return plan
