@@ -51,9 +51,10 @@ def _planners(args, stack) -> tuple[dict, str]:
 
 
 def _same(a, b) -> bool:
-    from ..nav2.benchmark import same_bits
+    """The model's answer and the C++'s: the same exception, the same poses bit for bit."""
+    from ..nav2.benchmark import first_difference
 
-    return a.error == b.error and same_bits(a.poses, b.poses)
+    return first_difference(a.error, a.poses, b.error, b.poses) is None
 
 
 def cmd_planner_tester(args) -> int:

@@ -33,6 +33,7 @@ from typing import Callable, Optional, Sequence
 
 import numpy as np
 
+from ..spec.constants import FREE_SPACE, INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE
 from .params import PlannerParams
 from .plugin import Costmap, Pose, yaw_of
 
@@ -41,7 +42,6 @@ PLUGIN_LENGTHS = (("EqualStartGoal", 0.0), ("VerySmallPath", 0.00001), ("BelowCo
                   ("JustAboveCostmapResolution", 0.102), ("AboveCostmapResolution", 1.5))
 HEADING_TOLERANCE = 0.01  # rad, the tests' EXPECT_NEAR
 RANDOM_PAIRS, RANDOM_TRIES, ACCEPTABLE_FAIL_RATIO = 100, 3, 0.1
-LETHAL, INSCRIBED, FREE = 254, 253, 0  # nav2_util::Costmap's values
 LETHAL_OCCUPANCY = 100  # PlannerTester's lethal_threshold_
 
 # a planner under test: (costmap, params, [(start, goal)]) -> one answer per pair
@@ -145,14 +145,14 @@ def tester_costmap(occupancy: np.ndarray) -> Costmap:
     unknown space not tracked (unknown is free), occupancy at least 100 lethal; 1 m a cell at the
     origin, whatever the map's YAML says (``loadDefaultMap``)."""
     occ = np.asarray(occupancy, dtype=np.int16)
-    costs = np.where(occ >= LETHAL_OCCUPANCY, LETHAL, FREE).astype(np.uint8)
-    costs[occ == -1] = FREE
+    costs = np.where(occ >= LETHAL_OCCUPANCY, LETHAL_OBSTACLE, FREE_SPACE).astype(np.uint8)
+    costs[occ == -1] = FREE_SPACE
     return Costmap(costs, 0.0, 0.0, 1.0)
 
 
 def is_free(cm: Costmap, x: int, y: int) -> bool:
     """``nav2_util::Costmap::is_free``: a cost below the inscribed value."""
-    return int(cm.costs[y, x]) < INSCRIBED
+    return int(cm.costs[y, x]) < INSCRIBED_INFLATED_OBSTACLE
 
 
 def draw_end_points(cm: Costmap, n: int, rng: np.random.Generator) -> list[tuple[Pose, Pose]]:

@@ -21,9 +21,8 @@ PositionSafe = Predicate(
               "costarr[n] < COST_OBS, the goal excepted.",
     applies="propagation: the potential array after setupNavFn, initCost and every updateCell / "
             "updateCellAstar; the paper's PositionSafe",
-    base=("PositionSafeAndProgressInductive.setup_and_init_cost_establish_the_invariant",),
     lemmas=("update_keeps_obstacles_unreached",),
-    trusted=("after initCost, updateCell is the only write to the potential array",),
+    rests_on=("PositionSafeAndProgressInductive",),  # the base case, and the step at every cell
 )
 
 Monotone = Predicate(
@@ -31,21 +30,17 @@ Monotone = Predicate(
     statement="Potentials only go down, and the goal keeps potential 0.",
     applies="propagation: every updateCell / updateCellAstar; Progress relies on it (a lower neighbour "
             "stays lower)",
-    base=("PositionSafeAndProgressInductive.setup_and_init_cost_establish_the_invariant",),
     lemmas=("update_never_raises", "goal_stays_zero"),
+    rests_on=("PositionSafeAndProgressInductive",),  # the base case: the goal's 0, POT_HIGH elsewhere
 )
 
 Progress = Predicate(
     "Progress",
     statement="A reached cell other than the goal has a 4-neighbour with a strictly lower potential.",
     applies="propagation, for path extraction, which descends the potential; the paper's Progress",
-    base=("PositionSafeAndProgressInductive.setup_and_init_cost_establish_the_invariant",),
-    lemmas=("update_keeps_a_lower_neighbour", "Monotone.update_never_raises",
-            "PositionSafeAndProgressInductive.update_keeps_the_invariant_at_the_updated_cell",
-            "PositionSafeAndProgressInductive.update_keeps_the_invariant_at_every_other_cell"),
-    trusted=("after initCost, updateCell is the only write to the potential array (the two array lemmas then "
-             "carry Progress from one update to the next at every cell, with all four neighbours read as the "
-             "kernel reads them)",),
+    lemmas=("update_keeps_a_lower_neighbour", "Monotone.update_never_raises"),
+    # the base case, and the step at every cell with all four neighbours read as the kernel reads them
+    rests_on=("PositionSafeAndProgressInductive",),
     open=("that every passable cell's cost is in [COST_NEUTRAL, COST_OBS) (what setCostmap produces, the "
           "precondition of update_keeps_a_lower_neighbour) rests on the spec's setCostmap, tested by difftest, "
           "not on an obligation",),

@@ -42,10 +42,10 @@ CELL = z3.BitVecSort(32)  # a cell number: int in the C++
 class UnboundedMap:
     """The potential and cost arrays of a map of width ``W``, in the domain ``D``."""
 
-    def __init__(self, D, suffix: str = ""):
+    def __init__(self, D):
         self.D = D
-        self.pot = z3.Array("pot" + suffix, CELL, D.f32const(0.0).sort())
-        self.cost = z3.Array("cost" + suffix, CELL, D.cost("cost_sort" + suffix).sort())
+        self.pot = z3.Array("pot", CELL, D.f32const(0.0).sort())
+        self.cost = z3.Array("cost", CELL, D.cost("cost_sort").sort())  # the domain's cost sort
         self.W, self.g = z3.BitVec("W", 32), z3.BitVec("g", 32)
 
     def neighbours(self, i):
@@ -55,12 +55,16 @@ class UnboundedMap:
     def cost_int(self, i):
         return self.D.cost_int(self.cost[i])
 
+    def set_costmap_cost(self, i):
+        """The cost at ``i`` is one setCostmap makes: 50..253 passable, 254 and up lethal."""
+        return z3.Or(TranslatedCost(self.D, self.cost_int(i)), Lethal(self.D, self.cost_int(i)))
+
     def invariant(self, pot, i):
         """The invariant at cell ``i`` of the potential array ``pot``."""
         D = self.D
         p = pot[i]
         lower = z3.Or([D.lt(pot[j], p) for j in self.neighbours(i)])
-        parts = [ValidPotential(D, p), z3.Or(TranslatedCost(D, self.cost_int(i)), Lethal(D, self.cost_int(i))),
+        parts = [ValidPotential(D, p), self.set_costmap_cost(i),
                  z3.Implies(z3.And(Reached(D, p), i != self.g), z3.And(z3.Not(Lethal(D, self.cost_int(i))), lower))]
         if D.name != "real":
             parts.append(z3.Implies(Reached(D, p), D.lt(p, D.f32const(FP32_POTENTIAL_BOUND))))
@@ -83,7 +87,7 @@ def setup_and_init_cost_establish_the_invariant(D):
     m = UnboundedMap(D)
     n = z3.BitVec("n", 32)
     pot = z3.Store(z3.K(CELL, D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
-    costs = [z3.Or(TranslatedCost(D, m.cost_int(i)), Lethal(D, m.cost_int(i))) for i in (n, *m.neighbours(n))]
+    costs = [m.set_costmap_cost(i) for i in (n, *m.neighbours(n))]
     return all_of(D, m.W != 0, *costs), z3.And(m.invariant(pot, n), m.goal_zero(pot))
 
 
