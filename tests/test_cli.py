@@ -67,9 +67,9 @@ def test_difftest_default_example_and_json(tmp_path):
     report = tmp_path / "r.json"
     rc, out, err = run("difftest", "--mode", "astar", "--json", report)
     assert rc == 0, err
-    assert out.strip().splitlines()[-1] == "2198 passed, 0 failed"
+    assert out.strip().splitlines()[-1] == "2200 passed, 0 failed"
     doc = json.loads(report.read_text())
-    assert doc["failed"] == 0 and doc["passed"] == 2198 and len(doc["maps"]) == 13
+    assert doc["failed"] == 0 and doc["passed"] == 2200 and len(doc["maps"]) == 14
 
 
 def test_difftest_disagreement_exits_1(tmp_path):

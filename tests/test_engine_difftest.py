@@ -57,7 +57,7 @@ def local_cluster():
 
 
 def test_serial_summary_counts_every_case(suite, serial):
-    assert serial["passed"] + serial["failed"] == count_cases(suite, MODES) == 4396  # both modes
+    assert serial["passed"] + serial["failed"] == count_cases(suite, MODES) == 4400  # both modes
     assert serial["failed"] > 0 and len(serial["disagreements"]) == serial["failed"]
     assert {d["map"] for d in serial["disagreements"]} == {TAMPERED}
     assert [d["field"] for d in serial["disagreements"]] == ["cycles"] * serial["failed"]

@@ -106,7 +106,7 @@ def test_summary_same_on_a_cluster(cluster):
     from navfn_smt.search.summary import summarize
 
     here = summarize(EXAMPLE_SUITE, ("astar", "dijkstra"), eng=Engine(1))
-    assert here["maps"] == 13 and here["total"]["astar"]["cases"] > 0
+    assert here["maps"] == 14 and here["total"]["astar"]["cases"] > 0
     there = summarize(EXAMPLE_SUITE, ("astar", "dijkstra"), eng=Engine(scheduler=cluster.scheduler_address))
     assert _summary(there) == _summary(here)
 

@@ -49,7 +49,7 @@ def start_propagation(D, costs, nx, ny, gx, gy, pot, pending, pb, fill, role, cu
 
     Every potential POT_HIGH, nothing pending, the goal's potential 0, curT = COST_OBS
     (float), the buffers empty and in their first roles.  Returns the pushes the kernel
-    ``push_admitted`` refused only for want of room (counted as dropped).
+    ``push`` refused only for want of room (counted as dropped).
     """
     ns = nx * ny
     high = D.f32const(POT_HIGH)
@@ -66,12 +66,11 @@ def start_propagation(D, costs, nx, ny, gx, gy, pot, pending, pb, fill, role, cu
     dropped = 0
     for n in (k + 1, k - 1, k - nx, k + nx):
         j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard tests n against the map
-        if K.push_admitted(D, n, ns, pending[j], costs[j], fill[0], cap):
+        admitted, lost, pending[j] = K.push(D, n, ns, pending[j], costs[j], fill[0], cap)
+        if admitted:
             pb[0, fill[0]] = n
             fill[0] += 1
-            pending[n] = True
-        elif K.push_admitted(D, n, ns, pending[j], costs[j], 0, 1):
-            dropped += 1
+        dropped += lost
     return dropped
 
 
@@ -139,9 +138,9 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
             d = pot[n + nx]
             old = pot[n]
             new, changed = K.cell_update(D, old, l, r, u, d, cost, D.int_to_f32(cost))
+            pot[n] = new  # the old potential unless changed: cell_update is the `if (pot < potarr[n])`
             if not changed:
                 continue
-            pot[n] = new
             if watching and watch[n] >= 0 and not D.lt(old, high):
                 newly[nnew] = watch[n]
                 nnew += 1
@@ -176,22 +175,24 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
                     m = n + nx
                     pm = d
                 if K.push_wanted(D, pm, key, K.edge_weight(D, D.int_to_f32(costs[m]))):
-                    if K.push_admitted(D, m, ns, pending[m], costs[m], fill[dest], cap):
+                    admitted, lost, pending[m] = K.push(D, m, ns, pending[m], costs[m], fill[dest], cap)
+                    if admitted:
                         pb[dest, fill[dest]] = m
                         fill[dest] += 1
-                        pending[m] = True
-                    elif K.push_admitted(D, m, ns, pending[m], costs[m], 0, 1):
-                        ndrop += 1
-        # swap: the next buffer becomes current; an empty one pulls in the overflow
-        fill[cur] = 0
+                    ndrop += lost
+        # swap: the next buffer becomes current; an empty one pulls in the overflow (the
+        # kernel gives the fills, the roles follow the C++'s pointer swaps)
+        drained, fill_cur, fill_over, cur_t = K.end_of_cycle(D, fill[nxt], fill[over], cur_t, inc)
         t = cur
         cur = nxt
         nxt = t
-        if fill[cur] == 0:
-            cur_t = D.add(cur_t, inc)
+        if drained:
             t = cur
             cur = over
             over = t
+        fill[cur] = fill_cur
+        fill[nxt] = 0
+        fill[over] = fill_over
         if at_start and D.lt(pot[start_cell], high):
             finished = True
             break

@@ -76,7 +76,7 @@ class UnboundedMap:
 
 @obligation(PositionSafeAndProgressInductive, expect={"real": "proved", "fp32": "proved",
                                                       "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
-            scope="a map of any width (32-bit cell numbers), any goal")
+            scope="a map of any width (32-bit cell numbers), any goal", arrays=True)
 def setup_and_init_cost_establish_the_invariant(D):
     """After setupNavFn and initCost (every potential POT_HIGH, the goal's 0) the invariant holds
     at every cell.
@@ -107,7 +107,7 @@ def _step(D, where):
 
 
 STEP = dict(expect={"real": "proved", "fp32": "proved", "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
-            slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"))  # float32: about 25 s each, in `prove --all`
+            slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"), arrays=True)  # float32: about 25 s each, in `prove --all`
 
 
 @obligation(PositionSafeAndProgressInductive, scope="one updateCell at any cell of a map of any width "

@@ -91,13 +91,15 @@ def _push(D, q, pending_q, cnt, fill, target, m, pending_other, cost, wanted=Tru
     else:
         fill_t = fill[target]
         chosen = {target: True}
-    admitted = D.and_(wanted, K.push_admitted(D, m, D.int32("ns"), pending_m, D.cost_int(cost), fill_t, PRIORITYBUFSIZE))
+    # the macro as the spec and the JIT run it (kernels.push), asked only when the update wants it
+    pushed, _, pending_after = K.push(D, m, D.int32("ns"), pending_m, D.cost_int(cost), fill_t, PRIORITYBUFSIZE)
+    admitted = D.and_(wanted, pushed)
     cnt, fill = dict(cnt), dict(fill)
     for b, sel in chosen.items():
         into_b = D.and_(admitted, sel) if sel is not True else admitted
         fill[b] = D.add_int(fill[b], D.ite(into_b, 1, 0))
         cnt[b] = D.add_int(cnt[b], D.ite(D.and_(into_b, is_q), 1, 0))
-    return D.or_(pending_q, D.and_(admitted, is_q)), cnt, fill
+    return D.ite(D.and_(wanted, is_q), pending_after, pending_q), cnt, fill
 
 
 @obligation(PendingMatchesBuffers, expect={"real": "proved", "fp32": "proved",
@@ -163,7 +165,10 @@ def pending_matches_buffers_at_cycle_end(D):
     """
     pending = _flag(D, "pending_q")
     cnt, fill = _per_buffer(D, "count_"), _per_buffer(D, "fill_")
-    empty = D.eq(fill["nxt"], 0)
-    cnt2 = {"cur": D.ite(empty, cnt["over"], cnt["nxt"]), "nxt": 0, "over": D.ite(empty, 0, cnt["over"])}
-    fill2 = {"cur": D.ite(empty, fill["over"], fill["nxt"]), "nxt": 0, "over": D.ite(empty, 0, fill["over"])}
+    # the swap as the spec and the JIT run it (kernels.end_of_cycle), on the fills and, by the
+    # same selection, on q's occurrences
+    drained, fill_cur, fill_over, _ = K.end_of_cycle(D, fill["nxt"], fill["over"], D.f32("curT"), D.f32("priInc"))
+    cnt_cur, cnt_over = K.buffer_swap(D, cnt["nxt"], cnt["over"], drained)
+    cnt2 = {"cur": cnt_cur, "nxt": 0, "over": cnt_over}
+    fill2 = {"cur": fill_cur, "nxt": 0, "over": fill_over}
     return _during_cycle(D, pending, cnt, fill), _between_cycles(D, pending, cnt2, fill2)

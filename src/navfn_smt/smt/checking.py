@@ -140,6 +140,9 @@ def judge_model(ob: Obligation, semantics: str, values: dict) -> tuple[str, dict
     """``(status, witness, detail)`` of a model of ``ob``'s negation in ``semantics``, replayed
     on the concrete spec: ``refuted`` when the spec confirms it, ``unknown`` when it does not."""
     arith = arithmetic_of(semantics)
+    if ob.arrays:  # no concrete array to replay the model on: never reported unreplayed
+        return "unknown", {"values": codec.witness_values(values), "replayed_on_spec": None}, (
+            "solver model over arrays, which the concrete spec cannot replay: not reported as a counterexample")
     confirmed = replay(ob, values, arithmetic=arith)
     witness = {"values": codec.witness_values(values), "replayed_on_spec": confirmed,
                "replayed_in": "rationals (real semantics)" if arith is None else

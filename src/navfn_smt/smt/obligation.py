@@ -48,6 +48,7 @@ class Obligation:
     timeout: Optional[float] = None  # a cap on the run's time limit (for questions known to be open)
     hypotf_model: str = "glibc"  # fp32: glibc's exact implementation, "ulp" (documented accuracy) or "bounds" (ordering only)
     slow: tuple = ()  # semantics whose query belongs to the long run (`prove --all`), not the default one
+    arrays: bool = False  # stated over SMT arrays (a map of any size): the concrete spec cannot replay a model
 
     @property
     def title(self) -> str:
@@ -55,14 +56,16 @@ class Obligation:
 
 
 def obligation(predicate, expect: dict, scope: str, bound: Optional[Bound] = None, hypotf_model: str = "glibc",
-               timeout: Optional[float] = None, slow=()):
+               timeout: Optional[float] = None, slow=(), arrays: bool = False):
     """Declare a proof obligation (a decorator for ``build(D) -> (pre, claim)``) as part of
     ``predicate`` (a :class:`~navfn_smt.smt.chains.Predicate`, or just a name).
 
     ``timeout`` caps the run's time limit for this obligation: an open question (expected
     ``unknown``) need not spend the whole limit of every run on a known timeout.  ``slow``
     names the semantics whose query is left to the long run (``prove --all``): a question a
-    split decides, or a proof that takes longer than the default run may."""
+    split decides, or a proof that takes longer than the default run may.  ``arrays``: the
+    obligation is stated over SMT arrays, which the concrete spec has not, so a model of its
+    negation cannot be replayed and is never reported as a counterexample (it stays unknown)."""
 
     def wrap(fn):
         for sem, verdict in expect.items():
@@ -70,7 +73,7 @@ def obligation(predicate, expect: dict, scope: str, bound: Optional[Bound] = Non
                 raise ValueError(f"{fn.__name__}: bad expectation {sem}={verdict}")
         name = getattr(predicate, "name", predicate)
         return Obligation(fn.__name__, name, fn, dict(expect), scope, fn.__doc__ or "", bound=bound,
-                          hypotf_model=hypotf_model, timeout=timeout, slow=tuple(slow))
+                          hypotf_model=hypotf_model, timeout=timeout, slow=tuple(slow), arrays=arrays)
 
     return wrap
 

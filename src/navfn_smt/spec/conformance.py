@@ -109,6 +109,11 @@ def _push_admitted(rng):
             int(rng.integers(0, 12)))
 
 
+def _end_of_cycle(rng):
+    return (int(rng.integers(0, 3)) * int(rng.integers(0, 12)), int(rng.integers(0, 12)), *f32_values(rng, 1),
+            float(np.float32(rng.integers(1, 4))))
+
+
 def _nearest(rng):
     nx = int(rng.integers(3, 5000))
     ns = nx * int(rng.integers(3, 5000))
@@ -134,6 +139,14 @@ def call_push(D, pot, key, weight, cur_t):
 
 def call_push_admitted(D, n, ns, pending, cost, fill, capacity):
     return (K.push_admitted(D, n, ns, pending, cost, fill, capacity),)
+
+
+def call_push_macro(D, n, ns, pending, cost, fill, capacity):
+    return K.push(D, n, ns, pending, cost, fill, capacity)
+
+
+def call_end_of_cycle(D, fill_next, fill_over, cur_t, inc):
+    return K.end_of_cycle(D, fill_next, fill_over, cur_t, inc)
 
 
 def call_heuristic(D, ddx, ddy):
@@ -166,6 +179,8 @@ CASES = (
     KernelCase("edge_weight", (COST_F32,), lambda rng: (float(_cost(rng)),), call_edge_weight, 3000),
     KernelCase("push", (F32,) * 4, _floats(4), call_push, 12000),
     KernelCase("push_admitted", (INT, INT, BOOL, COST, INT, INT), _push_admitted, call_push_admitted, 3000),
+    KernelCase("push_macro", (INT, INT, BOOL, COST, INT, INT), _push_admitted, call_push_macro, 3000),
+    KernelCase("end_of_cycle", (INT, INT, F32, F32), _end_of_cycle, call_end_of_cycle, 3000),
     KernelCase("heuristic", (INT, INT), _heuristic, call_heuristic, 8000),
     KernelCase("grad_cell", (F32,) * 5, _floats(5), call_grad_cell, 12000),
     KernelCase("interpolate", (F32,) * 6, _floats(6, False), call_interpolate, 14000),

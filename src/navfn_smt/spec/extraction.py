@@ -66,6 +66,12 @@ class UndefinedBehaviour(Exception):
     """The C++ would read outside its arrays here; the spec refuses to guess."""
 
 
+def ring_of_eight(stc: int, nx: int) -> tuple[int, ...]:
+    """The 8 neighbours of cell ``stc`` in the order calcPath's grid fallback reads them (and the
+    fix's ``calcPathDescent``): up-left, up, up-right, left, right, down-left, down, down-right."""
+    return (stc - nx - 1, stc - nx, stc - nx + 1, stc - 1, stc + 1, stc + nx - 1, stc + nx, stc + nx + 1)
+
+
 def calc_path(
     potential: list,
     nx: int,
@@ -123,8 +129,7 @@ def calc_path(
         xs.append(px)
         ys.append(py)
         oscillation = len(xs) > 2 and xs[-1] == xs[-3] and ys[-1] == ys[-3]
-        up, down = stc - nx, stc + nx
-        ring = (up - 1, up, up + 1, stc - 1, stc + 1, down - 1, down, down + 1)
+        ring = ring_of_eight(stc, nx)
         if oscillation or K.unreached(D, pot[stc]) or any(K.unreached(D, pot[m]) for m in ring):
             if watch is not None:
                 watch.fallback(i, oscillation)
@@ -136,6 +141,7 @@ def calc_path(
             if K.unreached(D, pot[stc]):
                 return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs), stc)
         else:
+            down = stc + nx
             for m in (stc, stc + 1, down, down + 1):
                 grad(m)
             x = K.interpolate_gradient(D, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])

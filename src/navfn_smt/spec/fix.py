@@ -6,7 +6,7 @@ the kernels, each acting only where the original fails:
 
 * **propagate on, once** (``calcNavFnAstar`` / ``calcNavFnDijkstra``): when the cycle limit
   ``max(nx*ny/20, nx+ny)`` stops the wave with the start still unreached and cells left in
-  the buffers, call ``propNavFn*`` once more, with ``nx*ny`` cycles (:data:`EXTRA_CYCLES`):
+  the buffers, call ``propNavFn*`` once more, with ``nx*ny`` cycles (:func:`extra_cycles`):
   the one explicit cap of the added work.  The original returns no path from an unreached
   start (the predicate ``NoPathWithoutFinitePotential``), so no path it returns changes.  The
   call is the C++ function unchanged, A*'s ``curT += dist`` at its entry included (so A*'s
@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from . import kernels as K
-from .extraction import Extraction, ExtractionExit
+from .extraction import Extraction, ExtractionExit, ring_of_eight
 from .constants import POT_HIGH
 from .numeric import CONCRETE as D
 from .propagation import PropagationState, TraceHook, propagate
@@ -83,10 +83,7 @@ def propagate_on(st: PropagationState, start: tuple[int, int], goal: tuple[int, 
     return done, 0
 
 
-def descent_ring(stc: int, nx: int) -> tuple[int, ...]:
-    """The 8 neighbours of cell ``stc`` in the order ``calcPathDescent`` reads them (that of
-    calcPath's grid fallback): up-left, up, up-right, left, right, down-left, down, down-right."""
-    return (stc - nx - 1, stc - nx, stc - nx + 1, stc - 1, stc + 1, stc + nx - 1, stc + nx, stc + nx + 1)
+descent_ring = ring_of_eight  # calcPathDescent reads the ring of calcPath's grid fallback
 
 
 def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int) -> Extraction:

@@ -6,8 +6,9 @@ computes concrete float32 results for the reference spec and builds bit-precise 
 real-valued terms for the SMT obligations.  Branches of the C++ become ``D.ite``.
 
 Each kernel names the C++ it stands for and says which operations happen in
-``float`` and which in ``double``.  The loops around the kernels (buffers, cycles,
-path iterations) live in :mod:`.propagation` and :mod:`.extraction`.
+``float`` and which in ``double``.  The steps of the loops that touch the buffers (a push,
+the end of a cycle) are kernels too; the loops around them (the order of the cells, the
+buffers' slots, path iterations) live in :mod:`.propagation` and :mod:`.extraction`.
 """
 
 from __future__ import annotations
@@ -116,6 +117,40 @@ def push_admitted(D, n, ns, pending, cost, fill, capacity):
         D.and_(D.and_(D.ge(n, 0), D.lt(n, ns)), D.not_(pending)),
         D.and_(D.lt(cost, COST_OBS), D.lt(fill, capacity)),
     )
+
+
+def push(D, n, ns, pending, cost, fill, capacity):
+    """One ``push_cur/push_next/push_over`` macro on cell ``n`` into a buffer holding ``fill``
+    cells of ``capacity`` (all ints): ``(admitted, dropped, pending after)``.
+
+    An admitted cell goes into the buffer's slot ``fill`` and its pending flag is set in the
+    same step (``pending[n] = true``); ``dropped``: the guard refused the cell only for want
+    of room (the C++ drops it silently; the spec counts it).
+    """
+    admitted = push_admitted(D, n, ns, pending, cost, fill, capacity)
+    dropped = D.and_(D.not_(admitted), push_admitted(D, n, ns, pending, cost, 0, 1))
+    return admitted, dropped, D.or_(pending, admitted)
+
+
+def buffer_swap(D, nxt, over, drained):
+    """What the current and the overflow buffer hold after a cycle's swap, given what the next
+    and the overflow buffer held (fills, or how often a cell occurs: ints): ``(cur, over)``.
+
+    ``curPe = nextPe``, and when that is 0 (``drained``) ``curPe = overPe; overPe = 0``, each
+    with its pointer swap; the next buffer is empty after.
+    """
+    return D.ite(drained, over, nxt), D.ite(drained, 0, over)
+
+
+def end_of_cycle(D, fill_next, fill_over, cur_t, inc):
+    """The end of a cycle of ``propNavFn*``: ``(drained, fill of cur, fill of over, curT)``.
+
+    The next buffer becomes current (:func:`buffer_swap`); when it is empty the overflow
+    buffer does, and ``curT += priInc`` (float).
+    """
+    drained = D.eq(fill_next, 0)
+    cur, over = buffer_swap(D, fill_next, fill_over, drained)
+    return drained, cur, over, D.ite(drained, D.add(cur_t, inc), cur_t)
 
 
 def is_passable(D, cost):

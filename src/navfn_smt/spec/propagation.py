@@ -72,17 +72,15 @@ def check_capacity(capacity) -> int:
 
 
 def _push(st: PropagationState, buf: list, n: int) -> None:
-    """The ``push_cur/push_next/push_over`` macros: their guard is :func:`kernels.push_admitted`
-    (capacity PRIORITYBUFSIZE unless the caller chose another); a push the guard refuses only
-    for want of room is counted as dropped (C++ drops it silently)."""
+    """The ``push_cur/push_next/push_over`` macros: the kernel :func:`kernels.push` (capacity
+    PRIORITYBUFSIZE unless the caller chose another) decides the push and the pending flag; a
+    push refused only for want of room is counted as dropped (C++ drops it silently)."""
     ns = st.nx * st.ny
     j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard itself tests n against the map
-    pending, cost = st.pending[j], st.costs[j]
-    if K.push_admitted(D, n, ns, pending, cost, len(buf), st.capacity):
+    admitted, dropped, st.pending[j] = K.push(D, n, ns, st.pending[j], st.costs[j], len(buf), st.capacity)
+    if admitted:
         buf.append(n)
-        st.pending[n] = True
-    elif K.push_admitted(D, n, ns, pending, cost, 0, 1):  # admitted but for the full buffer (PRIORITYBUFSIZE)
-        st.dropped += 1
+    st.dropped += dropped
 
 
 def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
@@ -122,9 +120,9 @@ def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, 
         return
     l, r, u, d = pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx]
     new, changed = K.cell_update(st.domain, pot[n], l, r, u, d, cost, _HF[cost])
+    pot[n] = new  # the old potential unless changed: cell_update is the `if (pot < potarr[n])`
     if not changed:
         return
-    pot[n] = new
     key = new
     if astar_start is not None:
         x, y = n % nx, n // nx
@@ -187,11 +185,11 @@ def propagate(
             pending[c] = False
         for c in cells:
             _update_cell(st, c, astar_start)
-        # swap: the next buffer becomes current; an empty one pulls in the overflow
-        st.cur, st.nxt = st.nxt, []
-        if not st.cur:
-            st.cur_t = D.add(st.cur_t, inc)
-            st.cur, st.over = st.over, []
+        # swap: the next buffer becomes current; an empty one pulls in the overflow (the
+        # kernel gives the fills, a buffer's cells are its first `fill` slots)
+        drained, fill_cur, fill_over, st.cur_t = K.end_of_cycle(D, len(st.nxt), len(st.over), st.cur_t, inc)
+        cur, over = (st.over, st.nxt) if drained else (st.nxt, st.over)
+        st.cur, st.nxt, st.over = cur[:fill_cur], [], over[:fill_over]
         if check_start and D.lt(st.potential[start_cell], _POT_HIGH):
             break
         cycle += 1

@@ -203,9 +203,10 @@ def exact_results(case: T.KernelCase, rows: list) -> list:
 
 # ------------------------------------------------------------------------ the runs
 ALL = tuple(c.name for c in T.CASES)
-ARRAY_KERNELS = ("cell_update", "edge_weight", "push", "push_admitted", "grad_cell", "interpolate", "step")
-NOTHING_ROUNDS = ("push_admitted",)
-NO_HYPOT = ("cell_update", "edge_weight", "push", "interpolate", "nearest", "lowest")  # the real domain's
+ARRAY_KERNELS = ("cell_update", "edge_weight", "push", "push_admitted", "push_macro", "end_of_cycle", "grad_cell",
+                 "interpolate", "step")
+NOTHING_ROUNDS = ("push_admitted", "push_macro")
+NO_HYPOT = ("cell_update", "edge_weight", "push", "push_macro", "end_of_cycle", "interpolate", "nearest", "lowest")  # the real domain's
 # hypot is a fresh value the inputs do not determine
 
 
