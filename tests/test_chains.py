@@ -28,6 +28,8 @@ EXPECTED = {
     "ReachedWithinComponent": ("proved", "proved"),
     "QueuedStartReached": ("proved", "proved"),
     "PositionSafeAndProgressInductive": ("proved", "proved"),  # float32: under the run-time bound 2**30
+    "BuffersInductive": ("proved", "proved"),
+    "ReachedAndBufferedInductive": ("proved", "proved"),
 }
 
 

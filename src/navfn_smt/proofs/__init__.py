@@ -53,8 +53,10 @@ ObstacleFreeQueue = Predicate(
     applies="propagation: the three priority buffers (current, next, overflow) and every push_cur / "
             "push_next / push_over",
     lemmas=("push_admits_only_passable_cells_on_the_map",),
-    trusted=("base case: setupNavFn empties the buffers",
-             "a cell enters a buffer only through a push macro's guard; the end of a cycle only swaps buffers"),
+    # the base case (setup empties the buffers, initCost pushes through the guard) and the step at
+    # every push, clearing loop and swap: every buffered cell passable and on the map, every fill
+    # within its capacity
+    rests_on=("BuffersInductive",),
 )
 
 PendingMatchesBuffers = Predicate(
@@ -67,9 +69,11 @@ PendingMatchesBuffers = Predicate(
     base=("pending_matches_buffers_after_setup",),
     lemmas=("pending_matches_buffers_at_cycle_start", "pending_matches_buffers_after_push",
             "pending_matches_buffers_at_cycle_end"),
-    trusted=("setup, a cycle's start, the pushes and the swap are all the changes propagation makes to flags "
-             "and buffers (spec/propagation.py: setup, propagate, _push); tests/test_invariants_runtime.py "
-             "checks B at every cycle boundary of the spec's own loops",),
+    # that setup, a cycle's start, the pushes and the swap are all the changes propagation makes to
+    # the flags and buffers is stated once, in BuffersInductive, which machine-checks the same
+    # invariants over arrays (with slots); tests/test_invariants_runtime.py checks B at every
+    # cycle boundary of the spec's own loops
+    rests_on=("BuffersInductive",),
 )
 
 NoPathWithoutFinitePotential = Predicate(
@@ -239,11 +243,10 @@ ReachedWithinComponent = Predicate(
             "component without exploring, and explore one layout of those that differ only outside it",
     lemmas=("update_beside_no_reached_cell_stays_unreached", "PositionSafe.update_keeps_obstacles_unreached",
             "ObstacleFreeQueue.push_admits_only_passable_cells_on_the_map"),
-    trusted=("base case: after initCost the goal is the only reached cell, and the buffers hold its passable "
-             "4-neighbours only",
-             "a cell is pushed only as a 4-neighbour of the goal (initCost) or of a cell whose update changed it, "
-             "and is updated only after being pushed",
-             "calcPath and the fix's descent read potentials and gradients, never costs, and a cell outside the "
+    # the base case and the step: only cells of the component are ever buffered, updated (a cell of the
+    # current buffer) or reached
+    rests_on=("BuffersInductive", "ReachedAndBufferedInductive"),
+    trusted=("calcPath and the fix's descent read potentials and gradients, never costs, and a cell outside the "
              "component has POT_HIGH in every layout",
              "tests/test_check_reductions.py runs every layout of the small sizes concretely: a layout and its "
              "representative give the same potentials, exit and path"),
@@ -259,11 +262,9 @@ QueuedStartReached = Predicate(
             "branches once it has queued the start so, when start-reached is explored alone: every path sharing "
             "that prefix reaches the start",
     lemmas=("queued_cell_gets_reached", "Monotone.update_never_raises"),
-    trusted=("a buffered cell has a 4-neighbour that was reached when it was pushed: initCost pushes the goal's "
-             "neighbours (the goal at 0), every later push happens in an update that changed its cell, to a finite "
-             "potential; potentials only fall since (Monotone.update_never_raises), so that neighbour is still "
-             "below the bound when the buffered cell is updated",
-             "a cycle that runs updates every cell of its current buffer, then ends the call if the start is "
+    # a buffered cell has a reached 4-neighbour (below the bound: the run-time condition below)
+    rests_on=("ReachedAndBufferedInductive",),
+    trusted=("a cycle that runs updates every cell of its current buffer, then ends the call if the start is "
              "reached: the start, unreached and passable (only passable cells are pushed), is then reached "
              "(queued_cell_gets_reached) and stays reached (potentials only fall)",
              "a cycle whose next buffer is not empty makes it the following cycle's current buffer, and that cycle "
@@ -292,7 +293,40 @@ PositionSafeAndProgressInductive = Predicate(
           "Progress",),
 )
 
+BuffersInductive = Predicate(
+    "BuffersInductive",
+    statement="Each pending cell is in exactly one buffer slot (between cycles of the current or the overflow "
+              "buffer, during a cycle of the next or the overflow one), no slot of a buffer repeats a cell, and "
+              "every buffered cell is a passable cell of the goal's component on the map: true after setup and "
+              "kept by every step that touches the flags or the buffers, on a map of any size.",
+    applies="propagation, stated over arrays with ghost positions (proofs/buffers.py): setupNavFn and initCost, "
+            "the loop clearing the current buffer's flags, every push of an update, the end-of-cycle swap; the "
+            "loop induction of the buffers machine-checked (issue #39)",
+    base=("setup_puts_each_pending_cell_in_one_slot",),
+    lemmas=("clearing_a_flag_keeps_the_clearing_invariant", "cleared_flags_give_the_cycle_invariant",
+            "push_keeps_each_pending_cell_in_one_slot", "swap_keeps_each_pending_cell_in_one_slot"),
+    trusted=("the loops change the flags and the buffers only by these steps, run as kernels.push, kernels."
+             "end_of_cycle and the clearing loop by the spec and the JIT (spec/propagation.py, backends/jit.py), "
+             "which the difftest ties to the C++, and push only inside an update that changed its cell (the "
+             "`if (pot < potarr[n])` block); the component's closure is assumed at the cells each step reads",),
+)
+
+ReachedAndBufferedInductive = Predicate(
+    "ReachedAndBufferedInductive",
+    statement="A reached cell is the goal or a cell of the goal's component, and a buffered cell has a reached "
+              "4-neighbour: true after setup and kept by every updateCell, push and swap, on a map of any size.",
+    applies="propagation, stated over arrays beside the buffers (proofs/buffers.py): the loop induction of "
+            "ReachedWithinComponent's and QueuedStartReached's facts about the run machine-checked (issue #39)",
+    base=("setup_reaches_the_goal_alone_and_buffers_its_neighbours",),
+    lemmas=("update_reaches_only_cells_of_the_component", "push_buffers_only_a_neighbour_of_a_reached_cell",
+            "swap_keeps_every_buffered_cell_beside_a_reached_one"),
+    # the buffer invariant (an updated cell is a buffered cell of the component), valid potentials, and
+    # the steps being all the changes: stated once, in these two
+    rests_on=("BuffersInductive", "PositionSafeAndProgressInductive"),
+)
+
 # in the order the invariants page lists them: propagation, then path extraction, then the fix
 PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
               NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, FallbackPath, DescentPath,
-              ConnectedStartReached, ReachedWithinComponent, QueuedStartReached, PositionSafeAndProgressInductive)
+              ConnectedStartReached, ReachedWithinComponent, QueuedStartReached, PositionSafeAndProgressInductive,
+              BuffersInductive, ReachedAndBufferedInductive)

@@ -1,0 +1,70 @@
+"""The buffer invariant over arrays (proofs/buffers.py): its obligations are not vacuous, and
+each notices a seeded bug in the step it states.
+
+A proof of ``pre ==> claim`` says nothing when ``pre`` is unsatisfiable, so each precondition
+is shown satisfiable; and a step stated wrongly (a push that forgets the pending flag or the
+guard's pending test, a swap that drops the overflow buffer, an update that writes before its
+test) must give a model of the negation."""
+
+from pathlib import Path
+
+import pytest
+import z3
+
+from navfn_smt.smt import portfolio
+from navfn_smt.smt.domains import DOMAINS
+from navfn_smt.smt.obligation import load_obligations
+from navfn_smt.spec import kernels as K
+
+BUFFERS = Path(__file__).resolve().parents[1] / "src" / "navfn_smt" / "proofs" / "buffers.py"
+OBLIGATIONS = {o.name: o for o in load_obligations([BUFFERS])}
+PUSH = K.push  # the step as the spec runs it
+
+
+def _decide(formula):
+    """sat or unsat by the project's portfolio (z3 alone can take gigabytes on the float32 ones)."""
+    got = portfolio.solve([formula], timeout=120.0).status
+    assert got in ("sat", "unsat"), got
+    return z3.sat if got == "sat" else z3.unsat
+
+
+@pytest.mark.parametrize("semantics", ["real", "fp32"])
+@pytest.mark.parametrize("name", sorted(OBLIGATIONS))
+def test_each_precondition_is_satisfiable_and_each_claim_follows(name, semantics):
+    pre, claim = OBLIGATIONS[name].build(DOMAINS[semantics]())
+    assert _decide(pre) == z3.sat
+    assert _decide(z3.And(pre, z3.Not(claim))) == z3.unsat
+
+
+def _forgets_pending(D, n, ns, pending, cost, fill, capacity):
+    admitted, dropped, _ = PUSH(D, n, ns, pending, cost, fill, capacity)
+    return admitted, dropped, pending
+
+
+def _ignores_pending(D, n, ns, pending, cost, fill, capacity):
+    return PUSH(D, n, ns, False, cost, fill, capacity)
+
+
+def _writes_before_the_test(D, old, l, r, u, d, cost, hf):
+    cand = K.planar_wave(D, l, r, u, d, hf)
+    return cand, D.and_(K.is_passable(D, cost), D.lt(cand, old))
+
+
+def _drops_overflow(D, nxt, over, drained):
+    return nxt, D.ite(drained, 0, over)
+
+
+WRONG_STEPS = [
+    ("push", _forgets_pending, "push_keeps_each_pending_cell_in_one_slot"),
+    ("push", _forgets_pending, "setup_puts_each_pending_cell_in_one_slot"),
+    ("push", _ignores_pending, "push_keeps_each_pending_cell_in_one_slot"),
+    ("buffer_swap", _drops_overflow, "swap_keeps_each_pending_cell_in_one_slot"),
+    ("cell_update", _writes_before_the_test, "update_reaches_only_cells_of_the_component"),
+]
+
+
+@pytest.mark.parametrize("kernel, wrong, name", WRONG_STEPS, ids=[f"{w.__name__}-{n}" for _, w, n in WRONG_STEPS])
+def test_a_wrong_step_gives_a_model_of_the_negation(monkeypatch, kernel, wrong, name):
+    monkeypatch.setattr(K, kernel, wrong)
+    pre, claim = OBLIGATIONS[name].build(DOMAINS["fp32"]())
+    assert _decide(z3.And(pre, z3.Not(claim))) == z3.sat
