@@ -1,5 +1,5 @@
-"""The buffer invariant over arrays (proofs/buffers.py): its obligations are not vacuous, and
-each notices a seeded bug in the step it states.
+"""The buffer and frontier invariants over arrays (proofs/buffers.py, proofs/frontier.py): their
+obligations are not vacuous, and each notices a seeded bug in the step it states.
 
 A proof of ``pre ==> claim`` says nothing when ``pre`` is unsatisfiable, so each precondition
 is shown satisfiable; and a step stated wrongly (a push that forgets the pending flag or the
@@ -16,8 +16,8 @@ from navfn_smt.smt.domains import DOMAINS
 from navfn_smt.smt.obligation import load_obligations
 from navfn_smt.spec import kernels as K
 
-BUFFERS = Path(__file__).resolve().parents[1] / "src" / "navfn_smt" / "proofs" / "buffers.py"
-OBLIGATIONS = {o.name: o for o in load_obligations([BUFFERS])}
+PROOFS = Path(__file__).resolve().parents[1] / "src" / "navfn_smt" / "proofs"
+OBLIGATIONS = {o.name: o for o in load_obligations([PROOFS / "buffers.py", PROOFS / "frontier.py"])}
 PUSH = K.push  # the step as the spec runs it
 
 
@@ -31,9 +31,12 @@ def _decide(formula):
 @pytest.mark.parametrize("semantics", ["real", "fp32"])
 @pytest.mark.parametrize("name", sorted(OBLIGATIONS))
 def test_each_precondition_is_satisfiable_and_each_claim_follows(name, semantics):
-    pre, claim = OBLIGATIONS[name].build(DOMAINS[semantics]())
+    """(the claims of the slow ones are left to `prove --all`, as the proof run leaves them)"""
+    ob = OBLIGATIONS[name]
+    pre, claim = ob.build(DOMAINS[semantics]())
     assert _decide(pre) == z3.sat
-    assert _decide(z3.And(pre, z3.Not(claim))) == z3.unsat
+    if semantics not in ob.slow:
+        assert _decide(z3.And(pre, z3.Not(claim))) == z3.unsat
 
 
 def _forgets_pending(D, n, ns, pending, cost, fill, capacity):
@@ -60,6 +63,8 @@ WRONG_STEPS = [
     ("push", _ignores_pending, "push_keeps_each_pending_cell_in_one_slot"),
     ("buffer_swap", _drops_overflow, "swap_keeps_each_pending_cell_in_one_slot"),
     ("cell_update", _writes_before_the_test, "update_reaches_only_cells_of_the_component"),
+    ("push", _forgets_pending, "update_and_its_pushes_keep_the_frontier"),
+    ("push", _forgets_pending, "setup_leaves_no_unreached_neighbour_unbuffered"),
 ]
 
 

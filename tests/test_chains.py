@@ -30,6 +30,7 @@ EXPECTED = {
     "PositionSafeAndProgressInductive": ("proved", "proved"),  # float32: under the run-time bound 2**30
     "BuffersInductive": ("proved", "proved"),
     "ReachedAndBufferedInductive": ("proved", "proved"),
+    "FrontierInductive": ("proved", "proved"),
 }
 
 

@@ -181,18 +181,16 @@ ConnectedStartReached = Predicate(
             "start is unreached and a buffer holds cells (spec/fix.py: propagate_on), for every map size",
     lemmas=("update_wants_an_unreached_neighbour", "unreached_cell_beside_a_reached_one_gets_reached",
             "update_lowers_when_it_changes", "Monotone.update_never_raises"),
-    rests_on=("PendingMatchesBuffers",),
-    trusted=("initCost pushes the goal's passable 4-neighbours; every later push happens in an update that "
-             "changed its cell (inside updateCell's `if (pot < potarr[n])`)",
-             "the fix's second call stops only with the start reached, both buffers empty or its cap spent; a "
+    # the induction over the run: the frontier (FrontierInductive) and, under it, the buffers
+    rests_on=("PendingMatchesBuffers", "FrontierInductive"),
+    trusted=("the fix's second call stops only with the start reached, both buffers empty or its cap spent; a "
              "buffered cell leaves the buffers only by its update (between cycles the overflow buffer is empty "
              "whenever the current one is: the swap pulls it in)",
-             "the induction: were the start unreached with both buffers empty, the first unreached cell c of the "
-             "chain has a reached predecessor p; when p's potential was last set, c was unreached (potentials "
-             "only fall), so its push was wanted (update_wants_an_unreached_neighbour) and either admitted or c "
-             "was already buffered (PendingMatchesBuffers), no push being dropped; the buffers being empty, c "
-             "was updated after, beside p below the bound, and reached "
-             "(unreached_cell_beside_a_reached_one_gets_reached)"),
+             "the component is the least set of cells holding the goal's passable 4-neighbours and closed under "
+             "passable 4-neighbours; when the buffers are empty and no push was dropped, the reached cells below "
+             "the bound hold the goal (potential 0) and are so closed "
+             "(empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one), so they include the "
+             "component and the start, in it, is reached"),
     open=("no push dropped for want of room (PRIORITYBUFSIZE): a run-time condition the spec counts "
           "(PlanResult.dropped) and the C++ does not report; overflow maps break it (docs/overflow.md)",
           "every potential below 2**30: a run-time condition, as for DescentPath",
@@ -325,8 +323,26 @@ ReachedAndBufferedInductive = Predicate(
     rests_on=("BuffersInductive", "PositionSafeAndProgressInductive"),
 )
 
+FrontierInductive = Predicate(
+    "FrontierInductive",
+    statement="Every unreached passable neighbour on the map of a reached cell below 2**30 is pending (or, while "
+              "a cycle's updates run, waits in the current buffer), or some push was dropped for want of room: "
+              "true after setup and kept by every step, on a map of any size; so when propagation ends with its "
+              "buffers empty and no push dropped, the reached cells below 2**30 are closed under passable "
+              "4-neighbours.",
+    applies="propagation, stated over arrays beside the buffers (proofs/frontier.py), with a ghost flag for a "
+            "dropped push: the loop induction behind ConnectedStartReached machine-checked (issue #39)",
+    base=("setup_leaves_no_unreached_neighbour_unbuffered",),
+    lemmas=("clearing_a_flag_keeps_the_frontier", "frontier_holds_as_the_updates_start_and_after_the_swap",
+            "update_and_its_pushes_keep_the_frontier",
+            "empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one"),
+    rests_on=("BuffersInductive", "PositionSafeAndProgressInductive"),
+    open=("a changed cell's push key (its potential, plus A*'s heuristic) below 2**31 and every passable cost in "
+          "[COST_NEUTRAL, COST_OBS): run-time conditions, as for ConnectedStartReached and Progress",),
+)
+
 # in the order the invariants page lists them: propagation, then path extraction, then the fix
 PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
               NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, FallbackPath, DescentPath,
               ConnectedStartReached, ReachedWithinComponent, QueuedStartReached, PositionSafeAndProgressInductive,
-              BuffersInductive, ReachedAndBufferedInductive)
+              BuffersInductive, ReachedAndBufferedInductive, FrontierInductive)

@@ -303,6 +303,7 @@ def reach(D, m: Map, s: Buffers, pot, q):
 
 
 def potentials(D):
+    """The potential array, in the domain's float (its index the domain's int)."""
     probe = D.int32("i_sort_probe")
     return z3.Array("pot", probe.sort(), D.f32const(0.0).sort())
 
