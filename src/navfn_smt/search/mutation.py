@@ -60,7 +60,7 @@ MUTANTS = (
            "D.and_(D.ge(n, 0), D.lt(n, ns)),", "push before checking the pending flag"),
     Mutant("push_admits_obstacles", KERNELS, "D.and_(D.lt(cost, COST_OBS), D.lt(fill, capacity)),",
            "D.lt(fill, capacity),", "push without the obstacle test"),
-    Mutant("pot_in_double", KERNELS, "return D.ite(D.ge(dc, hf), D.add(ta, hf), D.add(ta, D.mul(hf, v)))",
+    Mutant("pot_in_double", KERNELS, 'return D.ite(D.ge(dc, hf), D.add(ta, hf), add_mul(D, "planar", ta, hf, v))',
            "return D.ite(D.ge(dc, hf), D.add(ta, hf), "
            "D.narrow(D.add64(D.widen(ta), D.mul64(D.widen(hf), quad))))",
            "compute the interpolated potential in double where C++ narrows to float"),
