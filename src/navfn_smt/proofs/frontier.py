@@ -38,6 +38,14 @@ def neighbour(m, p, e):
     return z3.If(e == 0, nb[0], z3.If(e == 1, nb[1], z3.If(e == 2, nb[2], nb[3])))
 
 
+def pair_state(D, slot: str):
+    """The state an obligation of F is asked in: the map, an arbitrary cell p and its neighbour c
+    in direction e, the buffers, the potentials, the ghost ``dropped``, and the slot ``slot``."""
+    m = Map(D)
+    p, e = D.int32("p"), D.int32("e")
+    return m, p, neighbour(m, p, e), Buffers(D), potentials(D), z3.Bool("dropped"), D.int32(slot)
+
+
 def frontier(D, m, s, pot, dropped, p, c, k=None):
     """F at the pair (p, c), c a 4-neighbour of p: a reached p below the bound with c an unreached
     passable cell on the map has c pending, or a push was dropped, or (while the cycle's updates
@@ -78,12 +86,7 @@ def clearing_a_flag_keeps_the_frontier(D):
 
     F(k = 0) at (p, c), slot j of cur filled  ==>  F(k = 0) at (p, c) after
     """
-    m = Map(D)
-    p, e, j = D.int32("p"), D.int32("e"), D.int32("j")
-    c = neighbour(m, p, e)
-    s = Buffers(D)
-    pot = potentials(D)
-    dropped = z3.Bool("dropped")
+    m, p, c, s, pot, dropped, j = pair_state(D, "j")
     x = s.slots["cur"][j]
     after = s.copy(pending=z3.Store(s.pending, x, False))
     pre = all_of(D, m.well_formed(), D.ge(j, 0), D.lt(j, s.fill["cur"]), at_slot(D, s, "cur", j),
@@ -126,12 +129,7 @@ def update_and_its_pushes_keep_the_frontier(D):
     ==>  F(k + 1) at (p, c) after the write and the pushes (``dropped`` set by a push refused
     for want of room)
     """
-    m = Map(D)
-    p, e, k = D.int32("p"), D.int32("e"), D.int32("k")
-    c = neighbour(m, p, e)
-    s = Buffers(D)
-    pot = potentials(D)
-    dropped = z3.Bool("dropped")
+    m, p, c, s, pot, dropped, k = pair_state(D, "k")
     n = s.slots["cur"][k]
     nb = m.neighbours(n)
     new, changed = K.cell_update(D, pot[n], *(pot[j] for j in nb), m.cost_int(n), D.cost_as_f32(m.cost[n]))
