@@ -825,7 +825,7 @@ def test_golden_files_recorded_from_arm64_replay_on_the_spec_in_its_arithmetic(t
     assert main(["suite", "record", str(ours), "--target", "aarch64", "--overwrite", "--quiet"]) == 0
     pairs = [(d / f"golden_{m}.npz", suite / d.relative_to(ours) / f"golden_{m}.npz")
              for d in discover(ours) for m in MODES]
-    assert len(pairs) == 26 and [compare_golden_files(a, b) for a, b in pairs] == [[]] * 26
+    assert len(pairs) == 28 and [compare_golden_files(a, b) for a, b in pairs] == [[]] * 28
     assert main(["suite", "record", str(ours), "--target", "aarch64", "--oracle", oracle, "--overwrite"]) == 2
 
 

@@ -80,7 +80,8 @@ def _push(st: PropagationState, buf: list, n: int) -> None:
     admitted, dropped, st.pending[j] = K.push(D, n, ns, st.pending[j], st.costs[j], len(buf), st.capacity)
     if admitted:
         buf.append(n)
-    st.dropped += dropped
+    elif dropped:  # admitted but for the full buffer (PRIORITYBUFSIZE)
+        st.dropped += 1
 
 
 def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
