@@ -30,6 +30,8 @@ buffer), and the end of the cycle (``kernels.end_of_cycle``: the fills, the buff
 The chain is the data of :data:`navfn_smt.proofs.BuffersInductive`.
 """
 
+import copy
+
 import z3
 
 from navfn_smt.proofs import BuffersInductive, ReachedAndBufferedInductive
@@ -44,25 +46,27 @@ STATED = dict(expect={"real": "proved", "fp32": "proved", "fp32@x86-64-v3": "pro
               arrays=True)
 
 
+def cell_sort(D):
+    """The sort of a cell or slot number: the domain's int (32-bit bit-vector, or integer)."""
+    return D.int32("i_sort_probe").sort()
+
+
 class Buffers:
     """Propagation's flags and buffers, with the ghost positions, in the domain ``D``."""
 
-    def __init__(self, D, tag=""):
+    def __init__(self, D):
         self.D = D
-        i = D.int32("i_sort_probe")
-        self.INT = i.sort()
-        self.pending = z3.Array(f"pending{tag}", self.INT, z3.BoolSort())
-        self.slots = {b: z3.Array(f"slots_{b}{tag}", self.INT, self.INT) for b in BUFFERS}
-        self.fill = {b: D.int32(f"fill_{b}{tag}") for b in BUFFERS}
-        self.inside = {b: z3.Array(f"inside_{b}{tag}", self.INT, z3.BoolSort()) for b in BUFFERS}
-        self.slot_of = {b: z3.Array(f"slot_of_{b}{tag}", self.INT, self.INT) for b in BUFFERS}
+        cell = cell_sort(D)
+        self.pending = z3.Array("pending", cell, z3.BoolSort())
+        self.slots = {b: z3.Array(f"slots_{b}", cell, cell) for b in BUFFERS}
+        self.fill = {b: D.int32(f"fill_{b}") for b in BUFFERS}
+        self.inside = {b: z3.Array(f"inside_{b}", cell, z3.BoolSort()) for b in BUFFERS}
+        self.slot_of = {b: z3.Array(f"slot_of_{b}", cell, cell) for b in BUFFERS}
 
     def copy(self, **changes):
         """The same state with some arrays or fills replaced."""
-        new = object.__new__(Buffers)
-        new.__dict__.update(self.__dict__)
-        for k, v in changes.items():
-            setattr(new, k, v)
+        new = copy.copy(self)
+        new.__dict__.update(changes)
         return new
 
 
@@ -72,9 +76,8 @@ class Map:
     def __init__(self, D):
         self.D = D
         self.ns, self.nx, self.g = D.int32("ns"), D.int32("nx"), D.int32("goal")
-        probe = D.int32("i_sort_probe")
-        self.cost = z3.Array("cost", probe.sort(), D.cost("cost_sort").sort())
-        self.comp = z3.Array("component", probe.sort(), z3.BoolSort())
+        self.cost = z3.Array("cost", cell_sort(D), D.cost("cost_sort").sort())
+        self.comp = z3.Array("component", cell_sort(D), z3.BoolSort())
 
     def cost_int(self, q):
         return self.D.cost_int(self.cost[q])
@@ -82,6 +85,11 @@ class Map:
     def neighbours(self, q):
         """``n+1, n-1, n-nx, n+nx``: the order of initCost's pushes."""
         return q + 1, q - 1, q - self.nx, q + self.nx
+
+    def neighbour(self, q, e):
+        """The 4-neighbour of ``q`` in direction ``e`` (0..3, as :meth:`neighbours`)."""
+        nb = self.neighbours(q)
+        return z3.If(e == 0, nb[0], z3.If(e == 1, nb[1], z3.If(e == 2, nb[2], nb[3])))
 
     def passable(self, q):
         return K.is_passable(self.D, self.cost_int(q))
@@ -93,7 +101,6 @@ class Map:
     def closed_at(self, q):
         """The component's closure, at cell ``q``: a passable 4-neighbour of the goal or of a
         cell of the component is in it."""
-        D = self.D
         near_goal = z3.Or([q == m for m in self.neighbours(self.g)])
         beside = z3.Or([self.comp[m] for m in self.neighbours(q)])
         return z3.Implies(z3.And(self.passable(q), z3.Or(near_goal, beside)), self.comp[q])
@@ -167,7 +174,7 @@ def swapped(D, m: Map, s: Buffers) -> Buffers:
     """The state after the swap at a cycle's end (``kernels.end_of_cycle``: the fills, and the
     buffers' roles as the C++'s pointer swaps give them)."""
     drained, fill_cur, fill_over, _ = K.end_of_cycle(D, s.fill["nxt"], s.fill["over"], D.f32("curT"), D.f32("inc"))
-    nothing = z3.K(m.cost.domain(), False)
+    nothing = z3.K(cell_sort(D), False)
     role = {"cur": lambda a: z3.If(drained, a["over"], a["nxt"]),
             "nxt": lambda a: a["cur"],
             "over": lambda a: z3.If(drained, a["nxt"], a["over"])}
@@ -175,6 +182,18 @@ def swapped(D, m: Map, s: Buffers) -> Buffers:
                    # the ghost: a buffer left behind empty holds no cell
                    inside={"cur": role["cur"](s.inside), "nxt": nothing, "over": z3.If(drained, nothing, s.inside["over"])},
                    fill={"cur": fill_cur, "nxt": D.int32("zero_nxt"), "over": fill_over})
+
+
+def after_init_cost(D, m: Map):
+    """setupNavFn (no flag set, every buffer empty) then initCost's four ``push_cur`` of the
+    goal's neighbours: (the state, the fills' zeros to assume)."""
+    nothing = z3.K(cell_sort(D), False)
+    s = Buffers(D).copy(pending=nothing, fill={b: D.int32(f"zero_{b}") for b in BUFFERS},
+                        inside={b: nothing for b in BUFFERS})
+    zeros = [D.eq(s.fill[b], 0) for b in BUFFERS]
+    for n in m.neighbours(m.g):
+        s, _ = push(D, m, s, "cur", n, True)
+    return s, zeros
 
 
 # ------------------------------------------------------------------------------ the base case
@@ -189,12 +208,7 @@ def setup_puts_each_pending_cell_in_one_slot(D):
     """
     m = Map(D)
     q, i = D.int32("q"), D.int32("i")
-    empty = lambda v: z3.K(m.cost.domain(), v)  # noqa: E731
-    s = Buffers(D).copy(pending=empty(False), fill={b: D.int32(f"zero_{b}") for b in BUFFERS},
-                        inside={b: empty(False) for b in BUFFERS})
-    zeros = [D.eq(s.fill[b], 0) for b in BUFFERS]
-    for n in m.neighbours(m.g):
-        s, _ = push(D, m, s, "cur", n, True)
+    s, zeros = after_init_cost(D, m)
     closed = [m.closed_at(n) for n in m.neighbours(m.g)]
     pre = all_of(D, m.well_formed(), m.on_map(m.g), *zeros, *closed)
     return pre, invariant(D, m, s, [q], [i], during=False)
@@ -257,8 +271,7 @@ def push_keeps_each_pending_cell_in_one_slot(D):
     q, i, k, d = D.int32("q"), D.int32("i"), D.int32("k"), D.int32("direction")
     s = Buffers(D)
     n = s.slots["cur"][k]  # the updated cell
-    nbrs = m.neighbours(n)
-    pushed = z3.If(d == 0, nbrs[0], z3.If(d == 1, nbrs[1], z3.If(d == 2, nbrs[2], nbrs[3])))
+    pushed = m.neighbour(n, d)
     wanted = z3.Bool("wanted")
     low = K.to_low_buffer(D, D.f32("key"), D.f32("curT"))
     after, _ = push(D, m, s, (low, "nxt", "over"), pushed, wanted)
@@ -304,8 +317,7 @@ def reach(D, m: Map, s: Buffers, pot, q):
 
 def potentials(D):
     """The potential array, in the domain's float (its index the domain's int)."""
-    probe = D.int32("i_sort_probe")
-    return z3.Array("pot", probe.sort(), D.f32const(0.0).sort())
+    return z3.Array("pot", cell_sort(D), D.f32const(0.0).sort())
 
 
 @obligation(ReachedAndBufferedInductive, **STATED,
@@ -318,13 +330,9 @@ def setup_reaches_the_goal_alone_and_buffers_its_neighbours(D):
     """
     m = Map(D)
     q = D.int32("q")
-    empty = z3.K(m.cost.domain(), False)
-    s = Buffers(D).copy(pending=empty, fill={b: D.int32(f"zero_{b}") for b in BUFFERS},
-                        inside={b: empty for b in BUFFERS})
-    for n in m.neighbours(m.g):
-        s, _ = push(D, m, s, "cur", n, True)
-    pot = z3.Store(z3.K(m.cost.domain(), D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
-    pre = all_of(D, m.well_formed(), *(D.eq(D.int32(f"zero_{b}"), 0) for b in BUFFERS))
+    s, zeros = after_init_cost(D, m)
+    pot = z3.Store(z3.K(cell_sort(D), D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
+    pre = all_of(D, m.well_formed(), *zeros)
     return pre, reach(D, m, s, pot, q)
 
 
@@ -365,8 +373,7 @@ def push_buffers_only_a_neighbour_of_a_reached_cell(D):
     q, n, d = D.int32("q"), D.int32("n"), D.int32("direction")
     s = Buffers(D)
     pot = potentials(D)
-    nbrs = m.neighbours(n)
-    pushed = z3.If(d == 0, nbrs[0], z3.If(d == 1, nbrs[1], z3.If(d == 2, nbrs[2], nbrs[3])))
+    pushed = m.neighbour(n, d)
     low = K.to_low_buffer(D, D.f32("key"), D.f32("curT"))
     after, _ = push(D, m, s, (low, "nxt", "over"), pushed, z3.Bool("wanted"))
     pre = all_of(D, m.well_formed(), Reached(D, pot[n]), reach(D, m, s, pot, q))

@@ -23,7 +23,8 @@ chain is the data of :data:`navfn_smt.proofs.FrontierInductive`.
 import z3
 
 from navfn_smt.proofs import FrontierInductive
-from navfn_smt.proofs.buffers import BUFFERS, STATED, Buffers, Map, at_cell, at_slot, fills, potentials, push, swapped
+from navfn_smt.proofs.buffers import (STATED, Buffers, Map, after_init_cost, at_cell, at_slot, cell_sort, fills,
+                                      potentials, push, swapped)
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
@@ -32,18 +33,12 @@ from navfn_smt.proofs.fix import KEY_BOUND  # a push key: a potential below POT_
 from navfn_smt.spec.fix import POT_BOUND
 
 
-def neighbour(m, p, e):
-    """The 4-neighbour of ``p`` in direction ``e`` (0..3: right, left, up, down)."""
-    nb = m.neighbours(p)
-    return z3.If(e == 0, nb[0], z3.If(e == 1, nb[1], z3.If(e == 2, nb[2], nb[3])))
-
-
 def pair_state(D, slot: str):
     """The state an obligation of F is asked in: the map, an arbitrary cell p and its neighbour c
     in direction e, the buffers, the potentials, the ghost ``dropped``, and the slot ``slot``."""
     m = Map(D)
     p, e = D.int32("p"), D.int32("e")
-    return m, p, neighbour(m, p, e), Buffers(D), potentials(D), z3.Bool("dropped"), D.int32(slot)
+    return m, p, m.neighbour(p, e), Buffers(D), potentials(D), z3.Bool("dropped"), D.int32(slot)
 
 
 def frontier(D, m, s, pot, dropped, p, c, k=None):
@@ -66,16 +61,11 @@ def setup_leaves_no_unreached_neighbour_unbuffered(D):
     """
     m = Map(D)
     p, e = D.int32("p"), D.int32("e")
-    c = neighbour(m, p, e)
-    empty = z3.K(m.cost.domain(), False)
-    s = Buffers(D).copy(pending=empty, fill={b: D.int32(f"zero_{b}") for b in BUFFERS},
-                        inside={b: empty for b in BUFFERS})
-    dropped = False
-    for n in m.neighbours(m.g):
-        s, _ = push(D, m, s, "cur", n, True)
-    pot = z3.Store(z3.K(m.cost.domain(), D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
-    pre = all_of(D, m.well_formed(), m.on_map(m.g), *(D.eq(D.int32(f"zero_{b}"), 0) for b in BUFFERS))
-    return pre, frontier(D, m, s, pot, dropped, p, c)
+    c = m.neighbour(p, e)
+    s, zeros = after_init_cost(D, m)
+    pot = z3.Store(z3.K(cell_sort(D), D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
+    pre = all_of(D, m.well_formed(), m.on_map(m.g), *zeros)
+    return pre, frontier(D, m, s, pot, False, p, c)
 
 
 @obligation(FrontierInductive, **STATED, scope="one iteration of the loop clearing the current buffer's flags, "
@@ -104,7 +94,7 @@ def frontier_holds_as_the_updates_start_and_after_the_swap(D):
     """
     m = Map(D)
     p, e = D.int32("p"), D.int32("e")
-    c = neighbour(m, p, e)
+    c = m.neighbour(p, e)
     s = Buffers(D)
     pot = potentials(D)
     dropped = z3.Bool("dropped")
@@ -166,7 +156,7 @@ def empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one(D
     """
     m = Map(D)
     p, e = D.int32("p"), D.int32("e")
-    c = neighbour(m, p, e)
+    c = m.neighbour(p, e)
     s = Buffers(D)
     pot = potentials(D)
     pre = all_of(D, m.well_formed(), fills(D, s, False), D.eq(s.fill["cur"], 0), D.eq(s.fill["over"], 0),
