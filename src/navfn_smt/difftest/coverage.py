@@ -54,7 +54,7 @@ REASONS = {
     "if m < nx or m > ns - nx:":
         "gradCell runs only on the interpolation square of a cell whose eight neighbours are all "
         "reached, so none of the four cells is in the first or last row",
-    "if stc < nx or stc > ns - nx:":
+    "if code == _OUT_OF_BOUNDS:":
         "from an interior start, extraction moves only to reached cells (grid fallback) or by at most "
         "one cell from a cell whose eight neighbours are reached; the border rows are never reached",
     # propagation.py
@@ -74,7 +74,7 @@ REASONS = {
         "the probed cell is within one cell of an interior stc, never past the last cell",
     "return D.ite(D.lt(idx, 0), 0, idx)":
         "the probed cell is within one cell of an interior stc, never before the first cell",
-    "if stc - nx - 1 < 0 or stc + nx + 1 >= ns:":
+    "if code == EXIT_UNDEFINED:":
         "undefined behaviour of the C++ at three border cells; suite starts are interior cells",
 }
 

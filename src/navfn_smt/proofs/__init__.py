@@ -81,9 +81,7 @@ NoPathWithoutFinitePotential = Predicate(
     statement="From a start cell without a finite potential, calcPath returns no path.",
     applies="path extraction (calcPath) at an unreached start: its first iteration",
     base=("unreached_cell_stays_put",),
-    trusted=("an unreached start takes the grid-following fallback (a cell of the nine around it is "
-             "unreached)",
-             "when the fallback keeps the cell, calcPath returns 0 at once ('high potential')"),
+    lemmas=("calc_path_stops_at_once_at_an_unreached_start",),
 )
 
 Gradient = Predicate(
@@ -113,18 +111,17 @@ FinitePotentialPath = Predicate(
     base=("ValidPath.first_point_is_the_start", "NoPathWithoutFinitePotential.unreached_cell_stays_put"),
     lemmas=("Gradient.grad_differences_are_not_tiny", "stored_gradient_is_bounded", "interpolated_gradient_is_bounded",
             "step_keeps_offset_in_unit_box", "step_along_an_axis_moves_at_most_half",
-            "half_step_keeps_the_point_near_the_cell", "near_goal_probe_reads_a_neighbour"),
+            "half_step_keeps_the_point_near_the_cell", "near_goal_probe_reads_a_neighbour",
+            "grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero", "gradient_step_runs_only_among_nine_reached_cells",
+            "near_goal_exit_ends_at_the_goal_cell"),
     limits=("step_keeps_offset_in_unit_box_any_gradient",),
     whole=("next_point_stays_near_the_cell",),
     assumes=("interpolated_gradient_is_zero_or_not_tiny",),
-    trusted=("a fallback step moves to a cell with offset 0 and stops unless that cell is reached",
-             "a gradient step is taken only when the cell and its eight neighbours are all reached",
-             "the last point is the goal exactly (potential 0)",
-             "rounding is monotone (IEEE 754: each operation rounds its exact result, and rounding to nearest is "
+    trusted=("rounding is monotone (IEEE 754: each operation rounds its exact result, and rounding to nearest is "
              "monotone), so for hypotf(x, y) >= max(|x|, 2**-100) the move |x * (0.5f / hypotf)| is at most the "
              "move along the axis, |x * (0.5f / |x|)| (step_along_an_axis_moves_at_most_half), or for "
              "|x| < 2**-100 at most |x| * 2**99 <= 1/2; with half_step_keeps_the_point_near_the_cell this gives "
-             "next_point_stays_near_the_cell"),
+             "next_point_stays_near_the_cell",),
     open=("the interpolated gradient is exactly zero (calcPath then fails) or has a component of at least "
           "2**-100: a precondition of step_keeps_offset_in_unit_box and of the step bound, refuted for one step "
           "(interpolated_gradient_is_zero_or_not_tiny: a subnormal offset beside a cell with a zero gradient); "
@@ -139,9 +136,8 @@ ValidPath = Predicate(
               "a cell that is no obstacle (the goal excepted, where the path ends).",
     applies="path extraction (calcPath): the path NavFn hands to Nav2; the paper's ValidPath",
     base=("first_point_is_the_start",),
-    rests_on=("FinitePotentialPath", "PositionSafe"),
-    trusted=("FinitePotentialPath puts every point within 1/2 of a reached cell, and PositionSafe makes that "
-             "cell no obstacle unless it is the goal",),
+    lemmas=("point_near_a_reached_cell_is_near_a_passable_cell_or_the_goal",),
+    rests_on=("FinitePotentialPath", "PositionSafeAndProgressInductive"),
 )
 
 DescentPath = Predicate(
@@ -154,17 +150,12 @@ DescentPath = Predicate(
             "for every map size, within calcPath's budget n",
     lemmas=("descent_step_goes_strictly_lower", "Progress.update_keeps_a_lower_neighbour",
             "Monotone.update_never_raises"),
-    rests_on=("Progress", "PositionSafe"),
-    trusted=("the descent starts only from a reached start (potarr[start] < POT_HIGH), and stops at the goal",
-             "potentials strictly fall along the walk (descent_step_goes_strictly_lower), so no cell repeats and "
-             "the walk passes only reached cells: on a map with at most n - 1 passable cells besides the goal "
-             "(every map of up to 6 interior cells, whose n = 4*nx is at least 12) its guard npath < n - 1 never "
-             "fires",
-             "by Progress (under its bound 2**30) every reached cell but the goal has a strictly lower "
-             "4-neighbour, one of the 8 the step reads, so the walk stops only at the goal or at the budget",
-             "a reached cell other than the goal is no obstacle (PositionSafe), hence not on the border (setupNavFn "
-             "makes the border COST_OBS): its eight neighbours are inside potarr and its guard "
-             "stc <= nx || stc >= ns - nx - 1 never fires"),
+    rests_on=("DescentInductive", "Progress", "PositionSafe"),
+    trusted=("the count: the walk's cells are distinct (DescentInductive: each is strictly below every cell "
+             "before it) and reached, so passable or the goal, and calcPath's budget n holds them all on a map "
+             "with at most n - 1 passable cells besides the goal (every map of up to 6 interior cells, whose "
+             "n = 4*nx is at least 12); a counting (pigeonhole) step, which the quantifier-free obligations "
+             "over arrays cannot state",),
     open=("that every potential stays below 2**30 is a run-time condition (the largest finite potential of the "
           "run), not an obligation: a path of more than 2**30 / 253 = 4.2 million cells can exceed it",
           "that the walk fits in n points is a run-time condition: a descent longer than calcPath's budget "
@@ -210,13 +201,11 @@ FallbackPath = Predicate(
             "complete on such sizes by it",
     lemmas=("update_keeps_a_neighbour_below_its_floor", "fallback_step_moves_below_the_floor",
             "fallback_step_goes_strictly_lower", "update_raises_at_most_twice_its_cost",
-            "Monotone.update_never_raises"),
-    rests_on=("Progress", "PositionSafe"),
-    trusted=("every interior cell of such a map has a border cell among its eight neighbours, and a border cell is "
-             "lethal, never pushed (ObstacleFreeQueue) and never reached: calcPath's fallback test "
-             "(an unreached neighbour) holds at every cell it visits, so every step is the fallback, with offsets "
-             "0 and the nearest cell the current one",
-             "a reached cell n other than the goal has a 4-neighbour m with potarr[m] < (float)(int)potarr[n]: m is "
+            "Monotone.update_never_raises", "short_map_follows_the_grid_at_every_passable_cell",
+            "thin_map_follows_the_grid_at_every_passable_cell", "bound_tests_pass_at_a_reached_cell",
+            "FinitePotentialPath.grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero"),
+    rests_on=("Progress", "PositionSafeAndProgressInductive"),
+    trusted=(             "a reached cell n other than the goal has a 4-neighbour m with potarr[m] < (float)(int)potarr[n]: m is "
              "its lowest neighbour at its last update (update_keeps_a_neighbour_below_its_floor, below the bound), "
              "and m's potential only fell since (Monotone.update_never_raises); so the fallback moves "
              "(fallback_step_moves_below_the_floor) to a reached neighbour strictly lower than the cell "
@@ -224,8 +213,6 @@ FallbackPath = Predicate(
              "potentials strictly fall along the walk, so no cell repeats: from a start among k passable cells the "
              "walk meets a cell below COST_NEUTRAL (the goal, potential 0, at the latest) within k - 1 moves, "
              "inside calcPath's 4*nx iterations when k <= 4*nx",
-             "a cell the walk reaches is reached, so no obstacle (PositionSafe) and not on the border: no "
-             "out-of-bounds exit and no stop at an unreached cell",
              "the bound: the i-th cell to become reached (the goal first, potential 0) gets at most its reached "
              "neighbour's potential plus twice its cost (update_raises_at_most_twice_its_cost) and only falls "
              "after, so every finite potential is at most 506 * (k - 1): below 2**30 on every map of fewer than "
@@ -341,8 +328,24 @@ FrontierInductive = Predicate(
           "[COST_NEUTRAL, COST_OBS): run-time conditions, as for ConnectedStartReached and Progress",),
 )
 
+DescentInductive = Predicate(
+    "DescentInductive",
+    statement="From a reached start, every iteration of the fix's descent stops at the goal (with the path) or at "
+              "its budget, or writes the point of a cell that is no obstacle and moves to a reached 8-neighbour "
+              "strictly lower than it and than no cell visited before: never OUT_OF_BOUNDS, never ZERO_GRADIENT, "
+              "on a map of any size whose potentials satisfy PositionSafeAndProgressInductive.",
+    applies="the fix: calcPathDescent's loop (spec/fix.py: descent_iteration, the iteration descend runs), "
+            "stated over arrays with a ghost set of visited cells (proofs/descent.py): the descent's loop "
+            "invariant machine-checked (issue #39)",
+    base=("descent_begins_at_a_reached_start",),
+    lemmas=("descent_iteration_moves_strictly_down_or_stops_at_the_goal_or_the_budget",),
+    rests_on=("PositionSafeAndProgressInductive",),
+    open=("every potential below 2**30 in float32: the run-time condition of PositionSafeAndProgressInductive",),
+)
+
 # in the order the invariants page lists them: propagation, then path extraction, then the fix
 PREDICATES = (PositionSafe, Monotone, Progress, ObstacleFreeQueue, PendingMatchesBuffers,
               NoPathWithoutFinitePotential, Gradient, FinitePotentialPath, ValidPath, FallbackPath, DescentPath,
               ConnectedStartReached, ReachedWithinComponent, QueuedStartReached, PositionSafeAndProgressInductive,
-              BuffersInductive, ReachedAndBufferedInductive, FrontierInductive)
+              BuffersInductive, ReachedAndBufferedInductive, FrontierInductive,
+              DescentInductive)

@@ -42,11 +42,13 @@ CELL = z3.BitVecSort(32)  # a cell number: int in the C++
 class UnboundedMap:
     """The potential and cost arrays of a map of width ``W``, in the domain ``D``."""
 
-    def __init__(self, D):
+    def __init__(self, D, cell=CELL):
+        """``cell``: the sort of a cell number (32-bit by default; path extraction's proofs take the
+        domain's int, as the spec's extraction functions compute with it)."""
         self.D = D
-        self.pot = z3.Array("pot", CELL, D.f32const(0.0).sort())
-        self.cost = z3.Array("cost", CELL, D.cost("cost_sort").sort())  # the domain's cost sort
-        self.W, self.g = z3.BitVec("W", 32), z3.BitVec("g", 32)
+        self.pot = z3.Array("pot", cell, D.f32const(0.0).sort())
+        self.cost = z3.Array("cost", cell, D.cost("cost_sort").sort())  # the domain's cost sort
+        self.W, self.g = z3.Const("W", cell), z3.Const("g", cell)
 
     def neighbours(self, i):
         """``n-1, n+1, n-nx, n+nx``: the l, r, u, d of updateCell."""

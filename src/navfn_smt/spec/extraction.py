@@ -38,6 +38,9 @@ def exit_code(e: ExtractionExit) -> int:
     return EXIT_CODES.index(e)
 
 
+_NEAR_GOAL, _OUT_OF_BOUNDS = exit_code(ExtractionExit.NEAR_GOAL), exit_code(ExtractionExit.OUT_OF_BOUNDS)
+
+
 def exit_name(code: int) -> str:
     """The exit an int stands for, by its value (``"near_goal"``, ...), or ``"undefined"``."""
     return EXIT_CODES[code].value if 0 <= code < EXIT_UNDEFINED else "undefined"
@@ -70,6 +73,49 @@ def ring_of_eight(stc: int, nx: int) -> tuple[int, ...]:
     """The 8 neighbours of cell ``stc`` in the order calcPath's grid fallback reads them (and the
     fix's ``calcPathDescent``): up-left, up, up-right, left, right, down-left, down, down-right."""
     return (stc - nx - 1, stc - nx, stc - nx + 1, stc - 1, stc + 1, stc + nx - 1, stc + nx, stc + nx + 1)
+
+
+ITERATION_GOES_ON = -1  # iteration_test's code when calcPath writes the point and steps
+
+
+def iteration_test(D, read, stc, dx, dy, nx, ns):
+    """calcPath's tests at the top of an iteration, before it writes a point: the exit's
+    :func:`exit_code` (``NEAR_GOAL``: the near-goal probe reads a potential below
+    COST_NEUTRAL; ``OUT_OF_BOUNDS``: ``stc`` in the first or last row), :data:`EXIT_UNDEFINED`
+    (the ring would be read outside potarr) or :data:`ITERATION_GOES_ON`.  ``read(i)`` is
+    ``potarr[i]``; cells are the domain's ints (concrete, or over an SMT array in
+    ``proofs/extraction_steps.py``)."""
+    near = K.nearest_cell(D, stc, dx, dy, nx, ns)
+    undefined = D.or_(D.lt(stc - nx - 1, 0), D.ge(stc + nx + 1, ns))
+    code = D.ite(undefined, EXIT_UNDEFINED, ITERATION_GOES_ON)
+    code = D.ite(D.or_(D.lt(stc, nx), D.gt(stc, ns - nx)), _OUT_OF_BOUNDS, code)
+    return D.ite(K.near_goal(D, read(near)), _NEAR_GOAL, code)
+
+
+def follows_the_grid(D, read, stc, nx, oscillation):
+    """calcPath's fallback test: the path oscillates, or ``stc`` or one of its 8 is unreached."""
+    test = D.or_(oscillation, K.unreached(D, read(stc)))
+    for m in ring_of_eight(stc, nx):
+        test = D.or_(test, K.unreached(D, read(m)))
+    return test
+
+
+def grid_step(D, read, stc, nx):
+    """calcPath's grid-following step: ``(next cell, dx, dy, stops)``.  The next cell is the
+    one :func:`~.kernels.lowest_of_eight` picks (``stc`` when none), the offsets become 0, and
+    calcPath stops (``HIGH_POTENTIAL``) when the next cell is unreached."""
+    ring = ring_of_eight(stc, nx)
+    best = K.lowest_of_eight(D, read(stc), [read(m) for m in ring])
+    nxt = stc
+    for k, m in enumerate(ring):
+        nxt = D.ite(D.eq(best, k), m, nxt)
+    zero = D.f32const(0.0)
+    return nxt, zero, zero, K.unreached(D, read(nxt))
+
+
+def goal_point(D, goal):
+    """The point calcPath appends at the near-goal exit: the goal cell, int converted to float."""
+    return D.int_to_f32(goal[0]), D.int_to_f32(goal[1])
 
 
 def calc_path(
@@ -112,14 +158,15 @@ def calc_path(
     for i in range(n):
         if watch is not None:
             watch.iteration(i, stc, dx, dy, xs, ys)
-        near = K.nearest_cell(D, stc, dx, dy, nx, ns)
-        if K.near_goal(D, pot[near]):
-            xs.append(D.int_to_f32(goal[0]))
-            ys.append(D.int_to_f32(goal[1]))
+        code = iteration_test(D, pot.__getitem__, stc, dx, dy, nx, ns)
+        if code == _NEAR_GOAL:
+            gx, gy = goal_point(D, goal)
+            xs.append(gx)
+            ys.append(gy)
             return Extraction(list(zip(xs, ys)), ExtractionExit.NEAR_GOAL, len(xs), stc)
-        if stc < nx or stc > ns - nx:
+        if code == _OUT_OF_BOUNDS:
             return Extraction([], ExtractionExit.OUT_OF_BOUNDS, len(xs), stc)
-        if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
+        if code == EXIT_UNDEFINED:
             # (0, 1), (nx-1, ny-2) and (0, ny-1) pass the bound test, but their eight-cell
             # ring reaches one cell outside potarr
             raise UndefinedBehaviour(
@@ -129,16 +176,11 @@ def calc_path(
         xs.append(px)
         ys.append(py)
         oscillation = len(xs) > 2 and xs[-1] == xs[-3] and ys[-1] == ys[-3]
-        ring = ring_of_eight(stc, nx)
-        if oscillation or K.unreached(D, pot[stc]) or any(K.unreached(D, pot[m]) for m in ring):
+        if follows_the_grid(D, pot.__getitem__, stc, nx, oscillation):
             if watch is not None:
                 watch.fallback(i, oscillation)
-            best = K.lowest_of_eight(D, pot[stc], [pot[m] for m in ring])
-            if best >= 0:
-                stc = ring[best]
-            dx = D.f32const(0.0)
-            dy = D.f32const(0.0)
-            if K.unreached(D, pot[stc]):
+            stc, dx, dy, stops = grid_step(D, pot.__getitem__, stc, nx)
+            if stops:
                 return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs), stc)
         else:
             down = stc + nx

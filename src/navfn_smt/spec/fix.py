@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from . import kernels as K
-from .extraction import Extraction, ExtractionExit, ring_of_eight
+from .extraction import EXIT_CODES, Extraction, ExtractionExit, exit_code, ring_of_eight
 from .constants import POT_HIGH
 from .numeric import CONCRETE as D
 from .propagation import PropagationState, TraceHook, propagate
@@ -84,11 +84,36 @@ def propagate_on(st: PropagationState, start: tuple[int, int], goal: tuple[int, 
 
 
 descent_ring = ring_of_eight  # calcPathDescent reads the ring of calcPath's grid fallback
+DESCENT_GOES_ON = -1  # descent_iteration's code when the walk writes a point and moves on
+_EXHAUSTED, _NEAR_GOAL, _OUT_OF_BOUNDS, _ZERO_GRADIENT = (
+    exit_code(e) for e in (ExtractionExit.EXHAUSTED, ExtractionExit.NEAR_GOAL, ExtractionExit.OUT_OF_BOUNDS,
+                           ExtractionExit.ZERO_GRADIENT))
+
+
+def descent_iteration(D, read, stc, points, n, nx, ns, goal_cell):
+    """One pass of ``calcPathDescent``'s loop at cell ``stc`` with ``points`` points written:
+    ``(code, next cell)``, the code an exit's :func:`~.extraction.exit_code` or
+    :data:`DESCENT_GOES_ON` (write the point of ``stc``, go on at the next cell).  ``read(i)`` is
+    ``potarr[i]``.  The tests, in the C++ order: no room for a point (``EXHAUSTED``), the goal
+    (``NEAR_GOAL``), a ring read leaving the array (``OUT_OF_BOUNDS``), no lower one of the 8
+    (``ZERO_GRADIENT``); the step is :func:`~.kernels.lowest_neighbour` (float comparisons).
+    Cells are the domain's ints, so the same function runs on a concrete potential and, over an
+    SMT array, in ``proofs/descent.py``; a ring read the bounds test refuses is never used."""
+    ring = descent_ring(stc, nx)
+    best = K.lowest_neighbour(D, read(stc), [read(m) for m in ring])
+    nxt = stc
+    for k, m in enumerate(ring):
+        nxt = D.ite(D.eq(best, k), m, nxt)
+    outside = D.or_(D.le(stc, nx), D.ge(stc, ns - nx - 1))
+    code = D.ite(D.lt(best, 0), _ZERO_GRADIENT, DESCENT_GOES_ON)
+    code = D.ite(outside, _OUT_OF_BOUNDS, code)
+    code = D.ite(D.eq(stc, goal_cell), _NEAR_GOAL, code)
+    return D.ite(D.ge(points, n), _EXHAUSTED, code), nxt
 
 
 def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int) -> Extraction:
     """``calcPathDescent(n)``: the cells from the start down the potential to the goal, then the
-    goal, at most ``n`` points.
+    goal, at most ``n`` points (:func:`descent_iteration` until it stops).
 
     No path (exit ``HIGH_POTENTIAL``) from an unreached start; exit ``EXHAUSTED`` when the goal
     is not reached within ``n`` points; exits ``ZERO_GRADIENT`` at a cell with no lower neighbour
@@ -102,20 +127,19 @@ def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
         return Extraction([], ExtractionExit.HIGH_POTENTIAL, 0, stc)
     zero = D.f32const(0.0)
     points: list = []
+
+    def read(i: int):  # potarr[i]; a read outside the array is refused by the bounds test before it counts
+        return potential[i] if 0 <= i < ns else D.f32const(POT_HIGH)
+
     while True:
-        if len(points) >= n:  # no room for another point: the budget is spent
-            return Extraction([], ExtractionExit.EXHAUSTED, len(points), stc)
-        if stc == goal_cell:
+        code, nxt = descent_iteration(D, read, stc, len(points), n, nx, ns, goal_cell)
+        if code == _NEAR_GOAL:
             points.append((D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
             return Extraction(points, ExtractionExit.NEAR_GOAL, len(points), stc)
-        if stc <= nx or stc >= ns - nx - 1:  # a ring read would leave the array: never under PositionSafe
-            return Extraction([], ExtractionExit.OUT_OF_BOUNDS, len(points), stc)
+        if code != DESCENT_GOES_ON:
+            return Extraction([], EXIT_CODES[code], len(points), stc)
         points.append(K.path_point(D, stc, nx, zero, zero))
-        ring = descent_ring(stc, nx)
-        best = K.lowest_neighbour(D, potential[stc], [potential[m] for m in ring])
-        if best < 0:
-            return Extraction([], ExtractionExit.ZERO_GRADIENT, len(points), stc)
-        stc = ring[best]
+        stc = nxt
 
 
 def with_descent(res, start, goal, n: int):
