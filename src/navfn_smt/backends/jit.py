@@ -15,6 +15,8 @@ import numpy as np
 
 from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
+from ..spec import fix as F
+from ..spec import propagation as P
 from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
 from ..spec.planner import path_cycle_limit
 from .numba_domain import jit, jit_inline, numba_domain
@@ -41,6 +43,11 @@ CUR, NXT, OVER = range(3)
 # watched cells newly reached
 CYCLE, CYCLES, UPDATES, DROPPED, TRACE_LEN, NEWLY = range(6)
 NCOUNTERS = 6
+
+# the loop's tests, the spec's functions compiled (the obligations of proofs/loop.py are about them)
+cycle_runs = jit_inline(P.cycle_runs)
+call_ends_at_the_start = jit_inline(P.call_ends_at_the_start)
+calls_again = jit_inline(F.calls_again)
 
 
 @jit_inline
@@ -110,7 +117,7 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
     stop = cycle + budget
     finished = False
     while True:
-        if cycle >= cycles or (fill[cur] == 0 and fill[nxt] == 0):
+        if not cycle_runs(D, cycle, cycles, fill[cur], fill[nxt]):
             finished = True
             break
         if cycle >= stop:
@@ -193,7 +200,7 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
         fill[cur] = fill_cur
         fill[nxt] = 0
         fill[over] = fill_over
-        if at_start and D.lt(pot[start_cell], high):
+        if call_ends_at_the_start(D, at_start, pot[start_cell]):
             finished = True
             break
         cycle += 1
@@ -248,7 +255,7 @@ def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, 
     start_cell = sy * nx + sx
     no_watch = pb[0, :0]
     calls = 0
-    if D.ge(pot[start_cell], high) and (fill[role[CUR]] > 0 or fill[role[NXT]] > 0):
+    if calls_again(D, pot[start_cell], fill[role[CUR]], fill[role[NXT]]):
         if astar:
             curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), curt[0])
         counters[CYCLE] = 0

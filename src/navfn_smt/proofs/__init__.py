@@ -171,17 +171,16 @@ ConnectedStartReached = Predicate(
     applies="the fix: calcNavFnAstar / calcNavFnDijkstra call propNavFn* once more, for nx*ny cycles, when the "
             "start is unreached and a buffer holds cells (spec/fix.py: propagate_on), for every map size",
     lemmas=("update_wants_an_unreached_neighbour", "unreached_cell_beside_a_reached_one_gets_reached",
-            "update_lowers_when_it_changes", "Monotone.update_never_raises"),
+            "update_lowers_when_it_changes", "Monotone.update_never_raises",
+            "propagation_stops_only_at_a_reached_start_with_empty_buffers_or_its_cycles_spent"),
     # the induction over the run: the frontier (FrontierInductive) and, under it, the buffers
     rests_on=("PendingMatchesBuffers", "FrontierInductive"),
-    trusted=("the fix's second call stops only with the start reached, both buffers empty or its cap spent; a "
-             "buffered cell leaves the buffers only by its update (between cycles the overflow buffer is empty "
-             "whenever the current one is: the swap pulls it in)",
-             "the component is the least set of cells holding the goal's passable 4-neighbours and closed under "
+    trusted=("the component is the least set of cells holding the goal's passable 4-neighbours and closed under "
              "passable 4-neighbours; when the buffers are empty and no push was dropped, the reached cells below "
              "the bound hold the goal (potential 0) and are so closed "
              "(empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one), so they include the "
-             "component and the start, in it, is reached"),
+             "component and the start, in it, is reached (an induction over the chain of cells from the goal to the "
+             "start, which the quantifier-free obligations over arrays cannot state)",),
     open=("no push dropped for want of room (PRIORITYBUFSIZE): a run-time condition the spec counts "
           "(PlanResult.dropped) and the C++ does not report; overflow maps break it (docs/overflow.md)",
           "every potential below 2**30: a run-time condition, as for DescentPath",
@@ -203,14 +202,15 @@ FallbackPath = Predicate(
             "fallback_step_goes_strictly_lower", "update_raises_at_most_twice_its_cost",
             "Monotone.update_never_raises", "short_map_follows_the_grid_at_every_passable_cell",
             "thin_map_follows_the_grid_at_every_passable_cell", "bound_tests_pass_at_a_reached_cell",
-            "FinitePotentialPath.grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero"),
+            "FinitePotentialPath.grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero",
+            "setup_gives_every_reached_cell_a_neighbour_below_its_floor",
+            "update_keeps_a_neighbour_below_the_floor_at_the_updated_cell",
+            "update_keeps_a_neighbour_below_the_floor_at_every_other_cell"),
     rests_on=("Progress", "PositionSafeAndProgressInductive"),
-    trusted=(             "a reached cell n other than the goal has a 4-neighbour m with potarr[m] < (float)(int)potarr[n]: m is "
-             "its lowest neighbour at its last update (update_keeps_a_neighbour_below_its_floor, below the bound), "
-             "and m's potential only fell since (Monotone.update_never_raises); so the fallback moves "
-             "(fallback_step_moves_below_the_floor) to a reached neighbour strictly lower than the cell "
-             "(fallback_step_goes_strictly_lower)",
-             "potentials strictly fall along the walk, so no cell repeats: from a start among k passable cells the "
+    trusted=("potentials strictly fall along the walk (each cell but the goal has a 4-neighbour below its "
+             "potential's truncation: setup_gives_every_reached_cell_a_neighbour_below_its_floor and the two "
+             "update_keeps_a_neighbour_below_the_floor_* obligations, where the fallback moves: "
+             "fallback_step_moves_below_the_floor), so no cell repeats: from a start among k passable cells the "
              "walk meets a cell below COST_NEUTRAL (the goal, potential 0, at the latest) within k - 1 moves, "
              "inside calcPath's 4*nx iterations when k <= 4*nx",
              "the bound: the i-th cell to become reached (the goal first, potential 0) gets at most its reached "
@@ -246,14 +246,13 @@ QueuedStartReached = Predicate(
     applies="propagation, for every map size; the bounded checks (navfn-smt check) stop flipping a control path's "
             "branches once it has queued the start so, when start-reached is explored alone: every path sharing "
             "that prefix reaches the start",
-    lemmas=("queued_cell_gets_reached", "Monotone.update_never_raises"),
+    lemmas=("queued_cell_gets_reached", "Monotone.update_never_raises", "next_buffer_becomes_current_and_its_cycle_runs"),
     # a buffered cell has a reached 4-neighbour (below the bound: the run-time condition below)
     rests_on=("ReachedAndBufferedInductive",),
-    trusted=("a cycle that runs updates every cell of its current buffer, then ends the call if the start is "
-             "reached: the start, unreached and passable (only passable cells are pushed), is then reached "
-             "(queued_cell_gets_reached) and stays reached (potentials only fall)",
-             "a cycle whose next buffer is not empty makes it the following cycle's current buffer, and that cycle "
-             "runs when the call has cycles left and the start is not yet reached",
+    trusted=("a cycle that runs updates every cell of its current buffer (the loop over its curPe cells, as the "
+             "spec and the JIT run it, tied to the C++ by the difftest's traces): the start, unreached and passable "
+             "(only passable cells are pushed), is then reached (queued_cell_gets_reached) and stays reached "
+             "(potentials only fall)",
              "the queueing is a fact of the control path up to the push (or the cycle's start): every run with "
              "the same branches that far queues the start the same way",
              "tests/test_check_bounded.py: on every saved map whose connected start stays unreached the run never "

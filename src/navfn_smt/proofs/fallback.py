@@ -16,12 +16,16 @@ small map far below it.  The chain, its trusted steps and what it rests on are s
 """
 
 from navfn_smt.proofs import FallbackPath
+from navfn_smt.proofs.induction import UnboundedMap, _base, _step
 from navfn_smt.smt.obligation import Bound, obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of, any_of, minimum
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import POT_HIGH
 
 INT_RANGE = 2.0**31  # (int) of a float potential is the truncation below this
+# the array inductions: proved in every semantics; a model of a negation is over arrays
+FLOOR = dict(expect={"real": "proved", "fp32": "proved", "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
+             arrays=True)
 
 
 def _update(D):
@@ -97,3 +101,51 @@ def fallback_step_moves_below_the_floor(D):
     pre, centre, ring, best = _fallback_step(D)
     floor = D.int_to_f32(D.to_int32(centre))
     return pre, any_of(D, D.not_(any_of(D, *(D.lt(p, floor) for p in ring))), D.ge(best, 0))
+
+
+# ---------------------------------------------------------------------------------------------
+# The walk's invariant over the whole run: a lower neighbour below the truncation, at every cell
+# ---------------------------------------------------------------------------------------------
+class FloorMap(UnboundedMap):
+    """PositionSafeAndProgressInductive's map and invariant, with Progress strengthened as the
+    fallback needs it: a reached cell other than the goal has a 4-neighbour strictly below the
+    truncation of its potential, ``(float)(int)potarr[n]`` (kernels.lowest_of_eight's ``minp``)."""
+
+    def below(self, p):
+        return self.D.int_to_f32(self.D.to_int32(p))
+
+
+@obligation(FallbackPath, scope="setupNavFn and initCost on a map of any width (32-bit cell numbers), any goal",
+            **FLOOR)
+def setup_gives_every_reached_cell_a_neighbour_below_its_floor(D):
+    """After setupNavFn and initCost the strengthened invariant holds at every cell (only the goal
+    is reached).
+
+    costs as setCostmap makes them  ==>  the invariant of FloorMap at any cell n, pot[g] = 0
+    """
+    return _base(D, FloorMap)
+
+
+@obligation(FallbackPath, scope="one updateCell at any cell of a map of any width (32-bit cell numbers), any "
+            "goal: the updated cell", slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"), **FLOOR)
+def update_keeps_a_neighbour_below_the_floor_at_the_updated_cell(D):
+    """One updateCell at any cell c keeps the strengthened invariant at c: a changed cell's lowest
+    neighbour is below its new potential's truncation (update_keeps_a_neighbour_below_its_floor,
+    here with the neighbours read from the array).
+
+    the invariant at c, its neighbours and the goal; in float32 the potential the update writes
+    below 2**30  ==>  after pot[c] := updateCell(c), the invariant at c and pot[g] = 0
+    """
+    return _step(D, "updated", FloorMap)
+
+
+@obligation(FallbackPath, scope="one updateCell at any cell of a map of any width (32-bit cell numbers), any "
+            "goal: every other cell", slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"), **FLOOR)
+def update_keeps_a_neighbour_below_the_floor_at_every_other_cell(D):
+    """One updateCell at c keeps the strengthened invariant at every other cell n: n's potential is
+    unchanged, and a lower neighbour that is c only went down.
+
+    the invariant at n, c, their neighbours and the goal; n != c  ==>  after the update, the
+    invariant at n and pot[g] = 0
+    """
+    return _step(D, "other", FloorMap)

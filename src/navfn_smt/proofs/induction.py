@@ -61,11 +61,16 @@ class UnboundedMap:
         """The cost at ``i`` is one setCostmap makes: 50..253 passable, 254 and up lethal."""
         return z3.Or(TranslatedCost(self.D, self.cost_int(i)), Lethal(self.D, self.cost_int(i)))
 
+    def below(self, p):
+        """What Progress asks of a lower neighbour of a cell of potential ``p``: the potential it
+        must be strictly below (``p`` itself; FallbackPath's stronger invariant takes its truncation)."""
+        return p
+
     def invariant(self, pot, i):
         """The invariant at cell ``i`` of the potential array ``pot``."""
         D = self.D
         p = pot[i]
-        lower = z3.Or([D.lt(pot[j], p) for j in self.neighbours(i)])
+        lower = z3.Or([D.lt(pot[j], self.below(p)) for j in self.neighbours(i)])
         parts = [ValidPotential(D, p), self.set_costmap_cost(i),
                  z3.Implies(z3.And(Reached(D, p), i != self.g), z3.And(z3.Not(Lethal(D, self.cost_int(i))), lower))]
         if D.name != "real":
@@ -86,17 +91,23 @@ def setup_and_init_cost_establish_the_invariant(D):
     costs as setCostmap makes them, the goal's passable or not
     ==>  pot = POT_HIGH everywhere but pot[g] = 0  satisfies the invariant at any cell n
     """
-    m = UnboundedMap(D)
+    return _base(D)
+
+
+def _base(D, kind=UnboundedMap):
+    """setupNavFn and initCost's potentials, the invariant of a map of class ``kind`` asked at a
+    cell n: (pre, claim)."""
+    m = kind(D)
     n = z3.BitVec("n", 32)
     pot = z3.Store(z3.K(CELL, D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
     costs = [m.set_costmap_cost(i) for i in (n, *m.neighbours(n))]
     return all_of(D, m.W != 0, *costs), z3.And(m.invariant(pot, n), m.goal_zero(pot))
 
 
-def _step(D, where):
+def _step(D, where, kind=UnboundedMap):
     """One updateCell at cell c, the claim asked at cell n (``where``: "updated", n = c; "other",
-    n != c): (pre, claim)."""
-    m = UnboundedMap(D)
+    n != c), on a map of class ``kind`` (its invariant): (pre, claim)."""
+    m = kind(D)
     n, c = z3.BitVec("n", 32), z3.BitVec("c", 32)
     new, changed = K.cell_update(D, m.pot[c], *(m.pot[j] for j in m.neighbours(c)), m.cost_int(c),
                                  D.cost_as_f32(m.cost[c]))

@@ -67,6 +67,12 @@ def reached(potential) -> bool:
     return bool(D.lt(D.f32const(float(potential)), D.f32const(POT_HIGH)))
 
 
+def calls_again(D, start_pot, fill_cur, fill_next):
+    """The fix's test after the first ``propNavFn*``: the start unreached (``potarr[startCell] >=
+    POT_HIGH``, float) and a buffer holding cells (``curPe > 0 || nextPe > 0``, ints)."""
+    return D.and_(K.unreached(D, start_pot), D.not_(D.and_(D.eq(fill_cur, 0), D.eq(fill_next, 0))))
+
+
 def propagate_on(st: PropagationState, start: tuple[int, int], goal: tuple[int, int], astar: bool, cycles: int,
                  at_start: bool = True, trace_hook: Optional[TraceHook] = None,
                  record_trace: bool = True) -> tuple[bool, int]:
@@ -76,7 +82,7 @@ def propagate_on(st: PropagationState, start: tuple[int, int], goal: tuple[int, 
     check_cycles(cycles)
     start_cell = start[1] * st.nx + start[0]
     done = propagate(st, start, goal, astar, cycles, at_start, trace_hook=trace_hook, record_trace=record_trace)
-    if K.unreached(D, st.potential[start_cell]) and (st.cur or st.nxt):
+    if calls_again(D, st.potential[start_cell], len(st.cur), len(st.nxt)):
         done = propagate(st, start, goal, astar, extra_cycles(st.nx, st.ny), at_start, trace_hook=trace_hook,
                          record_trace=record_trace)
         return done, 1

@@ -145,6 +145,18 @@ def _heuristic(ddx: int, ddy: int) -> float:
     return h
 
 
+def cycle_runs(D, cycle, cycles, fill_cur, fill_next):
+    """The test at the top of ``propNavFn*``'s loop: ``cycle < cycles`` (``for``) and not
+    ``curPe == 0 && nextPe == 0`` (the ``break``): ints."""
+    return D.and_(D.lt(cycle, cycles), D.not_(D.and_(D.eq(fill_cur, 0), D.eq(fill_next, 0))))
+
+
+def call_ends_at_the_start(D, check_start, start_pot):
+    """The test at a cycle's end, after the swap: ``if (potarr[startCell] < POT_HIGH) break;``
+    (``propNavFnAstar``; ``propNavFnDijkstra`` only when ``atStart``): a float comparison."""
+    return D.and_(check_start, D.lt(start_pot, D.f32const(POT_HIGH)))
+
+
 def propagate(
     st: PropagationState,
     start: tuple[int, int],
@@ -171,9 +183,7 @@ def propagate(
     inc = D.int_to_f32(pri_inc)
     check_start = astar or at_start
     cycle = 0
-    while cycle < cycles:
-        if not st.cur and not st.nxt:
-            break
+    while cycle_runs(D, cycle, cycles, len(st.cur), len(st.nxt)):
         cells = st.cur
         st.cycles += 1
         if record_trace:
@@ -191,7 +201,7 @@ def propagate(
         drained, fill_cur, fill_over, st.cur_t = K.end_of_cycle(D, len(st.nxt), len(st.over), st.cur_t, inc)
         cur, over = (st.over, st.nxt) if drained else (st.nxt, st.over)
         st.cur, st.nxt, st.over = cur[:fill_cur], [], over[:fill_over]
-        if check_start and D.lt(st.potential[start_cell], _POT_HIGH):
+        if call_ends_at_the_start(D, check_start, st.potential[start_cell]):
             break
         cycle += 1
     if astar:
