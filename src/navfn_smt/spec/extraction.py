@@ -84,7 +84,7 @@ def iteration_test(D, read, stc, dx, dy, nx, ns):
     COST_NEUTRAL; ``OUT_OF_BOUNDS``: ``stc`` in the first or last row), :data:`EXIT_UNDEFINED`
     (the ring would be read outside potarr) or :data:`ITERATION_GOES_ON`.  ``read(i)`` is
     ``potarr[i]``; cells are the domain's ints (concrete, or over an SMT array in
-    ``proofs/extraction_steps.py``)."""
+    ``proofs/calcpath.py``)."""
     near = K.nearest_cell(D, stc, dx, dy, nx, ns)
     undefined = D.or_(D.lt(stc - nx - 1, 0), D.ge(stc + nx + 1, ns))
     code = D.ite(undefined, EXIT_UNDEFINED, ITERATION_GOES_ON)
