@@ -94,7 +94,7 @@ Gradient = Predicate(
     trusted=("grad_is_unit_or_zero is decided by its split (navfn-smt split): nine sign cases whose cover is "
              "proved, the zero vector bit-precisely, every other part in the standard rounding-error model "
              "(IEEE 754 rounds each operation to within half an ulp, relative, when the result is normal, which "
-             "the same queries prove)",),
+             "the same queries prove); not machine-checked: no solver decides those parts bit-precisely",),
     open=("that every potential propagation produces is 0 or at least 1/2 (the precondition of "
           "grad_differences_are_not_tiny) is argued in gradient.py, not an obligation",
           "over the reals the chain is float32's: differences of real potentials can be arbitrarily small, and "
@@ -121,7 +121,8 @@ FinitePotentialPath = Predicate(
              "monotone), so for hypotf(x, y) >= max(|x|, 2**-100) the move |x * (0.5f / hypotf)| is at most the "
              "move along the axis, |x * (0.5f / |x|)| (step_along_an_axis_moves_at_most_half), or for "
              "|x| < 2**-100 at most |x| * 2**99 <= 1/2; with half_step_keeps_the_point_near_the_cell this gives "
-             "next_point_stays_near_the_cell",),
+             "next_point_stays_near_the_cell; not machine-checked: the monotonicity of float32 division and "
+             "multiplication in two free operands is left undecided by bitwuzla, cvc5 and z3 at 300 s",),
     open=("the interpolated gradient is exactly zero (calcPath then fails) or has a component of at least "
           "2**-100: a precondition of step_keeps_offset_in_unit_box and of the step bound, refuted for one step "
           "(interpolated_gradient_is_zero_or_not_tiny: a subnormal offset beside a cell with a zero gradient); "
@@ -212,11 +213,13 @@ FallbackPath = Predicate(
              "update_keeps_a_neighbour_below_the_floor_* obligations, where the fallback moves: "
              "fallback_step_moves_below_the_floor), so no cell repeats: from a start among k passable cells the "
              "walk meets a cell below COST_NEUTRAL (the goal, potential 0, at the latest) within k - 1 moves, "
-             "inside calcPath's 4*nx iterations when k <= 4*nx",
+             "inside calcPath's 4*nx iterations when k <= 4*nx; a counting (pigeonhole) step, "
+             "which the quantifier-free obligations over arrays cannot state",
              "the bound: the i-th cell to become reached (the goal first, potential 0) gets at most its reached "
              "neighbour's potential plus twice its cost (update_raises_at_most_twice_its_cost) and only falls "
              "after, so every finite potential is at most 506 * (k - 1): below 2**30 on every map of fewer than "
-             "two million passable cells"),
+             "two million passable cells; an induction over the order in which cells become reached, counting "
+             "them, which the quantifier-free obligations over arrays cannot state",),
 )
 
 ReachedWithinComponent = Predicate(
@@ -232,9 +235,12 @@ ReachedWithinComponent = Predicate(
     # current buffer) or reached
     rests_on=("BuffersInductive", "ReachedAndBufferedInductive"),
     trusted=("calcPath and the fix's descent read potentials and gradients, never costs, and a cell outside the "
-             "component has POT_HIGH in every layout",
+             "component has POT_HIGH in every layout (ReachedAndBufferedInductive); the first half is read off "
+             "the code (the iterations of spec/extraction.py and spec/fix.py take a reader of potentials only), not "
+             "checked by a solver",
              "tests/test_check_reductions.py runs every layout of the small sizes concretely: a layout and its "
-             "representative give the same potentials, exit and path"),
+             "representative give the same potentials, exit and path; tested, not proved: the reduction is about "
+             "every layout at once, which no obligation states",),
 )
 
 QueuedStartReached = Predicate(
@@ -252,12 +258,14 @@ QueuedStartReached = Predicate(
     trusted=("a cycle that runs updates every cell of its current buffer (the loop over its curPe cells, as the "
              "spec and the JIT run it, tied to the C++ by the difftest's traces): the start, unreached and passable "
              "(only passable cells are pushed), is then reached (queued_cell_gets_reached) and stays reached "
-             "(potentials only fall)",
+             "(potentials only fall); not machine-checked: no obligation models the loop index through a "
+             "symbolic fill",
              "the queueing is a fact of the control path up to the push (or the cycle's start): every run with "
-             "the same branches that far queues the start the same way",
+             "the same branches that far queues the start the same way; argued: the soundness of symbolic "
+             "execution (check/concolic.py), not an obligation",
              "tests/test_check_bounded.py: on every saved map whose connected start stays unreached the run never "
              "queues the start so, and on seeded maps of six sizes every run that does reaches it (the spec's "
-             "run)"),
+             "run); tested, not proved",),
     open=("every potential below 2**30: as for FallbackPath, true on maps of fewer than two million passable "
           "cells",),
 )
@@ -272,7 +280,8 @@ PositionSafeAndProgressInductive = Predicate(
     lemmas=("update_keeps_the_invariant_at_the_updated_cell", "update_keeps_the_invariant_at_every_other_cell"),
     trusted=("the base case's array is what setupNavFn and initCost write (spec/propagation.py's setup; the "
              "difftest compares the potentials every run ends with), and after initCost updateCell is the only "
-             "write to the potential array",),
+             "write to the potential array; read off the code's structure (which statements write the array), "
+             "not checked by a solver",),
     open=("in float32, that every potential an update writes stays below 2**30 is a run-time condition, as for "
           "Progress",),
 )
@@ -292,7 +301,8 @@ BuffersInductive = Predicate(
     trusted=("the loops change the flags and the buffers only by these steps, run as kernels.push, kernels."
              "end_of_cycle and the clearing loop by the spec and the JIT (spec/propagation.py, backends/jit.py), "
              "which the difftest ties to the C++, and push only inside an update that changed its cell (the "
-             "`if (pot < potarr[n])` block); the component's closure is assumed at the cells each step reads",),
+             "`if (pot < potarr[n])` block); the component's closure is assumed at the cells each step reads; the loops "
+             "themselves are read off the code, not stated over arrays",),
 )
 
 ReachedAndBufferedInductive = Predicate(

@@ -186,7 +186,7 @@ def markdown_chain(name: str, outcomes, known: dict) -> list:
                  for r in p["rests_on"]]
         lines += ["*Rests on:* " + ", ".join(rests) + ".", ""]
     if p["trusted"]:
-        lines += ["*Taken from the planner's control flow, not checked by a solver:*", ""]
+        lines += ["*Trusted: taken from the planner's control flow or from tests, not machine-checked (each says why):*", ""]
         lines += [f"- {t}" for t in p["trusted"]] + [""]
     lines.append("*Status:* " + "; ".join(
         f"{s} **{p['status'][s]['status']}**" + (f" ({not_proved(p['status'][s])})" if not_proved(p["status"][s]) else "")
