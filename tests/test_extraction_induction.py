@@ -63,8 +63,8 @@ def _runs_on_the_next_fill_only(D, cycle, cycles, fill_cur, fill_next):
     return D.and_(D.lt(cycle, cycles), D.not_(D.eq(fill_next, 0)))
 
 
-def _ends_at_pot_high(D, check_start, start_pot):
-    return D.and_(check_start, D.le(start_pot, D.f32const(1.0e10)))
+def _ends_at_pot_high(D, start_pot):
+    return D.le(start_pot, D.f32const(1.0e10))
 
 
 def _calls_again_on_the_next_fill_only(D, start_pot, fill_cur, fill_next):

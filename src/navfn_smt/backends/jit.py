@@ -200,7 +200,7 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
         fill[cur] = fill_cur
         fill[nxt] = 0
         fill[over] = fill_over
-        if call_ends_at_the_start(D, at_start, pot[start_cell]):
+        if at_start and call_ends_at_the_start(D, pot[start_cell]):
             finished = True
             break
         cycle += 1

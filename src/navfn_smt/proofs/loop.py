@@ -57,7 +57,7 @@ def propagation_stops_only_at_a_reached_start_with_empty_buffers_or_its_cycles_s
     reached = Reached(D, start_pot)
     claim = all_of(D,
                    any_of(D, P.cycle_runs(D, cycle, cycles, cur, nxt), D.ge(cycle, cycles), empty),
-                   any_of(D, D.not_(P.call_ends_at_the_start(D, check, start_pot)), reached),
+                   any_of(D, D.not_(D.and_(check, P.call_ends_at_the_start(D, start_pot))), reached),
                    any_of(D, F.calls_again(D, start_pot, cur, nxt), reached, empty))
     return all_of(D, pre, D.ge(cycle, 0), ValidPotential(D, start_pot)), claim
 
@@ -81,5 +81,5 @@ def next_buffer_becomes_current_and_its_cycle_runs(D):
                   D.lt(cycle + 1, cycles))
     runs = P.cycle_runs(D, cycle + 1, cycles, cur, 0)
     claim = all_of(D, D.not_(drained), D.eq(cur, fill_next), D.eq(over, fill_over),
-                   any_of(D, P.call_ends_at_the_start(D, check, start_pot), runs))
+                   any_of(D, D.and_(check, P.call_ends_at_the_start(D, start_pot)), runs))
     return pre, claim

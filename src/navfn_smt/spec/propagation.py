@@ -151,10 +151,11 @@ def cycle_runs(D, cycle, cycles, fill_cur, fill_next):
     return D.and_(D.lt(cycle, cycles), D.not_(D.and_(D.eq(fill_cur, 0), D.eq(fill_next, 0))))
 
 
-def call_ends_at_the_start(D, check_start, start_pot):
+def call_ends_at_the_start(D, start_pot):
     """The test at a cycle's end, after the swap: ``if (potarr[startCell] < POT_HIGH) break;``
-    (``propNavFnAstar``; ``propNavFnDijkstra`` only when ``atStart``): a float comparison."""
-    return D.and_(check_start, D.lt(start_pot, D.f32const(POT_HIGH)))
+    (``propNavFnAstar`` always; ``propNavFnDijkstra`` only when ``atStart``, which the loop tests
+    first): a float comparison."""
+    return D.lt(start_pot, D.f32const(POT_HIGH))
 
 
 def propagate(
@@ -201,7 +202,7 @@ def propagate(
         drained, fill_cur, fill_over, st.cur_t = K.end_of_cycle(D, len(st.nxt), len(st.over), st.cur_t, inc)
         cur, over = (st.over, st.nxt) if drained else (st.nxt, st.over)
         st.cur, st.nxt, st.over = cur[:fill_cur], [], over[:fill_over]
-        if call_ends_at_the_start(D, check_start, st.potential[start_cell]):
+        if check_start and call_ends_at_the_start(D, st.potential[start_cell]):
             break
         cycle += 1
     if astar:
