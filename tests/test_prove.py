@@ -53,10 +53,10 @@ def test_no_obligation_contradicts_what_is_known(proof_run):
             "FinitePotentialPath", "ValidPath", "NoPathWithoutFinitePotential", "Gradient"} <= props
     # every obligation in both semantics, but the slow queries the default run leaves to --all
     from navfn_smt.smt.obligation import load_obligations
-    from navfn_smt.smt.runner import default_proof_files
+    from navfn_smt.smt.runner import default_proof_files, wanted
 
     want = {(o.name, s) for o in load_obligations(default_proof_files()) for s in ("real", "fp32")
-            if s in o.expect and s not in o.slow}
+            if wanted(o, s, everything=False)}
     assert {(o["name"], o["semantics"]) for o in obs} == want
     assert "slow queries left to `navfn-smt prove --all`" in proof_run[1]
 

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..spec import kernels as K
-from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from ..spec import fix as F
+from ..spec import kernels as K
 from ..spec import propagation as P
+from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
 from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
 from ..spec.planner import path_cycle_limit
 from .numba_domain import jit, jit_inline, numba_domain

@@ -39,6 +39,15 @@ def _between_cycles(D):
     return pre, D.ite(first, pushed, cur), 0, D.ite(first, 0, over)
 
 
+def _end_of_cycle_test(D):
+    """The break at a cycle's end, as the loop runs it: ``(start_pot, ends)``, ``ends`` the start
+    test (``call_ends_at_the_start``) when the call checks the start (``check_start``: A*, or
+    Dijkstra with ``atStart``)."""
+    start_pot = D.f32("start_pot")
+    check = D.not_(D.eq(D.int32("check_start"), 0))
+    return start_pot, D.and_(check, P.call_ends_at_the_start(D, start_pot))
+
+
 @obligation(ConnectedStartReached, scope="the fills between any two cycles of propNavFn*, any cycle count, any "
             "start potential: every map size", **LOOP)
 def propagation_stops_only_at_a_reached_start_with_empty_buffers_or_its_cycles_spent(D):
@@ -51,13 +60,12 @@ def propagation_stops_only_at_a_reached_start_with_empty_buffers_or_its_cycles_s
     """
     pre, cur, nxt, over = _between_cycles(D)
     cycle, cycles = D.int32("cycle"), D.int32("cycles")
-    start_pot = D.f32("start_pot")
-    check = D.not_(D.eq(D.int32("check_start"), 0))
+    start_pot, ends = _end_of_cycle_test(D)
     empty = all_of(D, D.eq(cur, 0), D.eq(nxt, 0), D.eq(over, 0))
     reached = Reached(D, start_pot)
     claim = all_of(D,
                    any_of(D, P.cycle_runs(D, cycle, cycles, cur, nxt), D.ge(cycle, cycles), empty),
-                   any_of(D, D.not_(D.and_(check, P.call_ends_at_the_start(D, start_pot))), reached),
+                   any_of(D, D.not_(ends), reached),
                    any_of(D, F.calls_again(D, start_pot, cur, nxt), reached, empty))
     return all_of(D, pre, D.ge(cycle, 0), ValidPotential(D, start_pot)), claim
 
@@ -75,11 +83,11 @@ def next_buffer_becomes_current_and_its_cycle_runs(D):
     """
     fill_next, fill_over = D.int32("fill_next"), D.int32("fill_over")
     cycle, cycles = D.int32("cycle"), D.int32("cycles")
-    start_pot, check = D.f32("start_pot"), D.not_(D.eq(D.int32("check_start"), 0))
+    _, ends = _end_of_cycle_test(D)
     drained, cur, over, _ = K.end_of_cycle(D, fill_next, fill_over, D.f32("curT"), D.f32("priInc"))
     pre = all_of(D, D.gt(fill_next, 0), D.ge(fill_over, 0), D.ge(cycle, 0), D.lt(cycle, cycles),
                   D.lt(cycle + 1, cycles))
     runs = P.cycle_runs(D, cycle + 1, cycles, cur, 0)
     claim = all_of(D, D.not_(drained), D.eq(cur, fill_next), D.eq(over, fill_over),
-                   any_of(D, D.and_(check, P.call_ends_at_the_start(D, start_pot)), runs))
+                   any_of(D, ends, runs))
     return pre, claim
