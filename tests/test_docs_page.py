@@ -74,6 +74,20 @@ def test_the_page_lists_every_obligation_predicate_and_check_property():
         assert f"### `{name}`" in text and f"| `{name}` | " in text, name
 
 
+def test_every_trusted_step_is_on_the_page_and_the_docs_count_them_as_the_code_does():
+    import re
+
+    from navfn_smt.proofs import PREDICATES
+
+    text = PAGE.read_text()
+    steps = [t for p in PREDICATES for t in p.trusted]
+    for t in steps:
+        assert f"- {t}" in text, t[:80]
+    fix = re.findall(r"every trusted step \((\d+) in all", (REPO / "docs" / "fix.md").read_text())
+    proofs = re.findall(r"steps still trusted \((\d+)\)", (REPO / "docs" / "proofs.md").read_text())
+    assert fix and proofs and {int(n) for n in fix + proofs} == {len(steps)}
+
+
 def test_every_kernel_names_its_cpp_code():
     """Where an obligation applies comes from the kernels it runs: each needs its C++ place."""
     import inspect

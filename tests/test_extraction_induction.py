@@ -1,11 +1,12 @@
 """The extraction and loop-control obligations over arrays and fills (proofs/descent.py,
-proofs/calcpath.py, proofs/loop.py, and the floor invariant of proofs/fallback.py): none is
+proofs/calcpath.py, proofs/loop.py, proofs/queued.py, and the floor invariant of proofs/fallback.py): none is
 vacuous, and each notices a seeded bug in the function it runs.
 
 A proof of ``pre ==> claim`` says nothing when ``pre`` is unsatisfiable, so each precondition
 is shown satisfiable (the claims themselves are the proof run's: tests/test_prove.py); and a
 step stated wrongly (a descent that takes the first neighbour, a grid step that never stops,
-a loop test that forgets a buffer, a swap that drops the overflow buffer) must give a model of the negation."""
+a loop test that forgets a buffer, a swap that drops the overflow buffer, an update that writes
+before its test or never writes) must give a model of the negation."""
 
 from pathlib import Path
 
@@ -21,7 +22,7 @@ from navfn_smt.spec import kernels as K
 from navfn_smt.spec import propagation as P
 
 PROOFS = Path(__file__).resolve().parents[1] / "src" / "navfn_smt" / "proofs"
-FILES = ("descent.py", "calcpath.py", "loop.py")
+FILES = ("descent.py", "calcpath.py", "loop.py", "queued.py")
 FLOOR = ("setup_gives_every_reached_cell_a_neighbour_below_its_floor",
          "update_keeps_a_neighbour_below_the_floor_at_the_updated_cell",
          "update_keeps_a_neighbour_below_the_floor_at_every_other_cell")
@@ -75,6 +76,15 @@ def _drops_overflow(D, nxt, over, drained):
     return D.ite(drained, over, nxt), 0
 
 
+def _writes_before_the_test(D, old, l, r, u, d, cost, hf):
+    cand = K.planar_wave(D, l, r, u, d, hf)
+    return D.ite(K.is_passable(D, cost), cand, old), D.and_(K.is_passable(D, cost), D.lt(cand, old))
+
+
+def _never_writes(D, old, l, r, u, d, cost, hf):
+    return old, D.lt(old, old)
+
+
 GRID_STEP = E.grid_step
 WRONG_STEPS = [
     (K, "lowest_neighbour", _first_neighbour,
@@ -87,6 +97,8 @@ WRONG_STEPS = [
     (F, "calls_again", _calls_again_on_the_next_fill_only,
      "propagation_stops_only_at_a_reached_start_with_empty_buffers_or_its_cycles_spent"),
     (K, "buffer_swap", _drops_overflow, "next_buffer_becomes_current_and_its_cycle_runs"),
+    (K, "cell_update", _writes_before_the_test, "update_of_any_slot_keeps_a_passed_queued_start_reached"),
+    (K, "cell_update", _never_writes, "update_of_any_slot_keeps_a_passed_queued_start_reached"),
 ]
 
 

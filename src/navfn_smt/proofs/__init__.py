@@ -252,15 +252,14 @@ QueuedStartReached = Predicate(
     applies="propagation, for every map size; the bounded checks (navfn-smt check) stop flipping a control path's "
             "branches once it has queued the start so, when start-reached is explored alone: every path sharing "
             "that prefix reaches the start",
-    lemmas=("queued_cell_gets_reached", "Monotone.update_never_raises", "next_buffer_becomes_current_and_its_cycle_runs"),
-    # a buffered cell has a reached 4-neighbour (below the bound: the run-time condition below)
-    rests_on=("ReachedAndBufferedInductive",),
-    trusted=("a cycle that runs updates every cell of its current buffer (the loop over its curPe cells, as the "
-             "spec and the JIT run it, tied to the C++ by the difftest's traces): the start, unreached and passable "
-             "(only passable cells are pushed), is then reached (queued_cell_gets_reached) and stays reached "
-             "(potentials only fall); not machine-checked: no obligation models the loop index through a "
-             "symbolic fill",
-             "the queueing is a fact of the control path up to the push (or the cycle's start): every run with "
+    base=("queued_start_is_beside_a_reached_cell_as_the_updates_start_and_reached_when_they_end",),
+    lemmas=("update_of_any_slot_keeps_a_passed_queued_start_reached", "queued_cell_gets_reached",
+            "Monotone.update_never_raises", "next_buffer_becomes_current_and_its_cycle_runs"),
+    # a buffered cell has a reached 4-neighbour (below the bound: the run-time condition below); the
+    # buffer invariant at the start's slot and the updated cell's; the cycle's loop over its current
+    # buffer's slots, read off the code as BuffersInductive's loops are
+    rests_on=("ReachedAndBufferedInductive", "BuffersInductive"),
+    trusted=("the queueing is a fact of the control path up to the push (or the cycle's start): every run with "
              "the same branches that far queues the start the same way; argued: the soundness of symbolic "
              "execution (check/concolic.py), not an obligation",
              "tests/test_check_bounded.py: on every saved map whose connected start stays unreached the run never "
@@ -301,8 +300,10 @@ BuffersInductive = Predicate(
     trusted=("the loops change the flags and the buffers only by these steps, run as kernels.push, kernels."
              "end_of_cycle and the clearing loop by the spec and the JIT (spec/propagation.py, backends/jit.py), "
              "which the difftest ties to the C++, and push only inside an update that changed its cell (the "
-             "`if (pot < potarr[n])` block); the component's closure is assumed at the cells each step reads; the loops "
-             "themselves are read off the code, not stated over arrays",),
+             "`if (pot < potarr[n])` block); a cycle updates the cells of its current buffer's slots 0 to curPe - 1 "
+             "in turn, and its pushes go to the next and the overflow buffer (the slot index k the frontier's and "
+             "the queued start's obligations take from k to k + 1); the component's closure is assumed at the "
+             "cells each step reads; the loops themselves are read off the code, not stated over arrays",),
 )
 
 ReachedAndBufferedInductive = Predicate(

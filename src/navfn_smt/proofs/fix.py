@@ -94,8 +94,11 @@ def unreached_cell_beside_a_reached_one_gets_reached(D):
                                            "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
             scope="one update of any cell with any neighbours: every map size")
 def update_lowers_when_it_changes(D):
-    """An update that changes a cell (and only such an update pushes) strictly lowers it: the
-    measure of the propagation's termination.
+    """An update that changes a cell (and only such an update pushes) strictly lowers it.  In
+    float32 that bounds how often a cell changes (its potential takes finitely many values), the
+    measure behind the wave's emptying its buffers; over the reals a potential could fall by ever
+    smaller steps, so it bounds nothing there, and propNavFn* ends only by its cycle count (at most
+    ``cycles`` cycles, each over a buffer of at most PRIORITYBUFSIZE cells).
 
     valid potentials, any cost  ==>  updateCell(n) changes pot(n) implies pot'(n) < pot(n)
     """
