@@ -145,6 +145,24 @@ def adding_one_always_increases(D):
     assert x >= 2.0**24 and x + np.float32(1.0) == x  # the counterexample: 1 is absorbed
 
 
+def test_a_model_with_a_variable_outside_the_domain_is_not_replayed_and_not_a_traceback(tmp_path):
+    (tmp_path / "flag.py").write_text('''
+import z3
+from navfn_smt.smt.obligation import obligation
+
+@obligation("Demo", expect={"real": "proved", "fp32": "proved"}, scope="one comparison")
+def a_flag_made_with_z3(D):
+    """A claim that fails, with a Bool made with z3 in its precondition."""
+    x = D.f32("x")
+    return z3.And(z3.Bool("flag"), D.lt(x, D.f32const(1.0))), D.lt(x, D.f32const(0.0))
+''')
+    rc, stdout, stderr = run("prove", tmp_path / "flag.py", "--report", tmp_path / "r.json", cwd=tmp_path)
+    assert rc == 0 and "Traceback" not in stderr, stdout + stderr
+    assert "0 confirmed, 2 undecided, 0 newly decided, 0 contradicted" in stdout
+    for o in json.loads((tmp_path / "r.json").read_text())["obligations"]:
+        assert o["status"] == "unknown" and "cannot evaluate" in o["detail"], o
+
+
 WRONG = '''
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import ValidPotential

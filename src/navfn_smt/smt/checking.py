@@ -144,6 +144,10 @@ def judge_model(ob: Obligation, semantics: str, values: dict) -> tuple[str, dict
         return "unknown", {"values": codec.witness_values(values), "replayed_on_spec": None}, (
             "solver model over arrays, which the concrete spec cannot replay: not reported as a counterexample")
     confirmed = replay(ob, values, arithmetic=arith)
+    if confirmed is None:  # a term the concrete spec cannot evaluate: never reported unreplayed
+        return "unknown", {"values": codec.witness_values(values), "replayed_on_spec": None}, (
+            "solver model of an obligation with a variable the concrete spec cannot evaluate (made with z3, "
+            "not through the domain): not reported as a counterexample")
     witness = {"values": codec.witness_values(values), "replayed_on_spec": confirmed,
                "replayed_in": "rationals (real semantics)" if arith is None else
                "float32 spec" + ("" if semantics == "fp32" else f" in {arith.name}'s arithmetic")}

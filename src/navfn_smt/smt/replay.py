@@ -13,6 +13,8 @@ from decimal import Decimal, getcontext
 from fractions import Fraction
 from typing import Optional
 
+import z3
+
 from ..spec.numeric import ConcreteDomain, c_hypot, c_hypotf, f32
 from .domains import ExactArithmetic
 from .obligation import Obligation
@@ -119,10 +121,14 @@ def replay(ob: Obligation, values: dict, extra_pre=None, arithmetic=None) -> Opt
 
     A float32 model is replayed with the C++ arithmetic of the build ``arithmetic``
     (:class:`~navfn_smt.spec.arithmetic.Arithmetic`; None: x86-64's) and the platform's libm; a
-    real model (rationals) with the same kernels evaluated exactly on rationals."""
+    real model (rationals) with the same kernels evaluated exactly on rationals.  None when the
+    obligation builds a solver term the concrete spec cannot evaluate (a variable made with z3
+    directly, not through the domain): the model is then not replayed."""
     exact = any(isinstance(v, Fraction) for v in values.values())
     D = ExactReplayDomain(values) if exact else ReplayDomain(values).with_arithmetic(arithmetic)
     pre, claim = ob.build(D)
     if extra_pre is not None:
         pre = pre and extra_pre(D)
+    if isinstance(pre, z3.ExprRef) or isinstance(claim, z3.ExprRef):
+        return None
     return bool(pre) and not bool(claim)
