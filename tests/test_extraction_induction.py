@@ -55,8 +55,8 @@ def _first_neighbour(D, centre, ring):
     return 0
 
 
-def _never_stops(D, read, stc, nx):
-    nxt, dx, dy, _ = GRID_STEP(D, read, stc, nx)
+def _never_stops(D, pot, stc, nx):
+    nxt, dx, dy, _ = GRID_STEP(D, pot, stc, nx)
     return nxt, dx, dy, False
 
 

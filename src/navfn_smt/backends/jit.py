@@ -13,11 +13,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..spec import extraction as E
 from ..spec import fix as F
 from ..spec import kernels as K
 from ..spec import propagation as P
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
-from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
+from ..spec.extraction import EXIT_UNDEFINED, ITERATION_GOES_ON, ExtractionExit, exit_code
 from ..spec.planner import path_cycle_limit
 from .numba_domain import jit, jit_inline, numba_domain
 
@@ -27,7 +28,6 @@ HEURISTIC_MEMO_CELLS = 1 << 20
 
 # calcPath's exits as the compiled code returns them (spec.extraction.exit_code)
 EXIT_NEAR_GOAL = exit_code(ExtractionExit.NEAR_GOAL)
-EXIT_OUT_OF_BOUNDS = exit_code(ExtractionExit.OUT_OF_BOUNDS)
 EXIT_HIGH_POTENTIAL = exit_code(ExtractionExit.HIGH_POTENTIAL)
 EXIT_ZERO_GRADIENT = exit_code(ExtractionExit.ZERO_GRADIENT)
 EXIT_EXHAUSTED = exit_code(ExtractionExit.EXHAUSTED)
@@ -48,6 +48,11 @@ NCOUNTERS = 6
 cycle_runs = jit_inline(P.cycle_runs)
 call_ends_at_the_start = jit_inline(P.call_ends_at_the_start)
 calls_again = jit_inline(F.calls_again)
+# calcPath's tests and grid step, the spec's functions compiled (proofs/calcpath.py is about them)
+iteration_test = jit_inline(E.iteration_test)
+follows_the_grid = jit_inline(E.follows_the_grid)
+grid_step = jit_inline(E.grid_step)
+goal_point = jit_inline(E.goal_point)
 
 
 @jit_inline
@@ -285,35 +290,22 @@ def calc_path_touched(D, pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, 
     dy = zero
     npath = 0
     for _ in range(nmax):
-        near = K.nearest_cell(D, stc, dx, dy, nx, ns)
-        if K.near_goal(D, pot[near]):
-            path[npath, 0] = D.int_to_f32(gx)
-            path[npath, 1] = D.int_to_f32(gy)
+        code = iteration_test(D, pot, stc, dx, dy, nx, ns)
+        if code == EXIT_NEAR_GOAL:
+            path[npath, 0], path[npath, 1] = goal_point(D, (gx, gy))
             npath += 1
             return EXIT_NEAR_GOAL, npath, nt
-        if stc < nx or stc > ns - nx:
-            return EXIT_OUT_OF_BOUNDS, npath, nt
-        if stc - nx - 1 < 0 or stc + nx + 1 >= ns:
-            return EXIT_UB, npath, nt
+        if code != ITERATION_GOES_ON:  # OUT_OF_BOUNDS, or a ring read outside potarr
+            return code, npath, nt
         px, py = K.path_point(D, stc, nx, dx, dy)
         path[npath, 0] = px
         path[npath, 1] = py
         npath += 1
         osc = npath > 2 and path[npath - 1, 0] == path[npath - 3, 0] and path[npath - 1, 1] == path[npath - 3, 1]
-        up = stc - nx
         down = stc + nx
-        ring = (up - 1, up, up + 1, stc - 1, stc + 1, down - 1, down, down + 1)
-        fallback = osc or K.unreached(D, pot[stc])
-        for m in ring:
-            fallback = fallback or K.unreached(D, pot[m])
-        if fallback:
-            best = K.lowest_of_eight(D, pot[stc], (pot[up - 1], pot[up], pot[up + 1], pot[stc - 1],
-                                                    pot[stc + 1], pot[down - 1], pot[down], pot[down + 1]))
-            if best >= 0:
-                stc = ring[best]
-            dx = zero
-            dy = zero
-            if K.unreached(D, pot[stc]):
+        if follows_the_grid(D, pot, stc, nx, osc):
+            stc, dx, dy, stops = grid_step(D, pot, stc, nx)
+            if stops:
                 return EXIT_HIGH_POTENTIAL, npath, nt
         else:
             for n in (stc, stc + 1, down, down + 1):

@@ -35,6 +35,7 @@ from numba.core.imputils import lower_constant
 from numba.extending import (NativeValue, intrinsic, models, overload, overload_method, register_model, typeof_impl,
                              unbox)
 
+from ..spec import extraction as E
 from ..spec import kernels as K
 from ..spec import numeric
 from ..spec.arithmetic import X86_64
@@ -366,3 +367,8 @@ for _name in KERNELS:
     # ``D.fuses(site)`` inside it is a constant
     _literal = "site" in inspect.signature(_fn).parameters
     overload(_fn, jit_options=JIT_OPTIONS, prefer_literal=_literal)(_returning(_fn))
+
+# the cell helpers of the spec's loop steps the compiled loops run (calcPath's ring of eight
+# and its potentials, spec/extraction.py), callable the same way
+for _fn in (E.ring_of_eight, E.ring_potentials):
+    overload(_fn, jit_options=JIT_OPTIONS)(_returning(_fn))

@@ -59,13 +59,13 @@ def calc_path_stops_at_once_at_an_unreached_start(D):
     stc = D.int32("start")
     ring = E.ring_of_eight(stc, m.W)
     zero = D.f32const(0.0)
-    code = E.iteration_test(D, m.read, stc, zero, zero, m.W, m.ns)
-    nxt, _, _, stops = E.grid_step(D, m.read, stc, m.W)
+    code = E.iteration_test(D, m.pot, stc, zero, zero, m.W, m.ns)
+    nxt, _, _, stops = E.grid_step(D, m.pot, stc, m.W)
     pre = all_of(D, m.well_formed(), D.ge(stc, 0), D.lt(stc, m.ns), Unreached(D, m.pot[stc]),
                  *(ValidPotential(D, m.pot[c]) for c in (stc, *ring)))
     goes_on = code == E.ITERATION_GOES_ON
     return pre, z3.And(code != NEAR_GOAL,
-                       z3.Implies(goes_on, z3.And(E.follows_the_grid(D, m.read, stc, m.W, False), stops)))
+                       z3.Implies(goes_on, z3.And(E.follows_the_grid(D, m.pot, stc, m.W, False), stops)))
 
 
 @obligation(FinitePotentialPath, scope="calcPath's grid step at any cell of a map of any size", **STATED)
@@ -78,7 +78,7 @@ def grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero(D):
     """
     m = Grid(D)
     stc, ring, pre = _cell(D, m)
-    nxt, dx, dy, stops = E.grid_step(D, m.read, stc, m.W)
+    nxt, dx, dy, stops = E.grid_step(D, m.pot, stc, m.W)
     zero = D.f32const(0.0)
     return pre, z3.And(z3.Or([nxt == c for c in (stc, *ring)]), D.eq(dx, zero), D.eq(dy, zero),
                        z3.Implies(z3.Not(stops), Reached(D, m.pot[nxt])))
@@ -96,7 +96,7 @@ def gradient_step_runs_only_among_nine_reached_cells(D):
     stc, ring, pre = _cell(D, m)
     osc = z3.Bool("oscillation")
     nine = z3.And([Reached(D, m.pot[c]) for c in (stc, *ring)])
-    return pre, z3.Implies(z3.Not(E.follows_the_grid(D, m.read, stc, m.W, osc)), z3.And(z3.Not(osc), nine))
+    return pre, z3.Implies(z3.Not(E.follows_the_grid(D, m.pot, stc, m.W, osc)), z3.And(z3.Not(osc), nine))
 
 
 @obligation(FinitePotentialPath, scope="calcPath's near-goal exit, any goal of a map below 2**24 cells a side",
@@ -125,7 +125,7 @@ def bound_tests_pass_at_a_reached_cell(D):
     m = Grid(D)
     stc = D.int32("stc")
     dx, dy = D.f32("dx"), D.f32("dy")
-    code = E.iteration_test(D, m.read, stc, dx, dy, m.W, m.ns)
+    code = E.iteration_test(D, m.pot, stc, dx, dy, m.W, m.ns)
     one = D.f32const(1.0)
     pre = all_of(D, m.well_formed(), D.ge(stc, 0), D.lt(stc, m.ns), stc != m.g, Reached(D, m.pot[stc]),
                  m.border_lethal(stc), m.invariant(m.pot, stc), m.goal_zero(m.pot),
@@ -150,7 +150,7 @@ def _narrow(D, m: Grid, wide: bool):
 def _takes_the_grid(D, wide):
     m = Grid(D)
     pre, stc, ring = _narrow(D, m, wide)
-    return pre, E.follows_the_grid(D, m.read, stc, m.W, z3.Bool("oscillation"))
+    return pre, E.follows_the_grid(D, m.pot, stc, m.W, z3.Bool("oscillation"))
 
 
 @obligation(FallbackPath, scope="calcPath's fallback test at any passable cell of a map at most two interior "

@@ -62,9 +62,6 @@ class Grid(UnboundedMap):
         """setupNavFn's lethal border, at cell ``q``."""
         return z3.Implies(self.on_border(q), Lethal(self.D, self.cost_int(q)))
 
-    def read(self, i):
-        return self.pot[i]
-
 
 def walk_invariant(D, m: Grid, visited, stc, q):
     """The descent's loop invariant at cell ``q``: the walk's cell reached, and ``q``, if visited,
@@ -103,7 +100,7 @@ def descent_iteration_moves_strictly_down_or_stops_at_the_goal_or_the_budget(D):
     stc, q = D.int32("stc"), D.int32("q")
     points, n = D.int32("points"), D.int32("n")
     visited = z3.Array("visited", cell_sort(D), z3.BoolSort())
-    code, nxt = F.descent_iteration(D, m.read, stc, points, n, m.W, m.ns, m.g)
+    code, nxt = F.descent_iteration(D, m.pot, stc, points, n, m.W, m.ns, m.g)
     ring = F.descent_ring(stc, m.W)
     pre = all_of(D, m.well_formed(), D.ge(stc, 0), D.lt(stc, m.ns), m.border_lethal(stc), D.ge(points, 0),
                  m.goal_zero(m.pot), walk_invariant(D, m, visited, stc, q),

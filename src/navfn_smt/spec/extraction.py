@@ -75,42 +75,48 @@ def ring_of_eight(stc: int, nx: int) -> tuple[int, ...]:
     return (stc - nx - 1, stc - nx, stc - nx + 1, stc - 1, stc + 1, stc + nx - 1, stc + nx, stc + nx + 1)
 
 
+def ring_potentials(pot, ring):
+    """The potentials of the 8 cells of ``ring``, as a tuple (which the JIT compiles too)."""
+    return (pot[ring[0]], pot[ring[1]], pot[ring[2]], pot[ring[3]], pot[ring[4]], pot[ring[5]], pot[ring[6]],
+            pot[ring[7]])
+
+
 ITERATION_GOES_ON = -1  # iteration_test's code when calcPath writes the point and steps
 
 
-def iteration_test(D, read, stc, dx, dy, nx, ns):
+def iteration_test(D, pot, stc, dx, dy, nx, ns):
     """calcPath's tests at the top of an iteration, before it writes a point: the exit's
     :func:`exit_code` (``NEAR_GOAL``: the near-goal probe reads a potential below
     COST_NEUTRAL; ``OUT_OF_BOUNDS``: ``stc`` in the first or last row), :data:`EXIT_UNDEFINED`
-    (the ring would be read outside potarr) or :data:`ITERATION_GOES_ON`.  ``read(i)`` is
-    ``potarr[i]``; cells are the domain's ints (concrete, or over an SMT array in
-    ``proofs/calcpath.py``)."""
+    (the ring would be read outside potarr) or :data:`ITERATION_GOES_ON`.  ``pot[i]`` is
+    ``potarr[i]`` (a list, the JIT's array, or an SMT array in ``proofs/calcpath.py``); cells are
+    the domain's ints."""
     near = K.nearest_cell(D, stc, dx, dy, nx, ns)
     undefined = D.or_(D.lt(stc - nx - 1, 0), D.ge(stc + nx + 1, ns))
     code = D.ite(undefined, EXIT_UNDEFINED, ITERATION_GOES_ON)
     code = D.ite(D.or_(D.lt(stc, nx), D.gt(stc, ns - nx)), _OUT_OF_BOUNDS, code)
-    return D.ite(K.near_goal(D, read(near)), _NEAR_GOAL, code)
+    return D.ite(K.near_goal(D, pot[near]), _NEAR_GOAL, code)
 
 
-def follows_the_grid(D, read, stc, nx, oscillation):
+def follows_the_grid(D, pot, stc, nx, oscillation):
     """calcPath's fallback test: the path oscillates, or ``stc`` or one of its 8 is unreached."""
-    test = D.or_(oscillation, K.unreached(D, read(stc)))
+    test = D.or_(oscillation, K.unreached(D, pot[stc]))
     for m in ring_of_eight(stc, nx):
-        test = D.or_(test, K.unreached(D, read(m)))
+        test = D.or_(test, K.unreached(D, pot[m]))
     return test
 
 
-def grid_step(D, read, stc, nx):
+def grid_step(D, pot, stc, nx):
     """calcPath's grid-following step: ``(next cell, dx, dy, stops)``.  The next cell is the
     one :func:`~.kernels.lowest_of_eight` picks (``stc`` when none), the offsets become 0, and
     calcPath stops (``HIGH_POTENTIAL``) when the next cell is unreached."""
     ring = ring_of_eight(stc, nx)
-    best = K.lowest_of_eight(D, read(stc), [read(m) for m in ring])
+    best = K.lowest_of_eight(D, pot[stc], ring_potentials(pot, ring))
     nxt = stc
     for k, m in enumerate(ring):
         nxt = D.ite(D.eq(best, k), m, nxt)
     zero = D.f32const(0.0)
-    return nxt, zero, zero, K.unreached(D, read(nxt))
+    return nxt, zero, zero, K.unreached(D, pot[nxt])
 
 
 def goal_point(D, goal):
@@ -158,7 +164,7 @@ def calc_path(
     for i in range(n):
         if watch is not None:
             watch.iteration(i, stc, dx, dy, xs, ys)
-        code = iteration_test(D, pot.__getitem__, stc, dx, dy, nx, ns)
+        code = iteration_test(D, pot, stc, dx, dy, nx, ns)
         if code == _NEAR_GOAL:
             gx, gy = goal_point(D, goal)
             xs.append(gx)
@@ -176,10 +182,10 @@ def calc_path(
         xs.append(px)
         ys.append(py)
         oscillation = len(xs) > 2 and xs[-1] == xs[-3] and ys[-1] == ys[-3]
-        if follows_the_grid(D, pot.__getitem__, stc, nx, oscillation):
+        if follows_the_grid(D, pot, stc, nx, oscillation):
             if watch is not None:
                 watch.fallback(i, oscillation)
-            stc, dx, dy, stops = grid_step(D, pot.__getitem__, stc, nx)
+            stc, dx, dy, stops = grid_step(D, pot, stc, nx)
             if stops:
                 return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs), stc)
         else:

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..errors import NavfnInputError
 from . import kernels as K
-from .extraction import EXIT_CODES, Extraction, ExtractionExit, exit_code, ring_of_eight
+from .extraction import EXIT_CODES, Extraction, ExtractionExit, exit_code, ring_of_eight, ring_potentials
 from .constants import POT_HIGH
 from .numeric import CONCRETE as D
 from .propagation import PropagationState, TraceHook, propagate
@@ -96,17 +96,17 @@ _EXHAUSTED, _NEAR_GOAL, _OUT_OF_BOUNDS, _ZERO_GRADIENT = (
                            ExtractionExit.ZERO_GRADIENT))
 
 
-def descent_iteration(D, read, stc, points, n, nx, ns, goal_cell):
+def descent_iteration(D, pot, stc, points, n, nx, ns, goal_cell):
     """One pass of ``calcPathDescent``'s loop at cell ``stc`` with ``points`` points written:
     ``(code, next cell)``, the code an exit's :func:`~.extraction.exit_code` or
-    :data:`DESCENT_GOES_ON` (write the point of ``stc``, go on at the next cell).  ``read(i)`` is
+    :data:`DESCENT_GOES_ON` (write the point of ``stc``, go on at the next cell).  ``pot[i]`` is
     ``potarr[i]``.  The tests, in the C++ order: no room for a point (``EXHAUSTED``), the goal
     (``NEAR_GOAL``), a ring read leaving the array (``OUT_OF_BOUNDS``), no lower one of the 8
     (``ZERO_GRADIENT``); the step is :func:`~.kernels.lowest_neighbour` (float comparisons).
     Cells are the domain's ints, so the same function runs on a concrete potential and, over an
     SMT array, in ``proofs/descent.py``; a ring read the bounds test refuses is never used."""
     ring = descent_ring(stc, nx)
-    best = K.lowest_neighbour(D, read(stc), [read(m) for m in ring])
+    best = K.lowest_neighbour(D, pot[stc], ring_potentials(pot, ring))
     nxt = stc
     for k, m in enumerate(ring):
         nxt = D.ite(D.eq(best, k), m, nxt)
@@ -115,6 +115,17 @@ def descent_iteration(D, read, stc, points, n, nx, ns, goal_cell):
     code = D.ite(outside, _OUT_OF_BOUNDS, code)
     code = D.ite(D.eq(stc, goal_cell), _NEAR_GOAL, code)
     return D.ite(D.ge(points, n), _EXHAUSTED, code), nxt
+
+
+class _HighOffTheArray:
+    """``potarr[i]``, POT_HIGH outside the array: the descent reads its ring before the bounds
+    test, which refuses such a read before it counts."""
+
+    def __init__(self, potential: list):
+        self.potential, self.ns = potential, len(potential)
+
+    def __getitem__(self, i: int):
+        return self.potential[i] if 0 <= i < self.ns else D.f32const(POT_HIGH)
 
 
 def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int) -> Extraction:
@@ -134,11 +145,9 @@ def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
     zero = D.f32const(0.0)
     points: list = []
 
-    def read(i: int):  # potarr[i]; a read outside the array is refused by the bounds test before it counts
-        return potential[i] if 0 <= i < ns else D.f32const(POT_HIGH)
-
+    pot = _HighOffTheArray(potential)
     while True:
-        code, nxt = descent_iteration(D, read, stc, len(points), n, nx, ns, goal_cell)
+        code, nxt = descent_iteration(D, pot, stc, len(points), n, nx, ns, goal_cell)
         if code == _NEAR_GOAL:
             points.append((D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
             return Extraction(points, ExtractionExit.NEAR_GOAL, len(points), stc)
