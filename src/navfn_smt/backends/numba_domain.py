@@ -38,6 +38,7 @@ from numba.extending import (NativeValue, intrinsic, models, overload, overload_
 from ..spec import extraction as E
 from ..spec import kernels as K
 from ..spec import numeric
+from ..spec import propagation as P
 from ..spec.arithmetic import X86_64
 
 JIT_OPTIONS = {"error_model": "numpy"}  # float division by zero gives inf/nan, as in C++
@@ -368,7 +369,8 @@ for _name in KERNELS:
     _literal = "site" in inspect.signature(_fn).parameters
     overload(_fn, jit_options=JIT_OPTIONS, prefer_literal=_literal)(_returning(_fn))
 
-# the cell helpers of the spec's loop steps the compiled loops run (calcPath's ring of eight
-# and its potentials, spec/extraction.py), callable the same way
-for _fn in (E.ring_of_eight, E.ring_potentials):
+# the helpers of the spec's loop steps the compiled loops run (calcPath's ring of eight and its
+# potentials, spec/extraction.py; the buffers' emptiness test, spec/propagation.py), callable the
+# same way
+for _fn in (E.ring_of_eight, E.ring_potentials, P.buffers_hold_cells):
     overload(_fn, jit_options=JIT_OPTIONS)(_returning(_fn))

@@ -34,7 +34,7 @@ from . import kernels as K
 from .extraction import EXIT_CODES, Extraction, ExtractionExit, exit_code, ring_of_eight, ring_potentials
 from .constants import POT_HIGH
 from .numeric import CONCRETE as D
-from .propagation import PropagationState, TraceHook, propagate
+from .propagation import PropagationState, TraceHook, buffers_hold_cells, propagate
 
 VARIANTS = ("original", "fixed")
 POT_BOUND = 2.0**30  # the potential bound the guarantees need: Progress's float32 link is proved below it
@@ -70,7 +70,7 @@ def reached(potential) -> bool:
 def calls_again(D, start_pot, fill_cur, fill_next):
     """The fix's test after the first ``propNavFn*``: the start unreached (``potarr[startCell] >=
     POT_HIGH``, float) and a buffer holding cells (``curPe > 0 || nextPe > 0``, ints)."""
-    return D.and_(K.unreached(D, start_pot), D.not_(D.and_(D.eq(fill_cur, 0), D.eq(fill_next, 0))))
+    return D.and_(K.unreached(D, start_pot), buffers_hold_cells(D, fill_cur, fill_next))
 
 
 def propagate_on(st: PropagationState, start: tuple[int, int], goal: tuple[int, int], astar: bool, cycles: int,

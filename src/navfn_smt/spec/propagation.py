@@ -145,10 +145,15 @@ def _heuristic(ddx: int, ddy: int) -> float:
     return h
 
 
+def buffers_hold_cells(D, fill_cur, fill_next):
+    """``!(curPe == 0 && nextPe == 0)``: the current or the next buffer holds cells (ints)."""
+    return D.not_(D.and_(D.eq(fill_cur, 0), D.eq(fill_next, 0)))
+
+
 def cycle_runs(D, cycle, cycles, fill_cur, fill_next):
-    """The test at the top of ``propNavFn*``'s loop: ``cycle < cycles`` (``for``) and not
-    ``curPe == 0 && nextPe == 0`` (the ``break``): ints."""
-    return D.and_(D.lt(cycle, cycles), D.not_(D.and_(D.eq(fill_cur, 0), D.eq(fill_next, 0))))
+    """The test at the top of ``propNavFn*``'s loop: ``cycle < cycles`` (``for``) and the buffers
+    holding cells (the ``break`` when ``curPe == 0 && nextPe == 0``): ints."""
+    return D.and_(D.lt(cycle, cycles), buffers_hold_cells(D, fill_cur, fill_next))
 
 
 def call_ends_at_the_start(D, start_pot):
