@@ -1,6 +1,7 @@
 """The extraction and loop-control obligations over arrays and fills (proofs/descent.py,
-proofs/calcpath.py, proofs/loop.py, proofs/queued.py, and the floor invariant of proofs/fallback.py): none is
-vacuous, and each notices a seeded bug in the function it runs.
+proofs/calcpath.py, proofs/loop.py, proofs/queued.py, proofs/potential_bound.py, and the floor
+invariant of proofs/fallback.py): none is vacuous, and each notices a seeded bug in the function
+it runs.
 
 A proof of ``pre ==> claim`` says nothing when ``pre`` is unsatisfiable, so each precondition
 is shown satisfiable (the claims themselves are the proof run's: tests/test_prove.py); and a
@@ -22,7 +23,7 @@ from navfn_smt.spec import kernels as K
 from navfn_smt.spec import propagation as P
 
 PROOFS = Path(__file__).resolve().parents[1] / "src" / "navfn_smt" / "proofs"
-FILES = ("descent.py", "calcpath.py", "loop.py", "queued.py")
+FILES = ("descent.py", "calcpath.py", "loop.py", "queued.py", "potential_bound.py")
 FLOOR = ("setup_gives_every_reached_cell_a_neighbour_below_its_floor",
          "update_keeps_a_neighbour_below_the_floor_at_the_updated_cell",
          "update_keeps_a_neighbour_below_the_floor_at_every_other_cell")
@@ -109,3 +110,12 @@ def test_a_wrong_step_gives_a_model_of_the_negation(monkeypatch, module, name, w
     pre, claim = OBLIGATIONS[obligation].build(DOMAINS["fp32"]())
     assert _decide(z3.And(pre, z3.Not(claim))) == z3.sat
 
+
+
+def test_the_rise_of_one_update_is_nearly_tight_over_the_reals(monkeypatch):
+    """254.2 above the lowest neighbour is reachable over the reals (v tends to 1.0046 as dc nears
+    hf = 253), so a rise of 254 is refuted: the bound 256 is not loose by much."""
+    ob = OBLIGATIONS["update_raises_at_most_256_above_its_lowest_neighbour"]
+    monkeypatch.setitem(ob.build.__globals__, "RISE", 254.0)
+    pre, claim = ob.build(DOMAINS["real"]())
+    assert _decide(z3.And(pre, z3.Not(claim))) == z3.sat

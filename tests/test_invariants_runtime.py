@@ -124,3 +124,65 @@ def test_golden_paths_lie_in_reached_cells(shared_suite):
                     assert _points_in_reached_cells(path, g["full_potential"][k]) == [], (d.name, mode, i)
                     checked += 1
     assert checked > 5000
+
+
+def _goal_component_size(costs, goal):
+    """Cells of the goal's component (the passable cells 4-connected to a passable neighbour of the
+    goal, with the goal itself when passable): at most the cells the buffers can ever hold."""
+    ny, nx = costs.shape
+    passable = costs < 254
+    seen, todo = set(), []
+    gx, gy = goal
+    for x, y in ((gx + 1, gy), (gx - 1, gy), (gx, gy - 1), (gx, gy + 1)):
+        if 0 <= x < nx and 0 <= y < ny and passable[y, x]:
+            todo.append((x, y))
+    while todo:
+        x, y = todo.pop()
+        if (x, y) in seen:
+            continue
+        seen.add((x, y))
+        for a, b in ((x + 1, y), (x - 1, y), (x, y - 1), (x, y + 1)):
+            if 0 <= a < nx and 0 <= b < ny and passable[b, a] and (a, b) not in seen:
+                todo.append((a, b))
+    return len(seen)
+
+
+def _small_maps(count=24):
+    rng = np.random.default_rng(39)
+    for _ in range(count):
+        nx, ny = (int(v) for v in rng.integers(6, 15, size=2))
+        costs = rng.integers(50, 254, size=(ny, nx)).astype(np.uint8)
+        costs[rng.random((ny, nx)) < 0.3] = 254
+        cells = [(x, y) for y in range(ny) for x in range(nx) if costs[y, x] < 254]
+        if len(cells) < 2:
+            continue
+        i, j = rng.choice(len(cells), size=2, replace=False)
+        yield costs, cells[i], cells[j]
+
+
+def _dropped(costs, start, goal, astar, capacity, fixed):
+    """Pushes dropped for want of room by propNavFn* (and the fix's second call when ``fixed``)."""
+    from navfn_smt.spec import fix as F
+
+    ny, nx = costs.shape
+    st = P.setup(add_border(costs).ravel().tolist(), nx, ny, goal, capacity)
+    if fixed:
+        F.propagate_on(st, start, goal, astar, P.cycle_limit(nx, ny), record_trace=False)
+    else:
+        P.propagate(st, start, goal, astar, P.cycle_limit(nx, ny), record_trace=False)
+    return st.dropped
+
+
+@pytest.mark.parametrize("fixed", [False, True], ids=["original", "fixed"])
+def test_no_push_is_dropped_when_the_buffers_hold_the_goals_component(fixed):
+    """ConnectedStartReached's no-drop condition on small buffers: with each buffer's capacity the
+    size of the goal's component, no push is dropped (a push is of a cell in no buffer it may
+    enter, which hold distinct cells of the component: BuffersInductive); with a quarter of it,
+    some are, so the capacity is what the runs test."""
+    dropped_when_small = 0
+    for costs, start, goal in _small_maps():
+        k = _goal_component_size(costs, goal)
+        for astar in (True, False):
+            assert _dropped(costs, start, goal, astar, k, fixed) == 0, (costs.shape, start, goal, astar, k)
+            dropped_when_small += _dropped(costs, start, goal, astar, k // 4, fixed) > 0
+    assert dropped_when_small > 0

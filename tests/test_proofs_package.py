@@ -14,8 +14,8 @@ import navfn_smt
 
 REPO = Path(__file__).resolve().parent.parent
 PROOF_FILES = {"gradient.py", "monotonicity.py", "no_path.py", "path_step.py", "position_safe.py", "progress.py",
-               "queues.py", "fix.py", "component.py", "fallback.py", "queued.py", "induction.py", "buffers.py", "frontier.py",
-               "descent.py", "calcpath.py", "loop.py"}
+               "queues.py", "fix.py", "component.py", "fallback.py", "queued.py", "potential_bound.py", "induction.py",
+               "buffers.py", "frontier.py", "descent.py", "calcpath.py", "loop.py"}
 
 
 def test_proofs_and_bound_cache_are_inside_the_package():

@@ -158,7 +158,8 @@ DescentPath = Predicate(
              "n = 4*nx is at least 12); a counting (pigeonhole) step, which the quantifier-free obligations "
              "over arrays cannot state",),
     open=("that every potential stays below 2**30 is a run-time condition (the largest finite potential of the "
-          "run), not an obligation: a path of more than 2**30 / 253 = 4.2 million cells can exceed it",
+          "run), not an obligation: argued as for FallbackPath on every map of fewer than 2**22 = 4,194,304 "
+          "passable cells (every 2000 x 2000 map), and a longer way can exceed it",
           "that the walk fits in n points is a run-time condition: a descent longer than calcPath's budget "
           "(4 * nx, or max_cycles_factor times the larger side on Rolling and Lyrical) fails, as the gradient "
           "does"),
@@ -183,7 +184,11 @@ ConnectedStartReached = Predicate(
              "component and the start, in it, is reached (an induction over the chain of cells from the goal to the "
              "start, which the quantifier-free obligations over arrays cannot state)",),
     open=("no push dropped for want of room (PRIORITYBUFSIZE): a run-time condition the spec counts "
-          "(PlanResult.dropped) and the C++ does not report; overflow maps break it (docs/overflow.md)",
+          "(PlanResult.dropped) and the C++ does not report; overflow maps break it (docs/overflow.md); "
+          "argued to hold on every map whose goal component has at most PRIORITYBUFSIZE = 10,000 cells (every "
+          "100 x 100 map): a push is of a cell in no buffer it may enter, and each buffer holds distinct cells "
+          "of the component (BuffersInductive), so fewer than the component's count, a counting step; tested "
+          "with buffers the component's size (tests/test_invariants_runtime.py)",
           "every potential below 2**30: a run-time condition, as for DescentPath",
           "the wave empties its buffers or reaches the start within the cap of nx*ny more cycles: a run-time "
           "condition (each cycle updates at least one buffered cell, but a cell can be buffered more than once, "
@@ -201,6 +206,7 @@ FallbackPath = Predicate(
             "complete on such sizes by it",
     lemmas=("update_keeps_a_neighbour_below_its_floor", "fallback_step_moves_below_the_floor",
             "fallback_step_goes_strictly_lower", "update_raises_at_most_twice_its_cost",
+            "update_raises_at_most_256_above_its_lowest_neighbour",
             "Monotone.update_never_raises", "short_map_follows_the_grid_at_every_passable_cell",
             "thin_map_follows_the_grid_at_every_passable_cell", "bound_tests_pass_at_a_reached_cell",
             "FinitePotentialPath.grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero",
@@ -215,11 +221,13 @@ FallbackPath = Predicate(
              "walk meets a cell below COST_NEUTRAL (the goal, potential 0, at the latest) within k - 1 moves, "
              "inside calcPath's 4*nx iterations when k <= 4*nx; a counting (pigeonhole) step, "
              "which the quantifier-free obligations over arrays cannot state",
-             "the bound: the i-th cell to become reached (the goal first, potential 0) gets at most its reached "
-             "neighbour's potential plus twice its cost (update_raises_at_most_twice_its_cost) and only falls "
-             "after, so every finite potential is at most 506 * (k - 1): below 2**30 on every map of fewer than "
-             "two million passable cells; an induction over the order in which cells become reached, counting "
-             "them, which the quantifier-free obligations over arrays cannot state",),
+             "the bound: the i-th cell to become reached (the goal first, potential 0) gets at most 256 above "
+             "its lowest neighbour, reached, while that one is below 2**30 "
+             "(update_raises_at_most_256_above_its_lowest_neighbour) and only falls after, so every finite "
+             "potential is at most 256 * (k - 1), k the number of cells reached (at most the passable ones and "
+             "the goal): below 2**30 on every map of fewer than 2**22 = 4,194,304 passable cells, every Nav2 map "
+             "of 2000 x 2000 cells (the planner benchmark's); an induction over the order in which cells become "
+             "reached, counting them, which the quantifier-free obligations over arrays cannot state",),
 )
 
 ReachedWithinComponent = Predicate(
@@ -265,8 +273,8 @@ QueuedStartReached = Predicate(
              "tests/test_check_bounded.py: on every saved map whose connected start stays unreached the run never "
              "queues the start so, and on seeded maps of six sizes every run that does reaches it (the spec's "
              "run); tested, not proved",),
-    open=("every potential below 2**30: as for FallbackPath, true on maps of fewer than two million passable "
-          "cells",),
+    open=("every potential below 2**30: as for FallbackPath, argued on every map of fewer than 4,194,304 passable "
+          "cells (every 2000 x 2000 map)",),
 )
 
 PositionSafeAndProgressInductive = Predicate(
