@@ -159,6 +159,7 @@ def a_flag_made_with_z3(D):
     rc, stdout, stderr = run("prove", tmp_path / "flag.py", "--report", tmp_path / "r.json", cwd=tmp_path)
     assert rc == 0 and "Traceback" not in stderr, stdout + stderr
     assert "0 confirmed, 2 undecided, 0 newly decided, 0 contradicted" in stdout
+    assert "2 solver models not confirmed on the spec written under" in stdout and "counterexample" not in stdout
     for o in json.loads((tmp_path / "r.json").read_text())["obligations"]:
         assert o["status"] == "unknown" and "cannot evaluate" in o["detail"], o
 

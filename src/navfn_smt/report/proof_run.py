@@ -53,11 +53,15 @@ def meta(timeout: float, solvers, semantics, files) -> dict:
 
 
 def witness_note(outcomes, directory: Optional[Path]) -> None:
-    """Print where the counterexamples' witness files went, or that they were not written."""
-    n = sum(1 for o in outcomes if o.witness)
-    if not n:
+    """Print where the witness files went (of counterexamples, and of solver models the concrete
+    spec did not confirm or could not replay), or that they were not written."""
+    refuted = sum(1 for o in outcomes if o.witness and o.status == "refuted")
+    other = sum(1 for o in outcomes if o.witness and o.status != "refuted")
+    if not refuted + other:
         return
-    what = f"{n} counterexample{'s' if n != 1 else ''}"
+    parts = [f"{refuted} counterexample{'s' if refuted != 1 else ''}"] if refuted else []
+    parts += [f"{other} solver model{'s' if other != 1 else ''} not confirmed on the spec"] if other else []
+    what = " and ".join(parts)
     if directory is None:
         print(f"{what} not written to files (give --report or --witness-dir to keep them)")
     else:
