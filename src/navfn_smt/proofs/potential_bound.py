@@ -9,14 +9,15 @@ beside a reached cell (the goal first, at 0) and only falls after, so the k-th c
 reached is at most 256 * (k - 1) while that is below 2**30; the cells reached are the passable
 ones and the goal at most, so every potential stays below 2**30 on a map of fewer than
 2**22 = 4,194,304 passable cells, which holds every Nav2 map of 2000 x 2000 cells (the planner
-benchmark's, 1998 x 1998 inside its lethal border).  That count over the order in which cells become reached is a trusted
-step of :data:`navfn_smt.proofs.FallbackPath`; this file checks the step of one update.
+benchmark's, 1998 x 1998 inside its lethal border).  That count over the order in which cells
+become reached is a trusted step of :data:`navfn_smt.proofs.FallbackPath`; this file checks the
+step of one update.
 """
 
 from navfn_smt.proofs import FallbackPath
+from navfn_smt.proofs.fallback import _update  # one update, its lowest neighbour reached
 from navfn_smt.smt.obligation import obligation
-from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of, any_of, minimum
-from navfn_smt.spec import kernels as K
+from navfn_smt.smt.predicates import all_of, any_of
 from navfn_smt.spec.fix import POT_BOUND
 
 RISE = 256.0  # the most one update puts a changed cell above its lowest neighbour below POT_BOUND
@@ -32,9 +33,6 @@ def update_raises_at_most_256_above_its_lowest_neighbour(D):
     cost in [50, 253], valid potentials, l the lowest neighbour, l < 2**30
     ==>  updateCell(n) changes pot(n)  implies  pot'(n) <= l + 256
     """
-    old, l, r, u, d = (D.f32(v) for v in ("old", "l", "r", "u", "d"))
-    c = D.cost("cost")
-    new, changed = K.cell_update(D, old, l, r, u, d, D.cost_int(c), D.cost_as_f32(c))
-    pre = all_of(D, TranslatedCost(D, D.cost_int(c)), *(ValidPotential(D, p) for p in (old, l, r, u, d)),
-                 Reached(D, l), D.eq(minimum(D, l, r, u, d), l), D.lt(l, D.f32const(POT_BOUND)))
+    pre, l, _, new, changed = _update(D)
+    pre = all_of(D, pre, D.lt(l, D.f32const(POT_BOUND)))
     return pre, any_of(D, D.not_(changed), D.le(new, D.add(l, D.f32const(RISE))))
