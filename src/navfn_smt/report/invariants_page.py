@@ -73,7 +73,24 @@ KERNEL_CODE = {
                "may fuse",
     "mul_add64": "`NavFn::updateCell` (the quadratic) and `calcPath` (the interpolation): a double multiply-add a "
                  "build may fuse",
+    # the loops' steps the spec and the JIT run, by module
+    "propagation.cycle_runs": "`NavFn::propNavFnDijkstra` / `propNavFnAstar`: the loop's test at a cycle's top",
+    "propagation.call_ends_at_the_start": "`NavFn::propNavFnDijkstra` / `propNavFnAstar`: the start test at a "
+                                          "cycle's end",
+    "extraction.iteration_test": "`NavFn::calcPath`: the tests at an iteration's top (the near-goal probe, the "
+                                 "bound tests)",
+    "extraction.follows_the_grid": "`NavFn::calcPath`: the test for the grid-following fallback",
+    "extraction.grid_step": "`NavFn::calcPath`: the grid-following step",
+    "extraction.goal_point": "`NavFn::calcPath`: the goal point of the near-goal exit",
+    "extraction.ring_of_eight": "`NavFn::calcPath`: the eight neighbours its fallback reads",
+    "fix.calls_again": "`NavFn::calcNavFnAstar` / `calcNavFnDijkstra` (the fix, `patches/navfn-fix/`): the test "
+                       "for the second `propNavFn*` call",
+    "fix.descent_iteration": "`NavFn::calcPathDescent` (the fix, `patches/navfn-fix/`): one pass of its loop",
+    "fix.descent_ring": "`NavFn::calcPathDescent` (the fix, `patches/navfn-fix/`): the eight neighbours it reads",
 }
+# the spec modules whose functions an obligation can run: the kernels (named bare) and the loops' steps
+SPEC_MODULES = {"navfn_smt.spec.kernels": "", "navfn_smt.spec.propagation": "propagation.",
+                "navfn_smt.spec.extraction": "extraction.", "navfn_smt.spec.fix": "fix."}
 
 # The whole-planner properties of ``check``: formula and the planner code they are about
 # (their English statements come from check/properties.py).
@@ -230,26 +247,32 @@ def statement_parts(doc: str) -> tuple[str, list[str], list[str]]:
 
 
 def kernels_used(build) -> list[str]:
-    """The spec kernels an obligation's ``build`` calls (``K.name``), following the helper
-    functions of its proof file, in order of first use."""
-    scope = getattr(build, "__globals__", {})  # the proof file's names (it is not in sys.modules)
+    """The spec functions an obligation's ``build`` calls, in order of first use: the kernels
+    (``K.name``, named bare) and the loops' steps (``P.``, ``E.``, ``F.``: ``propagation.name``,
+    ...), following the helper functions of its proof file and of the proof files it imports
+    from."""
+    proofs = Path(build.__code__.co_filename).parent
     seen_fns, found = set(), []
 
     def visit(fn) -> None:
         if fn in seen_fns:
             return
         seen_fns.add(fn)
+        scope = fn.__globals__  # the proof file's names (it is not in sys.modules)
         try:
             tree = ast.parse(textwrap.dedent(inspect.getsource(fn)))
         except (OSError, TypeError, SyntaxError):
             return
         for node in ast.walk(tree):
-            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id == "K"
-                    and node.attr not in found):
-                found.append(node.attr)
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):
+                module = scope.get(node.value.id)
+                prefix = SPEC_MODULES.get(getattr(module, "__name__", None))
+                name = f"{prefix}{node.attr}"
+                if prefix is not None and inspect.isfunction(getattr(module, node.attr, None)) and name not in found:
+                    found.append(name)
             elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
                 helper = scope.get(node.func.id)
-                if inspect.isfunction(helper) and helper.__globals__ is scope:
+                if inspect.isfunction(helper) and Path(helper.__code__.co_filename).parent == proofs:
                     visit(helper)
 
     visit(build)
@@ -261,7 +284,8 @@ def planner_code(build) -> str:
     ks = kernels_used(build)
     if not ks:
         return ""
-    return "; ".join(f"{KERNEL_CODE.get(k, 'spec kernel')} (spec `kernels.{k}`)" for k in ks)
+    return "; ".join(f"{KERNEL_CODE.get(k, 'spec function')} (spec `{k if '.' in k else 'kernels.' + k}`)"
+                     for k in ks)
 
 
 # ---------------------------------------------------------------------------- helpers
