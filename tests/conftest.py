@@ -8,7 +8,10 @@ Markers (declared in ``pyproject.toml``) are given here, once, by what a test us
 ``shared`` and ``large`` for the shared suites' fixtures, ``dask`` for a Dask cluster
 fixture, ``prove`` for a whole proof run; ``slow`` is written on the test itself and such a
 test runs only with ``NAVFN_SLOW=1`` (:data:`SLOW`, read here and nowhere else).  So
-``pytest -m "not dask and not prove"`` gives a quick run.
+``pytest -m "not dask and not prove"`` gives a quick run.  ``fast`` is written on a test or its
+module (``pytestmark``): ``pytest -m fast`` is the development tier, of tests that have none of
+the markers above and take a few seconds at most (tests/test_fast_tier.py checks its size and
+that none of its tests has them).
 """
 
 import os

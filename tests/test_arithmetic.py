@@ -43,6 +43,7 @@ def _asm(lines, file="navfn.cpp", insn="fmadd\td0, d1, d2, d3"):
     return "\n".join(body) + "\n"
 
 
+@pytest.mark.fast
 def test_fused_lines_are_traced_to_their_source_lines_in_either_instruction_set():
     assert fused_lines(_asm([3, 9]), "navfn.cpp") == [3, 9]
     assert fused_lines(_asm([4], insn="vfmadd132ss\t%xmm1, %xmm2, %xmm0"), "navfn.cpp") == [4]
@@ -51,6 +52,7 @@ def test_fused_lines_are_traced_to_their_source_lines_in_either_instruction_set(
     assert fused_lines(_asm([4]), "other.cpp") == []
 
 
+@pytest.mark.fast
 def test_sites_fused_on_every_line_are_the_arithmetic(tmp_path):
     src = tmp_path / "navfn.cpp"
     src.write_text(SOURCE)
@@ -60,6 +62,7 @@ def test_sites_fused_on_every_line_are_the_arithmetic(tmp_path):
     assert fused_sites(src, []) == (set(), {}, [])
 
 
+@pytest.mark.fast
 def test_a_fused_line_the_spec_has_no_site_for_or_a_site_fused_in_part_is_unexpressible(tmp_path):
     src = tmp_path / "navfn.cpp"
     src.write_text(SOURCE)
@@ -138,6 +141,7 @@ def _square(fused: str, x86: bool = False, call: str = "tolerance") -> list:
     return [("navfn_planner.hpp", n, insn, at) for n, insn in insns]
 
 
+@pytest.mark.fast
 def test_the_plugins_fused_lines_are_its_sites_wherever_they_are_inlined_from(tmp_path):
     both = [("navfn_planner.cpp", 3), ("navfn_planner.cpp", 4), *_square("dx"),
             *_square("dx", x86=True, call="smooth_last"), ("navfn.cpp", 4)]
@@ -153,6 +157,7 @@ def test_the_plugins_fused_lines_are_its_sites_wherever_they_are_inlined_from(tm
         "fused": [], "squared_distance_orders": {}, "fused_instructions": 0, "sites": {}, "unexpressible": []}
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("x86", [False, True], ids=["arm64", "x86-64-v3"])
 def test_each_call_of_squared_distance_computes_the_square_its_copy_fused(tmp_path, x86):
     """GCC fuses fma(dy, dy, dx * dx) in the tolerance search's copy of Jazzy's and Humble's
@@ -172,6 +177,7 @@ def test_each_call_of_squared_distance_computes_the_square_its_copy_fused(tmp_pa
     assert c_fma(0.36, 0.36, 0.02 * 0.02) != c_fma(0.02, 0.02, 0.36 * 0.36)
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("x86", [False, True], ids=["arm64", "x86-64-v3"])
 def test_copies_of_one_call_that_differ_or_a_call_the_model_does_not_make_are_unexpressible(tmp_path, x86):
     doc = _record(tmp_path, [*_square("dx", x86), *_square("dy", x86)])
@@ -184,6 +190,7 @@ def test_copies_of_one_call_that_differ_or_a_call_the_model_does_not_make_are_un
     assert "could not be told" in _record(tmp_path, untold)["unexpressible"][0]
 
 
+@pytest.mark.fast
 def test_a_plugin_line_that_is_no_site_or_a_site_fused_in_part_is_unexpressible(tmp_path):
     doc = _record(tmp_path, [("navfn_planner.cpp", 5)])
     assert doc["fused"] == [] and "navfn_planner.cpp:5 fused `double other = a * b + c;`" in doc["unexpressible"][0]
@@ -214,6 +221,7 @@ def test_the_plugin_calls_none_of_costmap2ds_fused_functions(nav2_src):
     assert called.search("costmap_->mapToWorld(mx, my, wx, wy);")
 
 
+@pytest.mark.fast
 def test_the_probe_names_a_conversion_only_when_the_spec_computes_the_same_ints():
     assert conversion(EXPECTED["indefinite"]) == "indefinite"
     assert conversion(EXPECTED["saturating"]) == "saturating"
@@ -223,6 +231,7 @@ def test_the_probe_names_a_conversion_only_when_the_spec_computes_the_same_ints(
     assert len(PROBE_INPUTS) == len(EXPECTED["indefinite"])
 
 
+@pytest.mark.fast
 def test_a_build_whose_arithmetic_is_unknown_or_unexpressible_is_never_compared():
     assert of_build({})[0] is None and "build it again" in of_build({})[1]
     bad = {"arithmetic": {**KNOWN["aarch64"].as_dict(), "unexpressible": ["navfn.cpp:11 fused ..."]}}
@@ -230,6 +239,7 @@ def test_a_build_whose_arithmetic_is_unknown_or_unexpressible_is_never_compared(
     assert of_build({"arithmetic": KNOWN["aarch64"].as_dict()}) == (KNOWN["aarch64"], None)
 
 
+@pytest.mark.fast
 def test_arithmetics_are_data_named_when_known():
     for name, a in KNOWN.items():
         assert a.name == name and Arithmetic.from_dict(a.as_dict()) == a
@@ -246,6 +256,7 @@ def test_arithmetics_are_data_named_when_known():
         assert site_of_line(line) == "quadratic"
 
 
+@pytest.mark.fast
 def test_the_cost_translation_gives_the_same_ints_fused_or_not():
     """setCostmap's ``COST_NEUTRAL + COST_FACTOR * v`` (double, then int) for every cost below
     253: the fused value (the exact sum rounded once) truncates as the twice-rounded one does,
@@ -255,6 +266,7 @@ def test_the_cost_translation_gives_the_same_ints_fused_or_not():
         assert int(fused) == int(COST_NEUTRAL + COST_FACTOR * v), v
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("version, distro", [("1.1.20", "humble"), ("1.3.13", "jazzy"), ("1.4.2", "kilted"),
                                               ("1.5.1", "lyrical"), ("1.5.0", "rolling"), ("1.6.0", "rolling")])
 def test_the_distribution_is_read_from_the_version(tmp_path, version, distro):
@@ -264,6 +276,7 @@ def test_the_distribution_is_read_from_the_version(tmp_path, version, distro):
     assert distribution(tmp_path) == distro
 
 
+@pytest.mark.fast
 def test_the_git_commit_is_the_sources_own(tmp_path):
     repo = tmp_path / "repo"
     (repo / "inner").mkdir(parents=True)
@@ -279,6 +292,7 @@ def test_the_git_commit_is_the_sources_own(tmp_path):
     assert git_commit(tmp_path) == (None, "not a git checkout")
 
 
+@pytest.mark.fast
 def test_toolchains_are_checked_before_anything_is_built(tmp_path, capsys):
     with pytest.raises(NavfnInputError, match="no such target"):
         toolchain("sparc")
@@ -292,6 +306,7 @@ def test_toolchains_are_checked_before_anything_is_built(tmp_path, capsys):
     assert "no such target" in err and err.count("\n") == 1 and not (tmp_path / "o").exists()
 
 
+@pytest.mark.fast
 def test_fused_instructions_of_a_library_are_traced_through_its_line_information():
     from navfn_smt.oracle.library import fused_lines_of_binary
 
@@ -323,6 +338,7 @@ def _nearest(x: Fraction, bits: int) -> float:
     return float(best)
 
 
+@pytest.mark.fast
 def test_the_concrete_fused_multiply_add_rounds_once():
     """``D.fma`` and ``D.fma64`` are the exact ``a * b + c`` rounded once (to float, to double),
     on random and on cancelling inputs; the unfused sum rounds twice and differs on some."""
@@ -346,6 +362,7 @@ def test_the_concrete_fused_multiply_add_rounds_once():
     assert np.float32(C.fma(1.0000001, 1.0000001, -1.0000002)) != 0.0
 
 
+@pytest.mark.fast
 def test_the_concrete_domain_converts_as_its_arithmetic_says():
     from navfn_smt.spec.numeric import CONCRETE as C
 
@@ -356,6 +373,7 @@ def test_the_concrete_domain_converts_as_its_arithmetic_says():
     assert not C.with_arithmetic(KNOWN["x86-64"]).fuses("planar")
 
 
+@pytest.mark.fast
 def test_a_kernel_is_stated_once_and_computes_in_each_arithmetic():
     """planar_wave in x86-64's and in arm64's arithmetic: the same code, values that differ
     where the fused ``ta + hf * v`` or quadratic rounds once."""
@@ -416,6 +434,7 @@ def _layers_dis(tmp_path, items, untraced: int = 0) -> str:
     return "\n".join(body) + "\n"
 
 
+@pytest.mark.fast
 def test_the_layers_fused_lines_are_their_sites_and_distance_to_lines_products_are_found(tmp_path):
     from navfn_smt.oracle.arithmetic import layers_of_build, layers_record
     from navfn_smt.spec.arithmetic import LayersArithmetic
@@ -434,6 +453,7 @@ def test_the_layers_fused_lines_are_their_sites_and_distance_to_lines_products_a
     assert "build it again" in layers_of_build({"arithmetic": KNOWN["aarch64"].as_dict()})[1]
 
 
+@pytest.mark.fast
 def test_the_layers_model_computes_distance_to_line_with_the_products_found():
     from navfn_smt.nav2.footprint import c_hypot, distance_to_line
     from navfn_smt.spec.arithmetic import LayersArithmetic
@@ -451,6 +471,7 @@ def test_the_layers_model_computes_distance_to_line_with_the_products_found():
                                                                  y0 + (a * c + b * d) / (c * c + d * d) * d)
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("drop", ["partial", "no site", "no line", "untold"])
 def test_layer_arithmetic_the_model_cannot_express_is_named(tmp_path, drop):
     from navfn_smt.oracle.arithmetic import layers_of_build, layers_record
@@ -474,6 +495,7 @@ def test_layer_arithmetic_the_model_cannot_express_is_named(tmp_path, drop):
 
 
 # --------------------------------------------------------------------------- the C library's hypot
+@pytest.mark.fast
 def test_the_hypot_kernels_differ_and_the_probe_names_only_the_one_that_gives_every_double():
     """glibc's two hypot kernels part on some probe pairs (so the probe can tell them apart);
     answers of either are named as it; answers one ulp off on one pair are neither."""
@@ -493,6 +515,7 @@ def test_the_hypot_kernels_differ_and_the_probe_names_only_the_one_that_gives_ev
         glibc_hypot(3.0, 4.0, "musl")
 
 
+@pytest.mark.fast
 def test_this_machines_glibc_hypot_is_the_plain_kernel():
     """On x86-64 (whose glibc has no fused kernel) the C library's hypot is the ``glibc`` kernel
     on every probe pair; the legacy layers record of a native build takes it."""
@@ -531,6 +554,7 @@ def test_the_aarch64_c_library_computes_hypot_with_the_fused_kernel(tmp_path):
     assert found == "glibc-fma" and misses["glibc"] > 0
 
 
+@pytest.mark.fast
 def test_the_footprint_radii_follow_the_hypot_kernel_and_astar_distances_do_not():
     """The footprint's radii are computed with the build's kernel: some generated robot radii give
     an inscribed radius one ulp apart under the two.  NavFn's A* distance term (``hypot`` of two

@@ -87,6 +87,7 @@ def assert_same(ours, ref, backend: str) -> None:
     assert ours.exit == ref.exit, backend
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("backend", OTHERS)
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(case=planning_cases())
@@ -119,6 +120,7 @@ def test_backend_agrees_with_reference_in_each_arithmetic(backend, arith, case, 
         _extract("reference", costs, ref.potential, other, goal, n, a)
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("backend", OTHERS)
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(case=planning_cases(), capacity=st.integers(0, 8))
@@ -139,6 +141,7 @@ def _extract(backend: str, costs, potential, start, goal, n, arith=None):
         return "undefined"
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("backend", OTHERS)
 @settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(case=planning_cases(), data=st.data())
@@ -166,6 +169,7 @@ def test_extraction_alone_agrees_with_reference(backend, case, data):
     assert_same(budgeted(backend), budgeted("reference"), backend)
 
 
+@pytest.mark.fast
 def test_small_capacity_drops_and_default_does_not():
     """The capacity reaches both planners: 3 cells drop pushes on an open 9x9 map, the default
     (PRIORITYBUFSIZE) and an unbounded capacity do not, and give the same result."""
@@ -184,6 +188,7 @@ def test_small_capacity_drops_and_default_does_not():
         get_backend("jit").prepare(costs, -1)
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("backend", OTHERS)
 @settings(max_examples=60, deadline=None)
 @given(costs=cost_maps(), data=st.data())
@@ -219,6 +224,7 @@ def _assert_batch(batch, singles):
         assert _bits(batch["path"][lo:hi]) == _bits(ref.path)
 
 
+@pytest.mark.fast
 def test_results_do_not_alias_the_runner():
     """A result keeps its values when the same planner plans another case."""
     costs = np.full((8, 8), 50, np.uint8)
@@ -230,6 +236,7 @@ def test_results_do_not_alias_the_runner():
     assert np.array_equal(first.path, kept[1]) and np.array_equal(first.trace, kept[2])
 
 
+@pytest.mark.fast
 def test_conformance_check_can_fail():
     """The comparison notices a single flipped potential bit."""
     costs = np.full((6, 6), 60, np.uint8)

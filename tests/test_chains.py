@@ -11,6 +11,8 @@ from navfn_smt.smt.chains import Predicate, Verdict, check_chains, declared_verd
 from navfn_smt.smt.obligation import load_obligations
 from navfn_smt.smt.runner import default_proof_files
 
+pytestmark = pytest.mark.fast
+
 # the status each predicate's chain gets from the verdicts its obligations are expected to get
 EXPECTED = {
     "PositionSafe": ("proved", "proved"),

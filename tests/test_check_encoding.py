@@ -96,6 +96,7 @@ def test_encoding_where_pushes_split_between_buffers(inner, start, goal, astar):
     assert [_bits(v) for v in got] == [_bits(v) for v in ref.potential.ravel()]
 
 
+@pytest.mark.fast
 def test_symbolic_costs_admit_no_other_potential():
     """Costs as symbolic bytes, fixed by constraints: no model gives a potential other than the spec's."""
     arr = add_border(np.full((4, 4), 60, np.uint8))
@@ -199,6 +200,7 @@ def _counterexample_case(name: str):
 ARITHMETIC_MAPS = ["path-without-potential-astar-4x3-aarch64", "cost-astar-5x7", "turn-astar-5x5"]
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("name", ARITHMETIC_MAPS)
 def test_the_concolic_run_in_each_arithmetic_is_the_specs_there(name):
     """The whole run in the concolic domain over a build's arithmetic (``check --target``):

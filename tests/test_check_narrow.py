@@ -17,6 +17,7 @@ from navfn_smt.cli import main
 from navfn_smt.under_test import FIXED
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("size,narrow", [((4, 5), True), ((5, 4), True), ((4, 6), True), ((6, 4), True),
                                          ((3, 14), True), ((4, 10), True), ((4, 11), False), ((3, 15), False),
                                          ((5, 5), False), ((14, 3), True)])
@@ -25,6 +26,7 @@ def test_narrow_sizes_are_at_most_two_cells_wide_and_within_the_budget(size, nar
     assert bool(CR.carried_at(*size)) is narrow and not CR.carried_at(*size, planner=FIXED)
 
 
+@pytest.mark.fast
 def test_check_complete_on_a_narrow_size_is_decided_by_fallback_path(tmp_path, capsys):
     js = tmp_path / "c.json"
     assert main(["check", "complete", "--size", "4", "5", "--json", str(js)]) == 0
@@ -35,6 +37,7 @@ def test_check_complete_on_a_narrow_size_is_decided_by_fallback_path(tmp_path, c
     assert "induction: FallbackPath" in capsys.readouterr().out
 
 
+@pytest.mark.fast
 def test_a_cost_box_below_cost_neutral_is_explored(tmp_path):
     """FallbackPath's obligations assume the costs setCostmap produces (50..253): with NavFn's
     raw range (down to 1: a box reaching 0 is refused, a NaN) the size is explored, not decided by it."""
@@ -45,6 +48,7 @@ def test_a_cost_box_below_cost_neutral_is_explored(tmp_path):
     assert row["method"] == "exploration" and row["solved"]["control_paths"] > 0
 
 
+@pytest.mark.fast
 def test_beside_another_property_complete_stays_decided_by_the_induction(tmp_path):
     """``check complete start-reached`` on a narrow size: complete by FallbackPath, start-reached
     explored alone (its control paths end with propagation)."""

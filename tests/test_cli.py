@@ -86,6 +86,7 @@ def test_difftest_disagreement_exits_1(tmp_path):
     assert [(x["case_index"], x["field"]) for x in d] == [(7, "cycles")]
 
 
+@pytest.mark.fast
 def test_wrong_map_size(tmp_path):
     raw = tmp_path / "m.bin"
     raw.write_bytes(bytes(24))
@@ -93,11 +94,13 @@ def test_wrong_map_size(tmp_path):
     assert_clean_error(rc, err, "24 bytes", "5x5")
 
 
+@pytest.mark.fast
 def test_missing_map():
     rc, out, err = run("plan", "/nonexistent/map.bin", "--size", 5, 5, "--start", 1, 1, "--goal", 2, 2)
     assert_clean_error(rc, err, "no such")
 
 
+@pytest.mark.fast
 def test_raw_map_without_size(tmp_path):
     raw = tmp_path / "m.bin"
     raw.write_bytes(bytes(25))
@@ -112,6 +115,7 @@ def test_cell_off_the_map(which, cell):
     assert_clean_error(rc, err, which.strip("-"), "off the 5x5 map")
 
 
+@pytest.mark.fast
 def test_not_a_map_directory(tmp_path):
     d = tmp_path / "bad"
     d.mkdir()
@@ -120,6 +124,7 @@ def test_not_a_map_directory(tmp_path):
     assert_clean_error(rc, err, "test.txt")
 
 
+@pytest.mark.fast
 def test_malformed_case_line(tmp_path):
     d = tmp_path / "suite" / "c" / "m"
     shutil.copytree(FREE, d)
@@ -128,6 +133,7 @@ def test_malformed_case_line(tmp_path):
     assert_clean_error(rc, err, "test.txt:4", "sx sy gx gy")
 
 
+@pytest.mark.fast
 def test_truncated_map_bytes_in_suite(tmp_path):
     d = tmp_path / "suite" / "c" / "m"
     shutil.copytree(FREE, d)
@@ -136,6 +142,7 @@ def test_truncated_map_bytes_in_suite(tmp_path):
     assert_clean_error(rc, err, "7 bytes")
 
 
+@pytest.mark.fast
 def test_corrupt_golden_file(tmp_path):
     d = tmp_path / "suite" / "c" / "m"
     shutil.copytree(FREE, d)
@@ -146,6 +153,7 @@ def test_corrupt_golden_file(tmp_path):
     assert not report.exists()  # nothing half-written
 
 
+@pytest.mark.fast
 def test_missing_suite_and_empty_suite(tmp_path):
     rc, out, err = run("difftest", tmp_path / "nope")
     assert_clean_error(rc, err, "no such suite")
@@ -153,11 +161,13 @@ def test_missing_suite_and_empty_suite(tmp_path):
     assert_clean_error(rc, err, "no map directories")
 
 
+@pytest.mark.fast
 def test_unwritable_json_report(tmp_path):
     rc, out, err = run("difftest", "--json", tmp_path / "missing-dir" / "r.json")
     assert_clean_error(rc, err, "does not exist")
 
 
+@pytest.mark.fast
 def test_main_returns_status_in_process(capsys):
     assert main(["plan", str(FREE), "--start", "9", "9", "--goal", "1", "1"]) == 2
     assert "off the 5x5 map" in capsys.readouterr().err
@@ -200,6 +210,7 @@ def test_version():
     assert out.strip() == f"navfn-smt {version('navfn-smt')}"
 
 
+@pytest.mark.fast
 def test_every_option_has_help_and_shows_its_default():
     from navfn_smt.cli import build_parser, shown_default
 

@@ -124,6 +124,7 @@ def test_no_command_writes_into_the_working_directory(tmp_path, monkeypatch, cap
     assert (tmp_path / "out" / "p.png").exists() and (tmp_path / "out" / "r.json").exists()
 
 
+@pytest.mark.fast
 def test_render_output_checked_before_the_map_is_read(tmp_path, capsys):
     assert main(["render", str(tmp_path / "no-such-map"), "-o", str(tmp_path / "p.jpg")]) == 2
     assert "p.jpg: the picture must be .png or .svg" in capsys.readouterr().err
@@ -157,6 +158,7 @@ def test_prove_reads_a_folder_or_says_what_it_expects(tmp_path, capsys):
 
 
 # ------------------------------------------------------------------ messages that name flags
+@pytest.mark.fast
 def test_image_outside_the_yaml_folder_names_the_flag(tmp_path, capsys):
     inner = tmp_path / "maps"
     inner.mkdir()
@@ -169,6 +171,7 @@ def test_image_outside_the_yaml_folder_names_the_flag(tmp_path, capsys):
     assert main(["plan", str(y), "--start", "5", "5", "--goal", "8", "8", "--allow-outside"]) == 0
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("value", ["-1", "101", "nan"])
 def test_min_branch_out_of_range_is_an_error(value, capsys):
     assert main(["coverage", "--min-branch", value]) == 2
@@ -181,6 +184,7 @@ def test_min_branch_not_met_says_so():
 
 
 # --------------------------------------------------------------------------- plan: no path
+@pytest.mark.fast
 @pytest.mark.parametrize("start, words", [
     ((0, 0), ["on the map's border", "lethal"]),
     ((0, 2), ["on the map's border"]),
@@ -306,6 +310,7 @@ def test_check_heartbeat_does_not_wait_for_a_case(capsys, monkeypatch):
     assert capsys.readouterr().err == ""  # stopped
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("argv, words", [
     (["check", "valid-path", "--exhaustive", "nan"], "--exhaustive nan"),
     (["check", "valid-path", "--budget", "-1"], "--budget -1"),

@@ -12,6 +12,8 @@ z3 = pytest.importorskip("z3")
 
 from navfn_smt.smt import codec  # noqa: E402
 
+pytestmark = pytest.mark.fast
+
 PATTERNS32 = [0x00000000, 0x80000000, 0x00000001, 0x807FFFFF, 0x3F800000, 0x7F7FFFFF, 0x7F800000, 0xFF800000,
               0x4B800000, 0xC0490FDB]
 

@@ -54,6 +54,7 @@ def test_u_map_is_its_recipe():
     assert np.array_equal(np.frombuffer(raw[len(head):], np.uint8).reshape(377, 486), u_map_image())
 
 
+@pytest.mark.fast
 def test_u_map_fails_with_factor_4_and_diagnose_finds_5(u_setup, u_diag):
     d = u_diag
     assert u_setup.params.max_cycles_factor == 4 and u_setup.costmap.size_x == 486
@@ -74,6 +75,7 @@ def test_u_map_fails_with_factor_4_and_diagnose_finds_5(u_setup, u_diag):
     assert w == {"use_astar=true": True, "tolerance=0": False, "tolerance=1": False, "allow_unknown=false": True}
 
 
+@pytest.mark.fast
 def test_legal_potential_no_plan_is_a_cycle_no_factor_fixes():
     s = load_inputs(LNP / "map.yaml", LNP / "nav2_params.yaml")
     assert s.params.use_astar and s.layers == ["static_layer (static)"]
@@ -149,6 +151,7 @@ def test_propagation_cycle_limit_on_a_serpentine():
     assert d.propagation_check == {"cycles_lifted": True, "buffers_lifted": False, "both_lifted": True}
 
 
+@pytest.mark.fast
 def test_extraction_exhausted_on_a_small_u():
     # 60x60 U corridor 6 cells wide: the path (219 points) is longer than 60 * factor 1
     n = 60
@@ -165,6 +168,7 @@ def test_extraction_exhausted_on_a_small_u():
 
 
 # ------------------------------------------------------------------ the unbudgeted calcPath
+@pytest.mark.fast
 @pytest.mark.parametrize("name", ["incomplete-dijkstra-5x6", "oscillation-astar-6x5", "unreached-astar-7x8",
                                   "cost-dijkstra-7x7", "int-conversion-astar-4x3"])
 def test_walk_equals_spec_calc_path(name):
@@ -187,6 +191,7 @@ def test_walk_equals_spec_calc_path(name):
             assert calc_path(flat, nx, ny, (sx, sy), (gx, gy), n - 1).exit.value == "exhausted"
 
 
+@pytest.mark.fast
 def test_walk_cycle_on_a_two_cell_bowl():
     # a potential where grid-following and the gradient send the path back and forth forever
     s = load_inputs(LNP / "map.yaml", LNP / "nav2_params.yaml")
@@ -238,6 +243,7 @@ def test_cli_exit_codes_and_json(tmp_path, capsys):
     assert doc["summary"]["plans"] == 2 and doc["summary"]["ok"] == 1 and doc["summary"]["legal_potential_no_plan"] == 1
 
 
+@pytest.mark.fast
 def test_cli_bad_input_exits_2(tmp_path, capsys):
     m = str(LNP / "map.yaml")
     cases = [

@@ -22,6 +22,7 @@ def run(*args, cwd=REPO):
     return p.returncode, p.stdout, p.stderr
 
 
+@pytest.mark.fast
 def test_committed_page_is_up_to_date():
     rc, out, err = run("--check")
     assert rc == 0, out + err
@@ -59,6 +60,7 @@ def test_a_missing_or_extra_line_fails_the_check(tmp_path):
     assert rc == 1 and "final newline" in out, out
 
 
+@pytest.mark.fast
 def test_the_page_lists_every_obligation_predicate_and_check_property():
     from navfn_smt.check.runner import CHECKABLE
     from navfn_smt.proofs import PREDICATES
@@ -88,6 +90,7 @@ def test_every_trusted_step_is_on_the_page_and_the_docs_count_them_as_the_code_d
     assert fix and proofs and {int(n) for n in fix + proofs} == {len(steps)}
 
 
+@pytest.mark.fast
 def test_every_kernel_names_its_cpp_code():
     """Where an obligation applies comes from the spec functions it runs: each needs its C++ place."""
     import inspect
@@ -111,6 +114,7 @@ def test_every_kernel_names_its_cpp_code():
     assert set(KERNEL_CODE) >= {k for ks in used.values() for k in ks}
 
 
+@pytest.mark.fast
 def test_statuses_come_from_the_reports():
     """Refuted with a witness, bounded with its bound, check sizes with their verdicts; the
     committed check reports are what the page's check rows say."""
@@ -127,6 +131,7 @@ def test_statuses_come_from_the_reports():
             assert f"| {r['size'][0]}x{r['size'][1]} | {r['interior_cells']} | {r['status']}" in text
 
 
+@pytest.mark.fast
 def test_a_certificate_is_linked_where_it_certifies_the_property():
     """A size's row links its committed certificate under exactly the properties the certificate
     gives a verdict for: 4x6's certificate covers start-reached, not complete (an induction's)."""
@@ -197,6 +202,7 @@ def test_prove_markdown_is_the_same_generator(tmp_path):
     assert len(differ) == 1 and differ[0][1].startswith("Proofs: [reports/prove.json]"), differ
 
 
+@pytest.mark.fast
 def test_the_page_joins_the_runs_in_other_arithmetics_beside_the_report(tmp_path):
     """The committed runs in x86-64-v3's and aarch64's arithmetic (prove-NAME.json beside
     prove.json) each add a column; a file there that is no run in its arithmetic alone is refused."""
@@ -213,6 +219,7 @@ def test_the_page_joins_the_runs_in_other_arithmetics_beside_the_report(tmp_path
         page.with_arithmetics(bad, tmp_path / "prove.json")
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("what", ["missing", "malformed", "not-a-report", "check-missing", "check-malformed",
                                   "check-not-a-report", "out-dir-missing", "check-page-missing"])
 def test_bad_inputs_are_one_line_with_exit_2(tmp_path, what):
@@ -245,6 +252,7 @@ def test_bad_inputs_are_one_line_with_exit_2(tmp_path, what):
     assert not (tmp_path / "inv.md").exists()
 
 
+@pytest.mark.fast
 def test_help_lists_every_option():
     rc, out, _ = run("--help")
     assert rc == 0

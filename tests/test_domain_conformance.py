@@ -33,6 +33,7 @@ from navfn_smt.testing import conformance as H
 
 
 # ------------------------------------------------------------------------ the interface
+@pytest.mark.fast
 @pytest.mark.parametrize("domain", H.DOMAIN_CLASSES, ids=lambda d: d.__name__)
 def test_every_domain_has_every_operation(domain):
     assert H.missing(dir(domain)) == set()
@@ -42,16 +43,19 @@ def test_the_numba_domain_compiles_every_operation():
     assert H.missing(NUMBA_OPERATIONS) == set()
 
 
+@pytest.mark.fast
 def test_the_interface_lists_what_the_kernels_call():
     called = set(re.findall(r"\bD\.(\w+)\(", Path(kernels.__file__).read_text()))
     assert called and called <= set(OPERATIONS), sorted(called - set(OPERATIONS))
 
 
+@pytest.mark.fast
 def test_every_operation_says_what_it_stands_for():
     assert len(OPERATIONS) > 20
     assert [n for n in OPERATIONS if not (getattr(NumericDomain, n).__doc__ or "").strip()] == []
 
 
+@pytest.mark.fast
 def test_a_missing_operation_is_found():
     partial = type("Partial", (), {n: None for n in OPERATIONS if n != "hypotf"})
     assert H.missing(dir(partial)) == {"hypotf"}
@@ -66,6 +70,7 @@ def test_kernel_in_domain(run, case):
     assert H.mismatches(run, case) == []
 
 
+@pytest.mark.fast
 def test_every_domain_runs_every_kernel_it_can():
     """The runs leave out only what their domain cannot take: the array domain's conversions to
     int are scalar (heuristic, nearest, lowest); the real domain's hypot is a value the inputs do
@@ -94,6 +99,7 @@ def test_the_inputs_hold_every_edge_and_every_cost():
 
 
 # ------------------------------------------------------------------------ each check can fail
+@pytest.mark.fast
 def test_a_wrong_array_domain_is_caught():
     """A domain whose hypotf forgets C's rule for an infinite argument beside a NaN (the array
     domain's bug this harness found) differs from the concrete one."""
@@ -126,6 +132,7 @@ def test_the_compiled_domain_in_a_wrong_arithmetic_is_caught(case, wrong):
     assert H.mismatches(replace(run, results=partial(H.numba_results, arith=wrong), n=2000), T.CASE[case]) != []
 
 
+@pytest.mark.fast
 def test_an_unsound_interval_is_caught():
     """A concolic product that takes the interval from two corners of four (sound only for
     operands of one sign) misses values at the other corners."""
@@ -137,6 +144,7 @@ def test_an_unsound_interval_is_caught():
     assert H.mismatches(H.with_domain(H.RUN["concolic"], TwoCorners, 200), T.CASE["interpolate"]) != []
 
 
+@pytest.mark.fast
 def test_a_wrong_real_domain_is_caught():
     """A real roundf that rounds halves up (not away from zero) differs from the exact one."""
 

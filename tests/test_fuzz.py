@@ -10,7 +10,6 @@ import contextlib
 import io
 import os
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -70,6 +69,7 @@ def _only_input_errors(fn, *args, **kwargs):
             assert "\n" not in str(e)
 
 
+@pytest.mark.fast
 @FUZZ
 @given(st.binary(max_size=300), st.integers(3, 12), st.integers(3, 12))
 def test_map_bytes(tmp_path_factory, data, w, h):
@@ -87,6 +87,7 @@ TEST_TXT = st.one_of(
 )
 
 
+@pytest.mark.fast
 @FUZZ
 @given(TEST_TXT)
 def test_suite_map_dirs(tmp_path_factory, text):
@@ -98,6 +99,7 @@ def test_suite_map_dirs(tmp_path_factory, text):
     _only_input_errors(load_map, d)
 
 
+@pytest.mark.fast
 @FUZZ
 @given(st.binary(max_size=400), st.integers(0, 2))
 def test_golden_files(tmp_path_factory, data, how):
@@ -141,6 +143,7 @@ IMAGES = st.one_of(
 )
 
 
+@pytest.mark.fast
 @FUZZ
 @given(IMAGES, st.sampled_from(["m.pgm", "m.png"]))
 def test_images(tmp_path_factory, data, name):
@@ -187,6 +190,7 @@ GOALS = st.one_of(
 )
 
 
+@pytest.mark.fast
 @FUZZ
 @given(GOALS, st.sampled_from(["g.txt", "g.json", "g.yaml"]))
 def test_goals(tmp_path_factory, data, name):
@@ -197,6 +201,7 @@ def test_goals(tmp_path_factory, data, name):
     _only_input_errors(parse_goals, p)
 
 
+@pytest.mark.fast
 @FUZZ
 @given(st.one_of(st.binary(max_size=300),
                  st.lists(st.integers(-5, 10**7), min_size=0, max_size=4).map(lambda s: fuzz._npy_header_claiming(s)),

@@ -112,6 +112,7 @@ def test_map_does_not_depend_on_count_and_names_carry_seed_and_index():
 
 
 # ------------------------------------------------------------------------ cases
+@pytest.mark.fast
 def test_cases_all_pairs_in_paper_order_when_few():
     c = generate_map("free", size=(5, 5), paths="all").costs
     cases = choose_cases(c, 1000, np.random.default_rng(0))
@@ -120,6 +121,7 @@ def test_cases_all_pairs_in_paper_order_when_few():
     assert cases.dtype == np.int32 and cases.shape == (81, 4)
 
 
+@pytest.mark.fast
 def test_cases_sampled_when_many_and_all_allowed():
     c = generate_map("random", seed=1, size=(12, 12), paths=10).costs
     rng = np.random.default_rng(0)
@@ -150,6 +152,7 @@ def test_random_maps_have_random_costs_and_no_obstacles():
     assert (interior(c) < LETHAL).all() and len(np.unique(interior(c))) > 50
 
 
+@pytest.mark.fast
 def test_obstacle_ratio():
     m = generate_map("obstacle", seed=6, index=1, size=(12, 12), paths=5)
     n = 10 * 10
@@ -159,6 +162,7 @@ def test_obstacle_ratio():
     assert set(np.unique(m0.costs)) <= {50, 254}
 
 
+@pytest.mark.fast
 def test_split_maps_have_two_disconnected_regions():
     for i in range(8):
         m = generate_map("split", seed=8, index=i, size=(9 + i % 3, 7 + i % 2), paths=200)
@@ -317,6 +321,7 @@ def test_inflated_map_is_navfn_translation_of_ros_costs():
 
 
 # ------------------------------------------------------------------------ writing
+@pytest.mark.fast
 def test_categories_add_up_and_same_names_are_refused(tmp_path):
     generate_suite(tmp_path, "free", count=2, seed=1, size=(5, 5), paths=20)
     generate_suite(tmp_path, "spiral", count=1, seed=1, size=(7, 7), paths=20)
@@ -335,6 +340,7 @@ def test_categories_add_up_and_same_names_are_refused(tmp_path):
     assert not [p for p in tmp_path.rglob(".*")], "no temporary files left"
 
 
+@pytest.mark.fast
 def test_failed_write_leaves_no_map_directory(tmp_path, monkeypatch):
     real = G._write_file
 

@@ -52,6 +52,7 @@ def test_a_broken_update_breaks_the_step(monkeypatch, name, mutant, kernel, doma
     assert _answer(name, domain()) == "sat"
 
 
+@pytest.mark.fast
 def test_a_setup_that_reaches_a_lethal_cell_breaks_the_base(monkeypatch):
     """The base case's array with every cell at 0 instead of POT_HIGH: a lethal cell is reached."""
     ob = INDUCTION["setup_and_init_cost_establish_the_invariant"]

@@ -108,6 +108,7 @@ def test_generated_footprint_radii(generated):
         assert (fp.inscribed_radius, fp.circumscribed_radius) == (g["inscribed_radius"][n], g["circumscribed_radius"][n])
 
 
+@pytest.mark.fast
 def test_footprint_goldens():
     g = load("footprints.npz")
     for n in range(len(g["kind"])):
@@ -263,6 +264,7 @@ def test_existing_costs_are_kept_when_higher():
         assert out[10, 15] == 200 and out[10, 14] == max(compute_cost(4.0, RES, 0.05, 3.0), 0)
 
 
+@pytest.mark.fast
 def test_legacy_tables():
     dist, costs, levels = legacy_tables(3, RES, 0.1, 3.0)
     assert dist.shape == costs.shape == (5, 5) and dist[3, 4] == 5.0
@@ -305,6 +307,7 @@ def test_radius_footprint_and_padding_quirk():
     assert inside == pytest.approx(0.2 * math.cos(math.pi / 16)) and outside == pytest.approx(0.2)
 
 
+@pytest.mark.fast
 def test_string_footprint_is_float32():
     fp = robot_footprint(0.5, "[[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2], [-0.3, 0.2]]", 0.0)
     assert fp.source == "footprint" and fp.inscribed_radius == float(np.float32(0.2))
@@ -368,6 +371,7 @@ def write(tmp_path, text):
     return p
 
 
+@pytest.mark.fast
 def test_params_file(tmp_path):
     p = cm.load_costmap_params(write(tmp_path, PARAMS), "jazzy")
     assert p == cm.bringup_params("jazzy")
@@ -387,6 +391,7 @@ def test_distro_layer_mapping():
     assert set(cm.INFLATION_TYPES) == {"humble", "iron", "jazzy", "kilted", "lyrical", "rolling"}
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("edit, key", [
     (("inflation_radius: 0.7", "inflation_radius: 1"), "inflation_layer.inflation_radius"),
     (("inflation_radius: 0.7", "inflation_radius: -0.5"), "inflation_layer.inflation_radius"),
@@ -401,6 +406,7 @@ def test_bad_params_name_the_key(tmp_path, edit, key):
         cm.load_costmap_params(write(tmp_path, PARAMS.replace(*edit)))
 
 
+@pytest.mark.fast
 def test_unreadable_params(tmp_path):
     with pytest.raises(NavfnInputError, match="no such"):
         cm.load_costmap_params(tmp_path / "absent.yaml")

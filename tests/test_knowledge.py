@@ -19,6 +19,8 @@ from navfn_smt.smt import knowledge as K
 from navfn_smt.smt import runner
 from navfn_smt.smt import split as S
 
+pytestmark = pytest.mark.fast
+
 TOY = Path(__file__).parent / "data" / "split" / "toy_proofs.py"
 
 KNOWN_FILE = '''

@@ -7,7 +7,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 
 from navfn_smt.errors import NavfnInputError
@@ -33,6 +32,7 @@ def test_test_txt_claiming_a_huge_map(tmp_path):
         load_map(tmp_path)
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("name,data", [("m.pgm", _pgm(100000, 100000, data=b"\0" * 10)),
                                        ("m.pgm", _pgm(12000, 10000, data=b"\0" * 10)),
                                        ("m.png", _png_header_only(100000, 100000))])
@@ -53,6 +53,7 @@ def test_npy_header_claiming_a_huge_map(tmp_path):
         load_costmap_file(tmp_path / "c.npy", 0.1)
 
 
+@pytest.mark.fast
 def test_solver_out_of_memory_is_unknown(monkeypatch):
     import z3
 
@@ -112,6 +113,7 @@ def test_sigint_while_the_command_line_is_built(monkeypatch, capsys):
     assert capsys.readouterr().err == "navfn-smt: interrupted\n"
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("value", ["fast", "0", "-1", "nan", "inf"])
 def test_a_bad_heartbeat_interval_is_named(monkeypatch, capsys, value):
     from navfn_smt.cli import main

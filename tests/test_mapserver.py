@@ -189,6 +189,7 @@ def load_pixels(folder: Path, pixels, fmt="p5", distro="rolling", **fields) -> M
     return m
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("distro", ["humble", "rolling"])
 def test_vertical_flip(tmp_path, distro):
     pix = np.full((4, 3), 255, np.uint8)
@@ -251,6 +252,7 @@ def test_legacy_rgb_channels_are_averaged(tmp_path):
     assert m.occupancy[2].tolist() == [100, -1, 0]
 
 
+@pytest.mark.fast
 def test_current_rgb_is_rec601_luma(tmp_path):
     # GraphicsMagick's GRAY transform in Q16: floor(0.299f*R + 0.587f*G + 0.114f*B + 0.5) from
     # float tables, then / 257 (truncated) for 8 bits.  (255,0,0): 0.299f * 65535 = 19594.96
@@ -263,6 +265,7 @@ def test_current_rgb_is_rec601_luma(tmp_path):
     assert m.occupancy[2].tolist() == [100, 0, 0]
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("distro", ["humble", "rolling"])
 def test_raw_mode(tmp_path, distro):
     # raw: the pixel value (legacy: round(shade * 255); current: the 8-bit grey cast to int8);
@@ -274,6 +277,7 @@ def test_raw_mode(tmp_path, distro):
         assert m.occupancy[::-1].tolist() == [[0, 1, 50], [99, 100, -1], [-1, -1, -1]]
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("distro", ["humble", "jazzy"])
 def test_scale_mode_values(tmp_path, distro):
     # occupied 0.99, free 0.01 (speed_mask's): occ = 1 - p/255 (in double or float alike here)
@@ -332,6 +336,7 @@ def test_negate_at_a_decimal_threshold(tmp_path):
         assert np.all(a.occupancy == want51) and np.all(b.occupancy == 0), distro
 
 
+@pytest.mark.fast
 def test_thresholds_inclusive_only_in_current(tmp_path):
     # occupied 0.2 with negate=1, p = 51: legacy 0.2 < 0.2 is false -> unknown (free 0.1);
     # current 0.2f >= 0.2f -> occupied.
@@ -341,6 +346,7 @@ def test_thresholds_inclusive_only_in_current(tmp_path):
         assert np.all(a.occupancy == want), distro
 
 
+@pytest.mark.fast
 def test_16_bit_grey(tmp_path):
     # Legacy keeps 16-bit samples: occ = 1 - v/65535.  v = 52690: occ 0.1960021 (not < 0.196)
     # -> unknown; v = 52691: occ 0.1959869 -> free; v = 52885: occ 0.19303 -> free.  Current
@@ -386,6 +392,7 @@ def test_interpret_value_table():
     assert interpret_value(25, lethal_threshold=50, trinary_costmap=False) == 127
 
 
+@pytest.mark.fast
 def test_defaults(tmp_path):
     # the default distribution is Rolling (Nav2's main branch, like the golden suite's NavFn)
     m = load_map_yaml(write_map(tmp_path, np.full((3, 3), 255, np.uint8)))
@@ -416,6 +423,7 @@ def bad(path, *words, **kw):
     return one_line_error(e, *words)
 
 
+@pytest.mark.fast
 def test_bad_yaml_files(tmp_path):
     bad(tmp_path / "none.yaml", "no such map YAML file")
     bad(tmp_path, "is a directory")
@@ -431,6 +439,7 @@ def test_bad_yaml_files(tmp_path):
     bad(tmp_path / "e.yaml", "malformed YAML")
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("key", ["image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh"])
 def test_missing_required_key(tmp_path, key):
     write_image(tmp_path / "m.pgm", np.full((3, 3), 255, np.uint8), "p5")
@@ -470,6 +479,7 @@ def test_bad_fields(tmp_path, field, value, words):
     bad(write_yaml(tmp_path, **{field: value}), *words)
 
 
+@pytest.mark.fast
 def test_image_missing_or_outside(tmp_path):
     inner = tmp_path / "maps"
     inner.mkdir()
@@ -489,6 +499,7 @@ def test_image_missing_or_outside(tmp_path):
     bad(write_yaml(inner, image="."), "directory")
 
 
+@pytest.mark.fast
 def test_corrupt_images(tmp_path):
     (tmp_path / "g.pgm").write_bytes(b"this is not an image at all")
     bad(write_yaml(tmp_path, image="g.pgm"), "unreadable or corrupt image")

@@ -15,6 +15,8 @@ from navfn_smt.nav2.plugin import (LEGAL_BUT_NO_PLAN, POT_HIGH, Costmap, Pose, c
 from navfn_smt.spec.costs import set_costmap
 from navfn_smt.spec.planner import plan as spec_plan
 
+pytestmark = pytest.mark.fast
+
 DATA = Path(__file__).resolve().parent / "data" / "plugin_cases"
 RES = 0.05000000074505806  # float32(0.05) widened: 13421773 * 2**-28
 assert RES == float(np.float32(0.05)) and RES == 13421773 * 2.0 ** -28

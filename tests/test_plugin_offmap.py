@@ -27,6 +27,7 @@ def test_offmap_interval_proved_by_z3():
     assert offmap(math.nextafter(iv.hi, 0), 0.0, RES, 8) and not offmap(iv.hi, 0.0, RES, 8)
 
 
+@pytest.mark.fast
 def test_offmap_interval_of_a_realistic_map():
     # origin -10, 400 cells (the numbers of docs/plugin.md; the Z3 run is in the docs, minutes)
     lo, hi = offmap_interval_numeric(-10.0, RES, 400)
@@ -43,6 +44,7 @@ def test_offmap_interval_through_create_plan():
     assert create_plan(m, Pose(hi, 0.11), Pose(0.11, 0.16)).error == "StartOutsideMapBounds"
 
 
+@pytest.mark.fast
 def test_stall_threshold():
     st = stall_threshold(RES)
     assert st.threshold == 2.0 ** 49 == 562949953421312.0
@@ -51,6 +53,7 @@ def test_stall_threshold():
     assert p + RES == p and math.nextafter(p, 0) + RES != math.nextafter(p, 0)
 
 
+@pytest.mark.fast
 def test_tolerance_window_is_one_sided():
     # tolerance 0.5, RES > 0.05: 0.5 / RES < 10, so g - 0.5 + 20 RES > g + 0.5: 20 points, not 21
     rng = np.random.default_rng(3)
@@ -59,6 +62,7 @@ def test_tolerance_window_is_one_sided():
         assert len(cells) == 20
 
 
+@pytest.mark.fast
 def test_tolerance_skipped_column():
     assert SKIP_GOAL_X.hex() == "-0x1.8666646800003p+0"
     cells = loop_cells(SKIP_GOAL_X, 0.5, -10.0, RES)
@@ -66,12 +70,14 @@ def test_tolerance_skipped_column():
     assert loop_cells(math.nextafter(SKIP_GOAL_X, 0), 0.5, -10.0, RES)[:3] == [160, 161, 162]
 
 
+@pytest.mark.fast
 def test_cell_centres_round_up():
     # origin + (i + 0.5) * res lands on i + 0.5 or above for every cell of these maps: cell i + 1
     assert centre_cells(0.0, RES, 8).tolist() == list(range(1, 9))
     assert (centre_cells(-10.0, RES, 400) == np.arange(1, 401)).all()
 
 
+@pytest.mark.fast
 def test_case_directories_present():
     names = {d.name for d in CASE_DIRS}
     assert {"robot-right-half-cell", "robot-top-half-cell", "goal-right-half-cell", "goal-top-half-cell",
@@ -86,6 +92,7 @@ def test_case_replays(case, backend):
     assert actual == expected
 
 
+@pytest.mark.fast
 def test_robot_right_half_cell_path_crosses_the_map():
     expected, _ = replay_case(CASES / "robot-right-half-cell")
     xs = [float.fromhex(p[0]) / RES for p in expected["poses"]]
@@ -93,6 +100,7 @@ def test_robot_right_half_cell_path_crosses_the_map():
 
 
 # ---------------------------------------------------------- Costmap2D::worldToMap's cast
+@pytest.mark.fast
 def test_costmap_world_to_map_cast_out_of_range_is_undefined():
     m = Costmap(np.zeros((6, 8), np.uint8), 0.0, 0.0, RES)
     far = 2.0 ** 32 * RES  # (w - o) / res = 2^32: static_cast<unsigned int> is undefined

@@ -168,6 +168,7 @@ def test_to_smt2_is_parsed_by_every_solver(name, query, logic, bitwuzla_ok):
     assert check.check() == z3.unsat
 
 
+@pytest.mark.fast
 def test_nonstandard_z3_operators_are_rewritten_equivalently():
     b, c = z3.BitVec("b", 8), z3.BitVec("c", 8)
     for e in (z3.RotateLeft(b, c) == 0x81, z3.RotateRight(b, c) == 0x81,
@@ -210,6 +211,7 @@ def test_solvers_are_skipped_on_what_they_cannot_do():
     assert smtlib.prepare(Q_CANCEL).skip == {}
 
 
+@pytest.mark.fast
 def test_queries_from_another_z3_context():
     ctx = z3.Context()
     b = z3.BitVec("b", 8, ctx)
@@ -220,6 +222,7 @@ def test_queries_from_another_z3_context():
         assert a.model["b"] == 173 and a.model_checked is True
 
 
+@pytest.mark.fast
 def test_ambiguous_constant_names_are_rejected():
     with pytest.raises(ValueError, match="named 'x'"):
         smtlib.to_smt2([z3.fpIsNaN(X), z3.BitVec("x", 8) == 1])
@@ -229,6 +232,7 @@ def test_ambiguous_constant_names_are_rejected():
 # The portfolio on small FP32 queries, replayed with numpy
 
 
+@pytest.mark.fast
 def test_absorption_counterexample_replays_in_numpy():
     res = P.solve(Q_ABSORB, timeout=20, confirm=True)
     assert res.status == "sat" and not res.disagreement
@@ -253,6 +257,7 @@ def test_cancellation_counterexample_replays_in_numpy():
             assert (x + y) - y != x, a  # really a counterexample
 
 
+@pytest.mark.fast
 def test_first_answer_wins_without_confirm():
     t = time.monotonic()
     res = P.solve(Q_CANCEL, timeout=20)
@@ -262,6 +267,7 @@ def test_first_answer_wins_without_confirm():
     assert no_children_left()
 
 
+@pytest.mark.fast
 def test_mul_by_one_is_proved():
     s = z3.Solver()  # a z3.Solver is taken as it is
     s.add(*Q_MUL_ONE)
@@ -270,6 +276,7 @@ def test_mul_by_one_is_proved():
     assert [a.status for a in res.answers] == ["unsat"] * 3
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("name", solvers.SOLVERS)
 def test_each_solver_alone_proves_the_unsat_query(name):
     res = P.solve(Q_MUL_ONE, timeout=20, solvers=(name,))
@@ -278,6 +285,7 @@ def test_each_solver_alone_proves_the_unsat_query(name):
     assert res.answers[0].solve_seconds is not None
 
 
+@pytest.mark.fast
 def test_bitvector_query():
     res = P.solve(Q_BV, timeout=20, confirm=True)
     assert res.status == "sat" and len(sat_answers(res)) == 3
@@ -285,6 +293,7 @@ def test_bitvector_query():
         assert a.model == {"b": 173} and a.model_checked is True
 
 
+@pytest.mark.fast
 def test_real_query_skips_bitwuzla():
     res = P.solve(Q_REAL, timeout=20, confirm=True)
     assert res.status == "sat" and res.solver in ("z3", "cvc5")
@@ -297,6 +306,7 @@ def test_real_query_skips_bitwuzla():
     assert res.status == "unknown"
 
 
+@pytest.mark.fast
 def test_special_values_are_bit_exact():
     q = [z3.fpIsZero(X), z3.fpIsNegative(X), z3.fpIsSubnormal(Y), z3.fpIsNegative(Y),
          z3.fpIsNaN(z3.FP("n", F32))]
@@ -313,6 +323,7 @@ def test_special_values_are_bit_exact():
 # Robustness: timeouts, hangs, crashes, bad input
 
 
+@pytest.mark.fast
 def test_timeout_is_unknown_never_unsat():
     t = time.monotonic()
     res = P.solve(Q_HARD, timeout=0.3, confirm=True)

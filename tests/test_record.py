@@ -77,6 +77,7 @@ def test_full_index_rule_on_finite_but_empty_cases(shared_suite, tmp_path):
         assert g["full_potential"][j].tobytes() == theirs["full_potential"][k].tobytes()
 
 
+@pytest.mark.fast
 def test_format_of_a_generated_recording(tmp_path):
     maps = generate_suite(tmp_path, "split", count=2, seed=1, size=(9, 7), paths=300)
     recs = record_suite(tmp_path, full_first=7)
@@ -103,6 +104,7 @@ def test_format_of_a_generated_recording(tmp_path):
             assert unreached.any() and (np.diff(g["path_offsets"])[unreached] == 0).all()
 
 
+@pytest.mark.fast
 def test_tampered_map_is_caught(tmp_path):
     maps = generate_suite(tmp_path, "random", count=1, seed=2, size=(8, 7), paths=200)
     record_suite(tmp_path)
@@ -119,6 +121,7 @@ def test_tampered_map_is_caught(tmp_path):
     assert first and first[0]["field"] in ("path", "potential")
 
 
+@pytest.mark.fast
 def test_existing_goldens_are_kept_unless_overwrite(tmp_path):
     maps = generate_suite(tmp_path, "free", count=1, seed=1, size=(5, 5), paths=10)
     record_suite(tmp_path, modes="astar")
@@ -131,6 +134,7 @@ def test_existing_goldens_are_kept_unless_overwrite(tmp_path):
     assert len(recs) == 2 and g.read_bytes() == before
 
 
+@pytest.mark.fast
 def test_failed_write_keeps_no_partial_golden(tmp_path, monkeypatch):
     maps = generate_suite(tmp_path, "free", count=1, seed=1, size=(5, 5), paths=10)
 
@@ -154,6 +158,7 @@ def test_bad_input(tmp_path):
         record_suite(tmp_path / "missing")
 
 
+@pytest.mark.fast
 def test_progress_callback(tmp_path):
     generate_suite(tmp_path, "maze", count=2, seed=1, size=(9, 9), paths=30)
     seen = []

@@ -56,6 +56,7 @@ def test_jit_run_batch_equals_its_run_case_by_case():
         planner.run_batch(np.array([[0, 0, 0, 0], [0, 0, w, 0]]), True)
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("astar", [True, False])
 def test_unreached_guide_counts_the_specs_cycles(astar):
     """The guide is the most cycles a connected, reached start needed (the spec's count), plus

@@ -29,6 +29,8 @@ from navfn_smt.spec.extraction import ExtractionExit, UndefinedBehaviour, calc_p
 from navfn_smt.spec.numeric import CONCRETE as D
 from navfn_smt.spec.numeric import c_hypot, c_hypotf, c_roundf, cvt_to_int32, f32, f32_bits
 
+pytestmark = pytest.mark.fast
+
 F = np.float32
 F64 = np.float64
 INT_MIN = -(2**31)

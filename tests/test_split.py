@@ -29,12 +29,14 @@ def _splits():
 
 
 # ------------------------------------------------------------------------ the order of floats
+@pytest.mark.fast
 @given(f32s, f32s)
 def test_ordinal_is_the_order_of_the_reals(a, b):
     assert S.from_ordinal(S.ordinal(a)) == a
     assert (S.ordinal(a) < S.ordinal(b)) == (a < b)
 
 
+@pytest.mark.fast
 @given(st.integers(-(2**31) + 1, 2**31 - 2), st.integers(0, 2**20))
 def test_halves_partition_an_interval(lo, width):
     iv = S.Interval("x", lo, lo + width)
@@ -44,6 +46,7 @@ def test_halves_partition_an_interval(lo, width):
     assert (a.lo, b.hi) == (iv.lo, iv.hi) and a.hi + 1 == b.lo and a.width + b.width == iv.width
 
 
+@pytest.mark.fast
 def test_bisect_cuts_the_widest_variable_and_stops_at_single_values():
     box = (S.f32_interval("x", 1.0, 2.0), S.f32_interval("y", 1.0, 1.0))
     a, b = S.bisect(box, ("x", "y"))
@@ -52,6 +55,7 @@ def test_bisect_cuts_the_widest_variable_and_stops_at_single_values():
 
 
 # ------------------------------------------------------------------------------ the verdicts
+@pytest.mark.fast
 @pytest.mark.parametrize("name", ["doubling_is_exact", "sum_minus_one_keeps_y", "square_root_of_square",
                                   "product_is_close"])
 def test_each_toy_split_reaches_its_declared_verdict(name):
@@ -81,6 +85,7 @@ def test_a_split_is_decided_in_a_builds_arithmetic(method):
         assert witness["replayed_on_spec"] is True
 
 
+@pytest.mark.fast
 def test_fmaf_array_is_libms_fmaf():
     """The enumeration's vectorised fmaf (and the check's exhaustive evaluator's) is libm's, bit
     for bit: on random bit patterns and where rounding the double sum would break a float tie."""
@@ -103,6 +108,7 @@ def test_fmaf_array_is_libms_fmaf():
     assert (fmaf_array(tie, tie, tiny) != (tie.astype(np.float64) ** 2 + tiny).astype(np.float32)).any()
 
 
+@pytest.mark.fast
 def test_a_part_the_cover_misses_makes_the_split_unknown():
     s = _splits()["doubling_is_exact"]
     gap = S.Split(s.obligation, [(S.f32_interval("x", -4.0, 0.0),)], ("x",), "proved", 0, 30.0, ("z3",),
@@ -112,6 +118,7 @@ def test_a_part_the_cover_misses_makes_the_split_unknown():
     assert 0 < o.cover["uncovered_input"]["x"]["value"] <= 4.0
 
 
+@pytest.mark.fast
 def test_the_error_model_never_proves_a_false_claim():
     s = _splits()["sum_minus_one_keeps_y"]
     em = S.Split(s.obligation, s.boxes, s.bisect, "unknown", 0, 30.0, ("z3",), methods=("errmodel",),
@@ -120,6 +127,7 @@ def test_the_error_model_never_proves_a_false_claim():
     assert o.status == "unknown" and all(p["status"] == "unknown" for p in o.parts)
 
 
+@pytest.mark.fast
 def test_an_undecided_part_is_cut_in_two_and_named():
     s = _splits()["doubling_is_exact"]
     tiny = S.Split(s.obligation, [(S.f32_interval("x", -4.0, 4.0),)], ("x",), "proved", 2, 1e-3, ("z3",),
@@ -171,12 +179,14 @@ def test_split_command_reports_every_part(tmp_path, capsys):
     assert "2 splits: 2 confirmed, 0 undecided, 0 newly decided, 0 contradicted" in capsys.readouterr().out
 
 
+@pytest.mark.fast
 def test_split_command_errors_are_one_line(capsys):
     assert main(["split", "no_such_obligation", "--files", str(TOY)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no split declared for no_such_obligation" in err[0]
 
 
+@pytest.mark.fast
 def test_the_shipped_splits_name_declared_obligations():
     from navfn_smt.smt.obligation import load_obligations
     from navfn_smt.smt.runner import default_proof_files
@@ -188,6 +198,7 @@ def test_the_shipped_splits_name_declared_obligations():
     assert all(s.obligation in names for s in splits)
 
 
+@pytest.mark.fast
 def test_a_worker_without_the_proof_file_decides_a_part_from_its_contents(tmp_path):
     """A remote worker: the driver's path does not exist there, the file's contents travel with the part."""
     s = _splits()["doubling_is_exact"]
@@ -204,6 +215,7 @@ def test_split_command_with_the_default_jobs_writes_its_report(tmp_path):
     assert doc["engine"].startswith("auto") and doc["splits"][0]["status"] == "proved"
 
 
+@pytest.mark.fast
 def test_ci_runs_every_shipped_split_once():
     """.ci/run names the splits on its two lanes (the solver-decided ones beside the slow proof
     run, the enumerated one after it): together they are every shipped split, each once, and

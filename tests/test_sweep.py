@@ -142,6 +142,7 @@ def test_start_outside():
     assert outcome_of_run(run) == "start_outside"
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("origin,res", [(-10.0, 0.05), (-51.224998, float(np.float32(0.05))),
                                         (3.3, float(np.float32(0.1))), (-2.0, 0.025)])
 def test_goal_pose_rounds_back_to_its_cell(origin, res):

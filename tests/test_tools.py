@@ -32,6 +32,7 @@ def test_render_writes_picture(tmp_path, ext, magic):
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary left behind
 
 
+@pytest.mark.fast
 @pytest.mark.parametrize("args,words", [
     (["--case", "9"], "cases 0..1"),
     (["-o", "x.gif"], ".png or .svg"),
@@ -62,6 +63,7 @@ def test_transform_maps_cells_consistently(name):
                 assert b[ty, tx] == a[y, x]
 
 
+@pytest.mark.fast
 def test_transpose_of_a_symmetric_case_breaks_the_path_by_rounding():
     """A finding of the metamorphic tool, kept as a regression test.
 
