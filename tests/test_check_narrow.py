@@ -11,7 +11,7 @@ import json
 
 import pytest
 
-from navfn_smt.check import runner as CR
+from navfn_smt.check import common as CC
 from navfn_smt.check.soundness import sample
 from navfn_smt.cli import main
 from navfn_smt.under_test import FIXED
@@ -22,8 +22,8 @@ from navfn_smt.under_test import FIXED
                                          ((3, 14), True), ((4, 10), True), ((4, 11), False), ((3, 15), False),
                                          ((5, 5), False), ((14, 3), True)])
 def test_narrow_sizes_are_at_most_two_cells_wide_and_within_the_budget(size, narrow):
-    assert CR.narrow(*size) is narrow
-    assert bool(CR.carried_at(*size)) is narrow and not CR.carried_at(*size, planner=FIXED)
+    assert CC.narrow(*size) is narrow
+    assert bool(CC.carried_at(*size)) is narrow and not CC.carried_at(*size, planner=FIXED)
 
 
 @pytest.mark.fast
@@ -41,7 +41,7 @@ def test_check_complete_on_a_narrow_size_is_decided_by_fallback_path(tmp_path, c
 def test_a_cost_box_below_cost_neutral_is_explored(tmp_path):
     """FallbackPath's obligations assume the costs setCostmap produces (50..253): with NavFn's
     raw range (down to 1: a box reaching 0 is refused, a NaN) the size is explored, not decided by it."""
-    assert not CR.carried_at(3, 4, lo=0) and CR.carried_at(3, 4, lo=50, hi=253)
+    assert not CC.carried_at(3, 4, lo=0) and CC.carried_at(3, 4, lo=50, hi=253)
     js = tmp_path / "c.json"
     assert main(["check", "complete", "--size", "3", "4", "--costs", "1..253", "--json", str(js)]) == 0
     row = json.loads(js.read_text())["results"][0]
@@ -70,5 +70,5 @@ def test_calcpath_returns_a_path_on_narrow_maps_concretely(size):
 def test_past_the_budget_a_narrow_map_can_be_incomplete():
     """The budget condition is needed: a corridor of 14 cells on a 3-wide map (4*nx = 12
     iterations) is not narrow, and there calcPath runs out on reached starts."""
-    assert not CR.narrow(3, 16)
+    assert not CC.narrow(3, 16)
     assert sample(3, 16, 1500, seed=1, lethal=0.1).failures["complete"] > 0

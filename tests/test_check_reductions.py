@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from navfn_smt.spec import fixes
 from navfn_smt.check import properties as P
 from navfn_smt.check.bounded import Case, cases, component, reduce_cases, representative
 from navfn_smt.check.soundness import COSTS, failing, sweep
@@ -36,7 +37,7 @@ def _same_run(a: P.Run, b: P.Run) -> bool:
             and a.path.tobytes() == b.path.tobytes())
 
 
-@pytest.mark.parametrize("variant", ["original", "fixed"])
+@pytest.mark.parametrize("variant", fixes.NAMES)
 @pytest.mark.parametrize("size", [(3, 6), (6, 3), (4, 4), (4, 5)])
 def test_a_layout_plans_as_its_representative_does(size, variant):
     rng = np.random.default_rng(sum(size))
@@ -46,7 +47,7 @@ def test_a_layout_plans_as_its_representative_does(size, variant):
         if size == (4, 5) and rng.random() > 0.1:
             continue  # a tenth of the larger size's 4,608 cases
         costs = _costs(case, rng)
-        run = P.run(case.costs_array(costs), case.start, case.goal, case.astar, variant=variant)
+        run = P.run(case.costs_array(costs), case.start, case.goal, case.astar, fix=fixes.named(variant))
         comp = component(case.nx, case.ny, case.lethal, case.goal)
         if case.start[1] * case.nx + case.start[0] not in comp:
             outside += 1
@@ -54,7 +55,7 @@ def test_a_layout_plans_as_its_representative_does(size, variant):
             continue
         rep = representative(case, comp)
         assert rep in red.representatives
-        assert _same_run(run, P.run(rep.costs_array(costs), rep.start, rep.goal, rep.astar, variant=variant)), case
+        assert _same_run(run, P.run(rep.costs_array(costs), rep.start, rep.goal, rep.astar, fix=fixes.named(variant))), case
         seen += 1
     assert seen and outside
 
@@ -153,7 +154,7 @@ def _sweep(size: tuple, variant: str, semantics: str):
     from navfn_smt.smt.domains import FP32_SEMANTICS
     from navfn_smt.under_test import PlannerUnderTest
 
-    return sweep(*size, planner=PlannerUnderTest(variant, FP32_SEMANTICS[semantics]))
+    return sweep(*size, planner=PlannerUnderTest(fixes.named(variant), FP32_SEMANTICS[semantics]))
 
 
 @pytest.mark.parametrize("size,name,variant,semantics",

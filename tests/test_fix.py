@@ -19,6 +19,7 @@ from navfn_smt.maps.regions import reaches, regions
 from navfn_smt.maps.suite import load_map
 from navfn_smt.under_test import FIXED, PlannerUnderTest
 from navfn_smt.spec import fix as F
+from navfn_smt.spec import fixes
 from navfn_smt.spec.constants import COST_OBS, POT_HIGH
 from navfn_smt.spec.costs import add_border
 from navfn_smt.spec.extraction import ExtractionExit
@@ -79,7 +80,7 @@ def test_every_failing_counterexample_plans_when_fixed(name):
     sx, sy, gx, gy = (int(v) for v in sm.cases[0])
     astar = doc["mode"] == "astar"
     original = P.run(sm.costs, (sx, sy), (gx, gy), astar)
-    fixed = P.run(sm.costs, (sx, sy), (gx, gy), astar, variant="fixed")
+    fixed = P.run(sm.costs, (sx, sy), (gx, gy), astar, fix=F.FIX)
     assert not len(original.path)  # the original fails: no path
     assert fixed.exit == "near_goal" and P.complete(fixed) is None and P.start_reached(fixed) is None
     assert tuple(fixed.path[-1].tolist()) == (gx, gy) and tuple(fixed.path[0].tolist()) == (sx, sy)
@@ -90,7 +91,7 @@ def test_the_fix_never_changes_what_the_original_plans_and_plans_every_connected
     for costs, s, g in _cases():
         for astar in (True, False):
             o = plan(costs, s, g, astar)
-            f = plan(costs, s, g, astar, variant="fixed")
+            f = plan(costs, s, g, astar, fix=F.FIX)
             if len(o.path):
                 assert f.extra["fix"] == []
                 for field in ("path", "potential", "trace"):
@@ -116,7 +117,7 @@ def test_the_fix_never_changes_what_the_original_plans_and_plans_every_connected
 def test_descent_steps_strictly_down_to_the_goal():
     seen = 0
     for costs, s, g in _cases():
-        r = P.run(costs, s, g, True, variant="fixed")
+        r = P.run(costs, s, g, True, fix=F.FIX)
         ext = F.descend([float(v) for v in r.potential.ravel()], costs.shape[1], costs.shape[0], s, g, costs.size)
         if not r.start_potential < POT_HIGH:
             assert ext.exit is ExtractionExit.HIGH_POTENTIAL and not ext.path
@@ -133,12 +134,12 @@ def test_descent_steps_strictly_down_to_the_goal():
 @pytest.mark.parametrize("backend", ["jit", "reference"])
 def test_every_backend_with_the_fix_equals_the_spec_bit_for_bit(backend):
     """The conformance test of the fixed variant: the backend's planner with the fix (the JIT's
-    compiled propagate_on) against spec.planner.plan(variant="fixed"), every field."""
+    compiled further call) against spec.planner.plan(fix=F.FIX), every field."""
     for costs, pairs in _maps(1, 25):
         planner = get_backend(backend, FIXED).prepare(costs)
         cols = planner.run_batch(np.array([(*s, *g) for s, g in pairs]), True)
         for i, (s, g) in enumerate(pairs):
-            want = plan(costs, s, g, True, variant="fixed")
+            want = plan(costs, s, g, True, fix=F.FIX)
             got = planner.run(s, g, True)
             for field in ("path", "potential", "trace"):
                 assert _same(getattr(want, field), getattr(got, field)), (backend, field, s, g)
@@ -149,8 +150,9 @@ def test_every_backend_with_the_fix_equals_the_spec_bit_for_bit(backend):
 
 
 def test_the_symbolic_encoding_with_the_fix_equals_the_spec():
-    """check's whole-planner encoding of the fixed variant (propagate on, descend), run on
-    concrete costs in the concolic domain, against the spec on the failing counterexamples."""
+    """check's whole-planner encoding of each registered fix (the fix of docs/fix.md: propagate on,
+    descend; cycles-only), run on concrete costs in the concolic domain, against the spec on the
+    failing counterexamples."""
     from navfn_smt.check.bounded import Case, _symbolic_run
     from navfn_smt.check.concolic import concrete
     from navfn_smt.check.encoding import _interior
@@ -168,20 +170,24 @@ def test_the_symbolic_encoding_with_the_fix_equals_the_spec():
         lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
         case = Case(nx, ny, lethal, (sx, sy), (gx, gy), doc["mode"] == "astar")
         conc = {k: int(arr.flat[k]) for k in inner if k not in lethal}
-        _, _, sp, ex = _symbolic_run(case, conc, 50, 253, FPDomain, "fixed")
-        r = P.run(sm.costs, (sx, sy), (gx, gy), case.astar, variant="fixed")
-        assert concrete(ex.exit) == exit_code(ExtractionExit(r.exit)), name
-        pts = [(float(concrete(x)), float(concrete(y))) for x, y, w in ex.points if concrete(w)]
-        pts.append(tuple(float(concrete(v)) for v in ex.goal_point))
-        assert pts == [tuple(p) for p in r.path.tolist()], name
-        assert [float(concrete(p)) for p in sp.potential] == [float(v) for v in r.potential.ravel()], name
+        for fix in fixes.PATCHED:  # each registered fix, through the same encoding
+            _, _, sp, ex = _symbolic_run(case, conc, 50, 253, FPDomain, fix)
+            r = P.run(sm.costs, (sx, sy), (gx, gy), case.astar, fix=fix)
+            assert concrete(ex.exit) == exit_code(ExtractionExit(r.exit)), (name, fix.name)
+            pts = [(float(concrete(x)), float(concrete(y))) for x, y, w in ex.points if concrete(w)]
+            if r.exit == "near_goal":
+                pts.append(tuple(float(concrete(v)) for v in ex.goal_point))
+                assert pts == [tuple(p) for p in r.path.tolist()], (name, fix.name)
+            assert [float(concrete(p)) for p in sp.potential] == [float(v) for v in r.potential.ravel()], (name, fix.name)
 
 
 def test_a_variant_that_is_not_one_is_refused():
     with pytest.raises(NavfnInputError, match="unknown variant 'patched'"):
-        PlannerUnderTest("patched")
+        fixes.named("patched")
+    with pytest.raises(TypeError, match="takes a Fix"):
+        PlannerUnderTest("fixed")  # a name is parsed once, at the command line
     with pytest.raises(NavfnInputError, match="cycle limit of at least 1"):
-        plan(np.full((3, 3), 50, np.uint8), (0, 0), (2, 2), True, cycles=0, variant="fixed")
+        plan(np.full((3, 3), 50, np.uint8), (0, 0), (2, 2), True, cycles=0, fix=F.FIX)
 
 
 # --------------------------------------------------------------------------- the commands
@@ -204,9 +210,9 @@ def test_the_4655_room_sweeps_without_a_failure_when_fixed():
     lnp = DIAG / "legal_no_plan"
     start = __import__("navfn_smt.nav2.plugin", fromlist=["Pose"]).Pose.from_yaw(3.9125, 2.2125)
     counts = {}
-    for variant in ("original", "fixed"):
-        s = load_inputs(lnp / "map.yaml", lnp / "nav2_params.yaml", variant=variant)
-        counts[variant] = sweep(s.costmap, start, s.params).counts()
+    for fix in (fixes.AS_SHIPPED, F.FIX):
+        s = load_inputs(lnp / "map.yaml", lnp / "nav2_params.yaml", fix=fix)
+        counts[fix.name] = sweep(s.costmap, start, s.params).counts()
     assert counts["original"]["legal_no_plan"] > 0
     assert counts["fixed"]["ok"] == sum(counts["fixed"].values()) == sum(counts["original"].values())
 
@@ -215,7 +221,7 @@ def test_the_u_map_plans_when_fixed():
     from navfn_smt.diagnose.inputs import load_inputs
     from navfn_smt.nav2.plugin import Pose, create_plan
 
-    s = load_inputs(DIAG / "u_map" / "u_map.yaml", variant="fixed")
+    s = load_inputs(DIAG / "u_map" / "u_map.yaml", fix=F.FIX)
     start, goal = Pose.from_yaw(1.525, 17.575), Pose.from_yaw(22.825, 17.575)
     run = create_plan(s.costmap, start, goal, s.params)
     assert run.ok and len(run.poses) > 2 and not run.log
@@ -275,7 +281,7 @@ def test_the_patched_plugin_equals_the_fixed_model(builds):
 
     for distro in ("humble", "rolling"):
         _, folder = builds[distro]
-        configs = [replace(c, params=replace(c.params, variant="fixed")) for c in generated_configs(distro, 60, 3, 12)]
+        configs = [replace(c, params=replace(c.params, fix=F.FIX)) for c in generated_configs(distro, 60, 3, 12)]
         with PluginOracle(folder, "fixed") as oracle:
             s = run_plugin_live(configs, oracle, "jit").as_dict()
         assert s["failed"] == 0 and s["passed"] > 500, (distro, s)
@@ -323,16 +329,16 @@ def test_in_arm64s_arithmetic_the_fix_propagates_on_where_the_original_plans_fro
     """Where ``(int)`` saturates (arm64), the original returns a path from a start the wave never
     reached on the committed unreached maps; the patched propagation goes on there all the same
     (it loops while the start is unreached), so the fixed backends plan as
-    spec.planner.plan(variant="fixed") in that arithmetic, bit for bit: the start reached, the
+    spec.planner.plan(fix=F.FIX) in that arithmetic, bit for bit: the start reached, the
     fixed propagation named.  (The backends once kept the original's path there, as they may in
     x86-64's arithmetic, where no path comes from an unreached start.)"""
     from navfn_smt.spec.arithmetic import KNOWN
 
-    arm, fixed = KNOWN["aarch64"], PlannerUnderTest.of_target("aarch64", "fixed")
+    arm, fixed = KNOWN["aarch64"], PlannerUnderTest.of_target("aarch64", F.FIX)
     seen = 0
     for name, costs, s, g, astar in _arm64_cases("unreached"):
         o = plan(costs, s, g, astar, arith=arm)
-        want = plan(costs, s, g, astar, variant="fixed", arith=arm)
+        want = plan(costs, s, g, astar, fix=F.FIX, arith=arm)
         planner = get_backend(backend, fixed).prepare(costs)
         got = planner.run(s, g, astar)
         for field in ("path", "potential", "trace"):
@@ -353,8 +359,8 @@ def test_in_arm64s_arithmetic_the_fix_still_returns_a_path_from_a_lethal_start()
     from navfn_smt.spec.arithmetic import KNOWN
 
     for name, costs, s, g, astar in _arm64_cases("path-without-potential"):
-        arm = plan(costs, s, g, astar, variant="fixed", arith=KNOWN["aarch64"])
-        x86 = plan(costs, s, g, astar, variant="fixed")
+        arm = plan(costs, s, g, astar, fix=F.FIX, arith=KNOWN["aarch64"])
+        x86 = plan(costs, s, g, astar, fix=F.FIX)
         assert len(arm.path) and not arm.start_potential < POT_HIGH and costs[s[1], s[0]] == COST_OBS, name
         assert not len(x86.path), name
 
@@ -372,14 +378,14 @@ def test_the_fixed_plugin_warns_only_when_it_finds_no_path(builds):
     cfg = next(c for k, c in enumerate(generated_configs("rolling", 34, 0)) if k == 33)
     start, goal = cfg.pairs[18]
     _, folder = builds["rolling"]
-    for variant in ("original", "fixed"):
-        params = replace(cfg.params, variant=variant)
+    for fix in (fixes.AS_SHIPPED, F.FIX):
+        params = replace(cfg.params, fix=fix)
         model = create_plan(cfg.costmap, start, goal, params)
-        with PluginOracle(folder, variant) as oracle:
+        with PluginOracle(folder, fix.name) as oracle:
             (cpp,) = oracle.create_plans(cfg.costmap, params, [(start, goal)])
         warns = [text for level, text in cpp.lines]
         assert warns == [text for level, text in model.lines]
-        if variant == "original":
+        if fix.shipped:
             assert cpp.error == "NoValidPathCouldBeFound" and any("Path extraction exhausted" in w for w in warns)
         else:
             assert cpp.error is None and len(cpp.poses) > 0 and warns == []
@@ -396,7 +402,7 @@ def test_the_worst_cases_bench_measures_what_the_fix_changes(builds):
     rows = bench_worst_cases([41], folder)
     assert [r["case"] for r in rows] == [m[0] for m in worst_case_maps(41)]
     for r, (_, costs, case, astar) in zip(rows, worst_case_maps(41)):
-        f = plan(costs, case[:2], case[2:], astar, variant="fixed")
+        f = plan(costs, case[:2], case[2:], astar, fix=F.FIX)
         o = plan(costs, case[:2], case[2:], astar)
         assert (r["fixed"]["start_reached"], r["fixed"]["path_points"]) == (bool(f.start_reached), len(f.path))
         assert (r["original"]["start_reached"], r["original"]["path_points"]) == (bool(o.start_reached), len(o.path))

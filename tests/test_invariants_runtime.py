@@ -163,13 +163,11 @@ def _small_maps(count=24):
 def _dropped(costs, start, goal, astar, capacity, fixed):
     """Pushes dropped for want of room by propNavFn* (and the fix's second call when ``fixed``)."""
     from navfn_smt.spec import fix as F
+    from navfn_smt.spec.planner import AS_SHIPPED, calc_navfn
 
     ny, nx = costs.shape
     st = P.setup(add_border(costs).ravel().tolist(), nx, ny, goal, capacity)
-    if fixed:
-        F.propagate_on(st, start, goal, astar, P.cycle_limit(nx, ny), record_trace=False)
-    else:
-        P.propagate(st, start, goal, astar, P.cycle_limit(nx, ny), record_trace=False)
+    calc_navfn(st, start, goal, astar, F.FIX if fixed else AS_SHIPPED, record_trace=False)
     return st.dropped
 
 

@@ -231,7 +231,7 @@ class FakeOracle:
         from navfn_smt.nav2.plugin import create_plan
         from navfn_smt.oracle.client import PluginAnswer
 
-        assert len(pairs) == 1 and params.variant == self.variant  # one request per pair, for its time
+        assert len(pairs) == 1 and params.fix.name == self.variant  # one request per pair, for its time
         run = create_plan(cm, *pairs[0], params)
         poses = B.poses_array(run.poses)
         if pairs[0][0] == self.bad and len(poses):

@@ -54,7 +54,7 @@ def test_nav2s_own_tests_pass_as_shipped_and_say_what_the_fix_changes(builds, tm
     assert {k: (v["original"], v["fixed"]) for k, v in got.items()} == KNOWN[distro]
     assert doc["programs"]["test_navfn_fix"]["from"] == "the fix's patch"
     assert doc["programs"]["test_navfn_planner_fix"] == {"sources": ["test_navfn_planner_fix.cpp"], "plugin": True,
-                                                         "from": "the fix's patch"}
+                                                         "from": "the fix's patch", "fix": "fixed"}
     assert doc["programs"][DYNAMIC[0]]["from"] == "the sources"
     # a failure counts only where a pass is due: the patch's tests as shipped do not
     assert rc == 0

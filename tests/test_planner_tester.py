@@ -11,6 +11,7 @@ import pytest
 from navfn_smt.bench import serpentine
 from navfn_smt.cli import main
 from navfn_smt.nav2 import planner_tester as T
+from navfn_smt.spec import fixes
 from navfn_smt.nav2.params import PlannerParams
 from navfn_smt.nav2.plugin import Pose, quaternion_from_yaw
 from navfn_smt.spec.constants import COST_OBS
@@ -66,7 +67,7 @@ def _serpentine(n):
 @pytest.mark.parametrize("distro", ("humble", "rolling"))
 def test_the_model_passes_the_plugin_cases_as_shipped_and_fixed(distro):
     for variant in ("original", "fixed"):
-        results = T.run_plugin_cases(T.model_planner(variant), PlannerParams(distro=distro))
+        results = T.run_plugin_cases(T.model_planner(fixes.named(variant)), PlannerParams(distro=distro))
         assert len(results) == 10 and [c.why for c in results if not c.ok] == [], (variant, distro)
 
 
@@ -74,8 +75,8 @@ def test_the_random_test_fails_as_shipped_on_a_serpentine_and_passes_fixed():
     """On a 15x15 serpentine the cycle limit stops A*'s wave short of most goals: the test fails
     as shipped (each of its three draws above 10 %) and passes with the fix."""
     cm = _serpentine(15)
-    original = T.run_random_test(T.model_planner("original"), cm, 1)
-    fixed = T.run_random_test(T.model_planner("fixed"), cm, 1)
+    original = T.run_random_test(T.model_planner(fixes.AS_SHIPPED), cm, 1)
+    fixed = T.run_random_test(T.model_planner(fixes.named("fixed")), cm, 1)
     assert len(original) == 3 and not T.random_test_passed(original)
     assert all(r.failed > 10 and "NoValidPathCouldBeFound" in r.failures[0][4] for r in original)
     assert T.random_test_passed(fixed) and fixed[0].failed < original[0].failed

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from navfn_smt.spec.fix import FIX
 from navfn_smt.cli import main
 from navfn_smt.diagnose.inputs import load_inputs
 from navfn_smt.nav2.params import PlannerParams
@@ -34,7 +35,7 @@ def test_a_legal_potential_without_a_plan_fails_plugin_complete_unless_fixed():
     why = judge("plugin-complete", s.costmap, start, goal, s.params)
     assert why == ("cell (30, 15) is reachable from the robot's cell (78, 44), but no plan (NoValidPathCouldBeFound: "
                    "Failed to create plan with tolerance of: 0.500000)")
-    assert judge("plugin-complete", s.costmap, start, goal, replace(s.params, variant="fixed")) is None
+    assert judge("plugin-complete", s.costmap, start, goal, replace(s.params, fix=FIX)) is None
 
 
 def test_the_robot_rounded_into_a_lethal_cell_gives_a_first_pose_in_it():
@@ -47,7 +48,7 @@ def test_the_robot_rounded_into_a_lethal_cell_gives_a_first_pose_in_it():
     params = PlannerParams(tolerance=1.0)
     why = judge("plugin-poses-passable", cm, centre(cm, 1, 1), centre(cm, 2, 1), params)
     assert why == "pose 0 (2.0, 2.0) lies in cell (2, 2) of cost 254"
-    assert judge("plugin-poses-passable", cm, centre(cm, 1, 1), centre(cm, 2, 1), replace(params, variant="fixed"))
+    assert judge("plugin-poses-passable", cm, centre(cm, 1, 1), centre(cm, 2, 1), replace(params, fix=FIX))
     c[2, 2] = 0  # the same plan on a free cell is fine
     assert judge("plugin-poses-passable", Costmap(c, 0.0, 0.0, 1.0), centre(cm, 1, 1), centre(cm, 2, 1), params) is None
     why = judge("plugin-ends", cm, centre(cm, 1, 1), centre(cm, 2, 1), params)

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from navfn_smt.spec.fix import FIX
 from navfn_smt.cli import main
 from navfn_smt.errors import NavfnInputError
 from navfn_smt.spec.arithmetic import KNOWN, X86_64
@@ -54,12 +55,12 @@ def test_a_build_folder_gives_the_distribution_target_and_arithmetic(tmp_path, c
     rc, doc = _plan(capsys, "--oracle", str(folder))
     assert rc == 0 and doc["planner"] == {"variant": "original", "target": "aarch64", "arithmetic": "aarch64",
                                           "distribution": "jazzy", "build": str(folder)}
-    x86 = PlannerUnderTest.of_build(_fake_build(tmp_path, "x86-64", "rolling"), "fixed")
+    x86 = PlannerUnderTest.of_build(_fake_build(tmp_path, "x86-64", "rolling"), FIX)
     assert x86.variant == "fixed" and x86.arithmetic == X86_64 and x86.distribution == "rolling"
 
 
 def test_what_the_spec_cannot_compute_is_refused_naming_why(tmp_path):
-    fixed = PlannerUnderTest.of_build(_fake_build(tmp_path), "fixed")  # the fix computes in any arithmetic
+    fixed = PlannerUnderTest.of_build(_fake_build(tmp_path), FIX)  # the fix computes in any arithmetic
     assert (fixed.variant, fixed.arithmetic.name) == ("fixed", "aarch64")
     with pytest.raises(NavfnInputError, match="--distro humble: .* a build of jazzy"):
         PlannerUnderTest.of_build(tmp_path / "build-aarch64", distribution="humble")

@@ -7,10 +7,10 @@
   a random-cost one (costs 50..253 from ``numpy.random.default_rng(12345)``), both with
   a lethal border, from start (5, 5) to goal (N-6, N-6), and reports seconds per plan
   and the planner's working memory (its arrays; no trace is recorded when timing);
-* worst-case mode (``--worst-cases N ... --oracle DIR``): the fix's added work and memory on
+* worst-case mode (``--worst-cases N ... --oracle DIR``): a fix's added work and memory on
   generated NxN maps where it acts or floods (:func:`worst_case_maps`), on the C++ of a build as
-  shipped (``navfn-plain``) and as patched (``navfn-plain-fixed``), each case in a fresh
-  process: planning seconds, path points and peak memory;
+  shipped (``navfn-plain``) and as patched (``navfn-plain-fixed``, or ``navfn-plain-<fix>``),
+  each case in a fresh process: planning seconds, path points and peak memory;
 * climb mode (``--climb [MAPS]``): the cost climb of ``search cost`` on 5x7 maps, MAPS maps
   per mode with the compiled plateau steps and again with the Python step, from the same
   seed: maps per second of each, and a check that both made the same climb.
@@ -28,7 +28,8 @@ from .errors import NavfnInputError
 from .inputs import check_cells
 from .maps.suite import discover, load_map, modes_of
 from .spec.constants import COST_OBS
-from .under_test import FIXED, ORIGINAL
+from .spec.fix import FIX as THE_FIX
+from .under_test import ORIGINAL, PlannerUnderTest
 from .report.tables import progress_bar, progress_counts
 
 SEED = 12345
@@ -90,21 +91,25 @@ def worst_case_maps(n: int) -> list[tuple[str, np.ndarray, tuple, bool]]:
             ("gradient-trap room", _gradient_trap_room(n), (3, 1, 1, 2), True)]
 
 
-def bench_worst_cases(sizes, folder) -> list[dict]:
+def bench_worst_cases(sizes, folder, fix=THE_FIX) -> list[dict]:
     """Each of :func:`worst_case_maps` at each size on the build ``folder``'s C++, as shipped and
-    patched, each case in a fresh program (its peak memory is that case's)."""
+    patched with ``fix`` (a patched :class:`~navfn_smt.spec.planner.Fix`; default: the fix of
+    docs/fix.md), each case in a fresh program (its peak memory is that case's).  Each row holds
+    the figures as shipped under ``original`` and as patched under ``fixed``; ``variant`` names
+    the fix."""
     from .oracle.client import Oracle
+    from .spec.planner import AS_SHIPPED
 
     rows = []
     for n in sizes:
         for name, costs, case, astar in worst_case_maps(n):
             row = {"size": n, "case": name, "mode": "astar" if astar else "dijkstra", "start": case[:2],
-                   "goal": case[2:]}
-            for variant, program in (("original", "plain"), ("fixed", "plain-fixed")):
-                with Oracle(folder, variant=program) as o:
+                   "goal": case[2:], "variant": fix.name}
+            for key, planned in (("original", AS_SHIPPED), ("fixed", fix)):
+                with Oracle(folder, traced=False, fix=planned) as o:
                     res = o.plan(costs, [case], astar)[0]
-                    row[variant] = {"seconds": round(o.planning_seconds, 4), "path_points": len(res.path),
-                                    "start_reached": res.start_reached, "peak_memory_bytes": o.peak_memory_bytes()}
+                    row[key] = {"seconds": round(o.planning_seconds, 4), "path_points": len(res.path),
+                                "start_reached": res.start_reached, "peak_memory_bytes": o.peak_memory_bytes()}
             rows.append(row)
     return rows
 
@@ -171,23 +176,26 @@ def bench_oracle(suite: Path, oracle, mode: str, planner) -> list[dict]:
     return rows
 
 
-def bench_fix(suite: Path, folder, mode: str, repeat: int = 3) -> list[dict]:
-    """The fix's cost where it does not act: the cases of ``suite`` the original plans, timed on
-    the C++ of the build ``folder`` as shipped and as patched (``navfn-traced``, ``navfn-fixed``:
-    the same trace hook in both) and on the JIT without and with the fix, each ``repeat`` times
-    in alternation; the best time of each is kept."""
+def bench_fix(suite: Path, folder, mode: str, repeat: int = 3, fix=THE_FIX) -> list[dict]:
+    """A fix's cost where it does not act: the cases of ``suite`` the original plans, timed on
+    the C++ of the build ``folder`` as shipped and as patched with ``fix`` (default: the fix of
+    docs/fix.md; ``navfn-traced``, ``navfn-fixed`` or ``navfn-<fix>``: the same trace hook in
+    both) and on the JIT without and with the fix, each ``repeat`` times in alternation; the
+    best time of each is kept.  The figures with the fix are under the ``*_fixed`` keys; each
+    row's ``variant`` names the fix."""
     from .oracle.client import Oracle
 
     maps = [load_map(d, suite) for d in discover(suite)]
     rows = []
-    with Oracle(folder, variant="traced") as original, Oracle(folder, variant="fixed") as fixed:
+    with Oracle(folder, variant="traced") as original, Oracle(folder, fix=fix) as fixed:
         for md in modes_of(mode):
             astar = md == "astar"
             work = []
             for m in maps:
                 plans = get_backend("jit").prepare(m.costs).run_batch(m.cases, astar)["exit"] == 0
                 work.append((m, m.cases[plans]))
-            jit = {p.variant: [p.backend("jit").prepare(m.costs) for m, _ in work] for p in (ORIGINAL, FIXED)}
+            jit = {key: [p.backend("jit").prepare(m.costs) for m, _ in work]
+                   for key, p in (("original", ORIGINAL), ("fixed", PlannerUnderTest(fix)))}
             for v in jit:
                 jit[v][0].run_batch(work[0][1][:1], astar)  # compile or load the cache before timing
             best = {k: float("inf") for k in ("cpp_original", "cpp_fixed", "jit_original", "jit_fixed")}
@@ -197,13 +205,14 @@ def bench_fix(suite: Path, folder, mode: str, repeat: int = 3) -> list[dict]:
                     for key, oracle in (("cpp_original", original), ("cpp_fixed", fixed)):
                         oracle.plan(m.costs, cases, astar)
                         t[key] += oracle.planning_seconds
-                    for v in ("original", "fixed"):
+                    for v in jit:
                         t0 = time.perf_counter()
                         jit[v][i].run_batch(cases, astar)
                         t[f"jit_{v}"] += time.perf_counter() - t0
                 best = {k: min(best[k], t[k]) for k in best}
             n = sum(len(c) for _, c in work)
-            rows.append({"mode": md, "cases_the_original_plans": n, **{k: round(v, 4) for k, v in best.items()},
+            rows.append({"mode": md, "variant": fix.name, "cases_the_original_plans": n,
+                         **{k: round(v, 4) for k, v in best.items()},
                          "cpp_fixed_over_original": round(best["cpp_fixed"] / best["cpp_original"], 3),
                          "jit_fixed_over_original": round(best["jit_fixed"] / best["jit_original"], 3)})
     return rows

@@ -2,7 +2,8 @@
 
 A user names it once, on the command line, and every layer below reads it from this value:
 
-- ``--variant``: NavFn as Nav2 ships it (``original``) or with the fix (``fixed``, docs/fix.md);
+- ``--variant``: NavFn as Nav2 ships it (``original``) or with a fix (``fixed``, docs/fix.md, or a
+  candidate of :mod:`navfn_smt.spec.fixes`), carried as its :class:`~navfn_smt.spec.planner.Fix`;
 - ``--target NAME``: the arithmetic of a build for that machine (``x86-64``, the golden files'
   and the default; ``x86-64-v3``; ``aarch64``: docs/toolchains.md);
 - ``--oracle DIR``: a build of the user's own sources (``navfn-smt oracle build``); its
@@ -21,18 +22,19 @@ from typing import Optional
 
 from .errors import NavfnInputError
 from .spec.arithmetic import KNOWN, X86_64, Arithmetic
-from .spec.fix import DEFAULT_VARIANT, check_variant
+from .spec.fix import FIX as THE_FIX
+from .spec.planner import AS_SHIPPED, Fix
 
 
 @dataclass(frozen=True)
 class PlannerUnderTest:
-    """NavFn as ``variant``, computing in ``arithmetic`` (NavFn's own; None only for a build whose
+    """NavFn with ``fix`` (:data:`~navfn_smt.spec.planner.AS_SHIPPED`: as Nav2 ships it), computing in ``arithmetic`` (NavFn's own; None only for a build whose
     arithmetic the spec cannot express, ``unexpressible`` saying why), of the Nav2 ``distribution``
     (None: not named; NavFn's own code is the same in every distribution, the plugin's and the
     costmap's rules are not); ``build``: the oracle build folder it was read from (None when
     named by ``--target``), whose build.json is ``doc``."""
 
-    variant: str = DEFAULT_VARIANT
+    fix: Fix = AS_SHIPPED
     arithmetic: Optional[Arithmetic] = X86_64
     distribution: Optional[str] = None
     build: Optional[Path] = None
@@ -40,22 +42,28 @@ class PlannerUnderTest:
     unexpressible: str = ""
 
     def __post_init__(self):
-        check_variant(self.variant)
+        if not isinstance(self.fix, Fix):
+            raise TypeError(f"a planner under test takes a Fix, not {self.fix!r} (spec.fixes.named parses a name)")
+
+    @property
+    def variant(self) -> str:
+        """The fix's name, as the command line and reports name it."""
+        return self.fix.name
 
     @property
     def _of_build(self) -> str:
         return f" of {self.build}" if self.build is not None else ""
 
     @staticmethod
-    def of_target(target: Optional[str] = None, variant: str = DEFAULT_VARIANT,
+    def of_target(target: Optional[str] = None, fix: Fix = AS_SHIPPED,
                   distribution: Optional[str] = None) -> "PlannerUnderTest":
         """The planner computing as a build for the machine ``target`` does (None: x86-64)."""
         if target is not None and target not in KNOWN:
             raise NavfnInputError(f"--target {target!r}: no such arithmetic (there are: {', '.join(KNOWN)})")
-        return PlannerUnderTest(variant, KNOWN[target or "x86-64"], distribution)
+        return PlannerUnderTest(fix, KNOWN[target or "x86-64"], distribution)
 
     @staticmethod
-    def of_build(folder, variant: str = DEFAULT_VARIANT, distribution: Optional[str] = None) -> "PlannerUnderTest":
+    def of_build(folder, fix: Fix = AS_SHIPPED, distribution: Optional[str] = None) -> "PlannerUnderTest":
         """The planner an oracle build folder holds, its distribution and arithmetic as the build
         recorded them (``distribution``, when given, must be the build's)."""
         from .oracle.arithmetic import of_build
@@ -66,7 +74,7 @@ class PlannerUnderTest:
         if distribution is not None and distribution != doc.get("distribution"):
             raise NavfnInputError(f"--distro {distribution}: {folder} is a build of {doc.get('distribution')}'s "
                                   f"sources (leave --distro out: the build names it)")
-        return PlannerUnderTest(variant, arith, doc.get("distribution"), Path(folder), doc, why or "")
+        return PlannerUnderTest(fix, arith, doc.get("distribution"), Path(folder), doc, why or "")
 
     @property
     def target(self) -> str:
@@ -144,4 +152,4 @@ class PlannerUnderTest:
 
 
 ORIGINAL = PlannerUnderTest()  # NavFn as Nav2 ships it, in the golden files' arithmetic (x86-64)
-FIXED = PlannerUnderTest("fixed")
+FIXED = PlannerUnderTest(THE_FIX)  # with the fix of docs/fix.md

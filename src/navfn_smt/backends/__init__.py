@@ -10,8 +10,9 @@ replace NavFn's budgets ``4 * nx`` and ``max(nx * ny / 20, nx + ny)``); ``planne
 start, goal, path_cycles)`` runs calcPath alone; ``planner.run_batch(cases, astar)``
 plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
 ``get_backend(name, planner)`` gives the backend planning as a planner under test
-(:class:`~navfn_smt.under_test.PlannerUnderTest`): in its arithmetic, and with the fix of
-:mod:`navfn_smt.spec.fix` (:class:`FixedMapPlanner`) when its variant is ``fixed``.
+(:class:`~navfn_smt.under_test.PlannerUnderTest`): in its arithmetic, with its fix's hooks
+(:class:`~navfn_smt.spec.planner.Fix`; the spec runs them, the JIT compiles the cycles and the
+further call, and runs the spec's fallback where calcPath fails).
 """
 
 from __future__ import annotations
@@ -23,10 +24,10 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..inputs import check_inputs
 from ..spec.costs import add_border
-from ..spec.extraction import EXIT_CODES, ExtractionExit, UndefinedBehaviour, calc_path
-from ..spec.planner import PlanResult, path_cycle_limit, plan
+from ..spec.extraction import EXIT_CODES, ExtractionExit, UndefinedBehaviour
+from ..spec.planner import AS_SHIPPED, Fix, PlanResult, acted, extract, path_cycle_limit, plan
 from ..spec.constants import POT_HIGH, PRIORITYBUFSIZE
-from ..spec.propagation import check_capacity, cycle_limit
+from ..spec.propagation import check_capacity
 from ..spec import fix as F
 
 
@@ -45,6 +46,7 @@ class MapPlanner(Protocol):
 
 class Backend(Protocol):
     name: str
+    fix: Fix
 
     def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> MapPlanner: ...
 
@@ -54,29 +56,24 @@ def _capacity(capacity: Optional[int]) -> int:
 
 
 class ReferenceMapPlanner:
-    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None, arith=None):
+    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None, arith=None, fix: Fix = AS_SHIPPED):
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
         self.arith = arith
+        self.fix = fix
 
     def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
             cycles: Optional[int] = None) -> PlanResult:
         return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
-                    path_cycles=path_cycles, cycles=cycles, arith=self.arith)
-
-    def run_fixed(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
-                  cycles: Optional[int] = None) -> PlanResult:
-        """:meth:`run` with the fix's propagation (:func:`navfn_smt.spec.fix.propagate_on`), without
-        its descent."""
-        return plan(self.costs, start, goal, astar=astar, record_trace=trace, capacity=self.capacity,
-                    path_cycles=path_cycles, cycles=cycles, variant="fixed", descent=False, arith=self.arith)
+                    path_cycles=path_cycles, cycles=cycles, fix=self.fix, arith=self.arith)
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
-        """``calcPath(path_cycles)`` alone on a given potential: (exit, path; empty unless NEAR_GOAL)."""
+        """``calcPath(path_cycles)`` alone on a given potential, with the fix's fallback where it
+        returns no path: (exit, path; empty unless NEAR_GOAL)."""
         ny, nx = self.costs.shape
-        ext = calc_path([float(v) for v in np.asarray(potential, np.float32).ravel()], nx, ny,
-                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), int(path_cycles),
-                        arith=self.arith)
+        ext, _ = extract([float(v) for v in np.asarray(potential, np.float32).ravel()], nx, ny,
+                         (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), int(path_cycles), self.fix,
+                         self.arith)
         return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
 
     def run_batch(self, cases, astar: bool) -> dict:
@@ -109,108 +106,59 @@ def _row(cols: dict, i: int) -> tuple:
 _SCALARS = ("start_reached", "start_potential", "cycles", "updates", "dropped", "exit")
 
 
-class FixedMapPlanner:
-    """A backend's planner with the fix of :mod:`navfn_smt.spec.fix`: the backend plans as
-    NavFn does, and where it returns no path, or the start is unreached, it plans the case again
-    with the fix.  The fix never changes a path the original returns from a reached start, so
-    this is the fixed planner, and the fix is stated once (in the spec, with the kernels).  (From
-    an unreached start the original returns no path in x86-64's arithmetic, but it can where
-    ``(int)`` saturates, as on arm64: the patched propagation goes on there all the same.)"""
-
-    def __init__(self, inner: MapPlanner):
-        self.inner = inner
-        self.costs = inner.costs
-        self.capacity = inner.capacity
-
-    def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
-            cycles: Optional[int] = None) -> PlanResult:
-        """The original's run where it returns a path from a reached start; from a reached start
-        without one, the same run with the descent's path; from an unreached start (with a path
-        or not), the fixed run again, then the descent where it has no path."""
-        res = self.inner.run(start, goal, astar, trace, path_cycles, cycles)
-        res.extra = {**res.extra, "fix": []}
-        if not F.reached(res.start_potential):  # the fix propagates on
-            res = self.inner.run_fixed(start, goal, astar, trace, path_cycles, cycles)
-        elif len(res.path):
-            return res
-        n = path_cycle_limit(self.costs.shape[1]) if path_cycles is None else path_cycles
-        return res if len(res.path) else F.with_descent(res, start, goal, n)
-
-    def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
-        """calcPath and, where it returns no path, the fix's descent (``calcPathDescent``)."""
-        exit_, path = self.inner.extract(potential, start, goal, path_cycles)
-        if exit_ is ExtractionExit.NEAR_GOAL:
-            return exit_, path
-        ny, nx = self.costs.shape
-        ext = F.descend([float(v) for v in np.asarray(potential, np.float32).ravel()], nx, ny,
-                        (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), int(path_cycles))
-        return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
-
-    def run_batch(self, cases, astar: bool) -> dict:
-        """The backend's columns, the cases it plans no path for, or from an unreached start,
-        planned again with the fix."""
-        cases = np.asarray(cases).reshape(-1, 4)
-        cols = self.inner.run_batch(cases, astar)
-        reached = np.asarray(cols["start_potential"], np.float32) < np.float32(POT_HIGH)  # F.reached, per case
-        failed = np.flatnonzero((cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL)) | ~reached)
-        if not len(failed):
-            return cols
-        rows = [_row(cols, i) for i in range(len(cases))]
-        for i in failed.tolist():
-            sx, sy, gx, gy = cases[i].tolist()
-            r = self.run((sx, sy), (gx, gy), astar, trace=False)
-            rows[i] = (r.start_reached, r.start_potential, r.cycles, r.updates, r.dropped,
-                       EXIT_CODES.index(r.exit), r.path)
-        out = {k: np.array([row[j] for row in rows], cols[k].dtype) for j, k in enumerate(_SCALARS)}
-        out["path_offsets"] = np.cumsum([0] + [len(row[-1]) for row in rows]).astype(np.int64)
-        out["path"] = np.concatenate([row[-1] for row in rows] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2)
-        return out
-
-
 class ReferenceBackend:
     """The executable specification itself (plain Python over the concrete domain)."""
 
     name = "reference"
 
-    def __init__(self, arith=None):
+    def __init__(self, arith=None, fix: Fix = AS_SHIPPED):
         self.arith = arith  # the build's arithmetic (spec.arithmetic; None: x86-64's)
+        self.fix = fix
 
     def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> ReferenceMapPlanner:
-        return ReferenceMapPlanner(costs, capacity, self.arith)
+        return ReferenceMapPlanner(costs, capacity, self.arith, self.fix)
 
 
 class JitMapPlanner:
-    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None, arith=None):
+    def __init__(self, costs: np.ndarray, capacity: Optional[int] = None, arith=None, fix: Fix = AS_SHIPPED):
         from .jit import JitPlanner
 
         self.costs = check_inputs(costs, (0, 0), (0, 0))
         self.capacity = _capacity(capacity)
         self.ny, self.nx = self.costs.shape
         self.work = JitPlanner(add_border(self.costs), self.capacity, arith)
-        self.cycles = cycle_limit(self.nx, self.ny)
+        self.fix = fix
         self.path_cycles = path_cycle_limit(self.nx)
 
     def run(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
-            cycles: Optional[int] = None, fixed: bool = False) -> PlanResult:
+            cycles: Optional[int] = None) -> PlanResult:
+        """One case as :func:`~navfn_smt.spec.planner.plan` plans it: the compiled propagation with
+        the fix's cycles and further call, compiled calcPath, and the fix's fallback (the spec's,
+        in Python) where calcPath returns no path."""
         from . import jit as J
 
         check_inputs(self.costs, start, goal)
-        p = self.work
+        p, fix = self.work, self.fix
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
         n = self.path_cycles if path_cycles is None else int(path_cycles)
-        limit = self.cycles if cycles is None else int(cycles)
-        if fixed:
-            F.check_cycles(limit)
-        reached, code, npath = p.run(start, goal, astar, limit, n, trace, fixed)
+        limit = fix.first_cycles(self.nx, self.ny, cycles)
+        further = fix.further.cycles(self.nx, self.ny) if fix.further is not None else 0
+        reached, code, npath = p.run(start, goal, astar, limit, n, trace, further)
         if code == J.EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         pot = p.pot.reshape(self.ny, self.nx).copy()
         exit_ = EXIT_CODES[code]
-        return PlanResult(
+        path = p.path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32)
+        descended = False
+        if fix.fallback is not None and exit_ is not ExtractionExit.NEAR_GOAL:
+            ext = fix.fallback.walk([float(v) for v in p.pot], self.nx, self.ny, start, goal, n)
+            exit_, descended = ext.exit, ext.exit is ExtractionExit.NEAR_GOAL
+            path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
+        res = PlanResult(
             start_reached=reached,
             start_potential=pot[start[1], start[0]],
-            path=p.path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32),
+            path=path,
             potential=pot,
             trace=p.trace[: p.counters[J.TRACE_LEN]].copy() if trace else None,
             cycles=int(p.counters[J.CYCLES]),
@@ -218,13 +166,8 @@ class JitMapPlanner:
             dropped=int(p.counters[J.DROPPED]),
             exit=exit_,
         )
-
-    def run_fixed(self, start, goal, astar: bool, trace: bool = True, path_cycles: Optional[int] = None,
-                  cycles: Optional[int] = None) -> PlanResult:
-        """:meth:`run` with the fix's propagation, compiled (:func:`.jit.propagate_on`), without its
-        descent."""
-        res = self.run(start, goal, astar, trace, path_cycles, cycles, fixed=True)
-        res.extra = {"fix": ["propagation"] if self.work.calls else []}
+        if not fix.shipped:
+            res.extra = {"fix": acted(self.nx, self.ny, res.cycles, p.calls, cycles, descended)}
         return res
 
     def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
@@ -240,7 +183,13 @@ class JitMapPlanner:
         if code == EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         exit_ = EXIT_CODES[code]
-        return exit_, path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32)
+        if exit_ is ExtractionExit.NEAR_GOAL:
+            return exit_, path[:npath].copy()
+        if self.fix.fallback is None:
+            return exit_, np.zeros((0, 2), np.float32)
+        ext = self.fix.fallback.walk([float(v) for v in pot], self.nx, self.ny, (int(start[0]), int(start[1])),
+                               (int(goal[0]), int(goal[1])), n)
+        return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
 
     def run_batch(self, cases, astar: bool) -> dict:
         """Plan many cases in one compiled call (no traces); see :func:`.jit.run_cases`.  The
@@ -255,7 +204,10 @@ class JitMapPlanner:
         if off.any():
             sx, sy, gx, gy = cases[int(np.argmax(off))].tolist()
             check_inputs(self.costs, (sx, sy), (gx, gy))
-        return run_cases(self.work, cases, astar, self.cycles, self.path_cycles)
+        cols = run_cases(self.work, cases, astar, self.fix.first_cycles(self.nx, self.ny), self.path_cycles)
+        if self.fix.further is None and self.fix.fallback is None:
+            return cols
+        return _again_where_failed(self, cols, cases, astar)
 
 
 class JitBackend:
@@ -263,35 +215,47 @@ class JitBackend:
 
     name = "jit"
 
-    def __init__(self, arith=None):
+    def __init__(self, arith=None, fix: Fix = AS_SHIPPED):
+        if fix.further is not None and fix.further.test is not F.calls_again:
+            raise NavfnInputError(f"the JIT compiles the further propNavFn* call of the fix of docs/fix.md only; "
+                                  f"plan {fix.name} with --backend reference")
         self.arith = arith  # the build's arithmetic (spec.arithmetic; None: x86-64's)
+        self.fix = fix
 
     def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> JitMapPlanner:
-        return JitMapPlanner(costs, capacity, self.arith)
+        return JitMapPlanner(costs, capacity, self.arith, self.fix)
 
 
 _BACKENDS: dict[str, type] = {b.name: b for b in (JitBackend, ReferenceBackend)}
 BACKENDS = tuple(_BACKENDS)
 
 
-class _Fixed:
-    """A backend whose planners carry the fix (:class:`FixedMapPlanner`)."""
-
-    def __init__(self, inner: Backend):
-        self.inner = inner
-        self.name = inner.name
-
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> FixedMapPlanner:
-        return FixedMapPlanner(self.inner.prepare(costs, capacity))
+def _again_where_failed(planner, cols: dict, cases: np.ndarray, astar: bool) -> dict:
+    """Columns planned without a fix's further call and fallback, with the cases where those can
+    act (no path, or the start unreached) planned again by ``planner.run``: the further call is
+    made only from an unreached start and the fallback only where calcPath returns no path, so
+    every other case is planned as the fix plans it."""
+    reached = np.asarray(cols["start_potential"], np.float32) < np.float32(POT_HIGH)  # F.reached, per case
+    failed = np.flatnonzero((cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL)) | ~reached)
+    if not len(failed):
+        return cols
+    rows = [_row(cols, i) for i in range(len(cases))]
+    for i in failed.tolist():
+        sx, sy, gx, gy = cases[i].tolist()
+        r = planner.run((sx, sy), (gx, gy), astar, trace=False)
+        rows[i] = (r.start_reached, r.start_potential, r.cycles, r.updates, r.dropped, EXIT_CODES.index(r.exit), r.path)
+    out = {k: np.array([row[j] for row in rows], cols[k].dtype) for j, k in enumerate(_SCALARS)}
+    out["path_offsets"] = np.cumsum([0] + [len(row[-1]) for row in rows]).astype(np.int64)
+    out["path"] = np.concatenate([row[-1] for row in rows] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2)
+    return out
 
 
 def get_backend(name: str, planner=None) -> Backend:
     """The backend ``name`` planning as the planner under test ``planner`` does
     (:class:`~navfn_smt.under_test.PlannerUnderTest`; None: NavFn as shipped, in x86-64's
-    arithmetic): in its arithmetic, with the fix when its variant is ``fixed``."""
+    arithmetic): in its arithmetic, with its fix."""
     if name not in _BACKENDS:
         raise NavfnInputError(f"unknown backend {name!r} (choose from {', '.join(BACKENDS)})")
     if planner is None:
         return _BACKENDS[name](None)
-    backend = _BACKENDS[name](planner.navfn_arithmetic())
-    return _Fixed(backend) if planner.variant == "fixed" else backend
+    return _BACKENDS[name](planner.navfn_arithmetic(), planner.fix)

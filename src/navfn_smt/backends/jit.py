@@ -45,6 +45,7 @@ CYCLE, CYCLES, UPDATES, DROPPED, TRACE_LEN, NEWLY = range(6)
 NCOUNTERS = 6
 
 # the loop's tests, the spec's functions compiled (the obligations of proofs/loop.py are about them)
+update_neighbours = jit_inline(P.update_neighbours)  # updateCell's l, r, u, d, in the order of its pushes
 cycle_runs = jit_inline(P.cycle_runs)
 call_ends_at_the_start = jit_inline(P.call_ends_at_the_start)
 calls_again = jit_inline(F.calls_again)
@@ -53,6 +54,8 @@ iteration_test = jit_inline(E.iteration_test)
 follows_the_grid = jit_inline(E.follows_the_grid)
 grid_step = jit_inline(E.grid_step)
 goal_point = jit_inline(E.goal_point)
+oscillates = jit_inline(E.oscillates)
+zero_gradient = jit_inline(E.zero_gradient)
 
 
 @jit_inline
@@ -144,10 +147,11 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
             cost = costs[n]
             if not K.is_passable(D, cost):
                 continue
-            l = pot[n - 1]
-            r = pot[n + 1]
-            u = pot[n - nx]
-            d = pot[n + nx]
+            around = update_neighbours(n, nx)
+            l = pot[around[0]]
+            r = pot[around[1]]
+            u = pot[around[2]]
+            d = pot[around[3]]
             old = pot[n]
             new, changed = K.cell_update(D, old, l, r, u, d, cost, D.int_to_f32(cost))
             pot[n] = new  # the old potential unless changed: cell_update is the `if (pot < potarr[n])`
@@ -173,19 +177,10 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
                         memo[mi] = h
                 key = D.add(new, h)
             dest = nxt if K.to_low_buffer(D, key, cur_t) else over
+            read = (l, r, u, d)
             for j in range(4):
-                if j == 0:
-                    m = n - 1
-                    pm = l
-                elif j == 1:
-                    m = n + 1
-                    pm = r
-                elif j == 2:
-                    m = n - nx
-                    pm = u
-                else:
-                    m = n + nx
-                    pm = d
+                m = around[j]
+                pm = read[j]
                 if K.push_wanted(D, pm, key, K.edge_weight(D, D.int_to_f32(costs[m]))):
                     admitted, lost, pending[m] = K.push(D, m, ns, pending[m], costs[m], fill[dest], cap)
                     if admitted:
@@ -248,12 +243,13 @@ def propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb,
 
 
 @jit
-def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters,
-                 memo):
-    """The fix's ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), compiled: :func:`propagate`,
-    then, when the start is unreached and a buffer holds cells, ``propNavFn*(nx * ny)`` once (A*:
-    ``curT += dist`` at its entry, a cycle count from 0).  Returns what the last call returns and
-    the calls the fix added (0 or 1); ``tests/test_fix.py`` holds it equal to the spec."""
+def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, extra, pot, pending, pb, fill, role, curt, trace,
+                 counters, memo):
+    """:func:`navfn_smt.spec.planner.calc_navfn` with the further call of the fix of docs/fix.md,
+    compiled: :func:`propagate`, then, when its test holds (the start unreached and a buffer holding
+    cells: ``spec.fix.calls_again``), ``propNavFn*(extra)`` once (A*: ``curT += dist`` at its entry,
+    a cycle count from 0).  Returns what the last call returns and the further calls made (0 or
+    1); ``tests/test_fix.py`` holds it equal to the spec."""
     done = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace,
                      counters, memo)
     high = D.f32const(POT_HIGH)
@@ -264,7 +260,6 @@ def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, 
         if astar:
             curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), curt[0])
         counters[CYCLE] = 0
-        extra = nx * ny  # spec.fix.extra_cycles
         run_cycles(D, costs, nx, ny, sx, sy, astar, True, extra, extra, pot, pending, pb, fill, role, curt, trace,
                    counters, memo, no_watch, no_watch)
         done = D.lt(pot[start_cell], high) if astar else counters[CYCLE] < extra
@@ -301,7 +296,7 @@ def calc_path_touched(D, pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, 
         path[npath, 0] = px
         path[npath, 1] = py
         npath += 1
-        osc = npath > 2 and path[npath - 1, 0] == path[npath - 3, 0] and path[npath - 1, 1] == path[npath - 3, 1]
+        osc = npath > 2 and oscillates(D, path[npath - 1, 0], path[npath - 1, 1], path[npath - 3, 0], path[npath - 3, 1])
         down = stc + nx
         if follows_the_grid(D, pot, stc, nx, osc):
             stc, dx, dy, stops = grid_step(D, pot, stc, nx)
@@ -321,7 +316,7 @@ def calc_path_touched(D, pot, nx, ny, sx, sy, gx, gy, nmax, gradx, grady, path, 
                     nt += 1
             x = K.interpolate_gradient(D, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
             y = K.interpolate_gradient(D, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
-            if x == zero and y == zero:
+            if zero_gradient(D, x, y):
                 return EXIT_ZERO_GRADIENT, npath, nt
             dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
             stc += cdx + cdy * nx
@@ -374,17 +369,18 @@ class JitPlanner:
         return (self.pot, self.pending, self.pb, self.fill, self.role, self.curt, self.memo, self.gradx, self.grady)
 
     def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True,
-            fixed: bool = False):
+            further: int = 0):
         """Plan one case; with ``record_trace`` False no trace is kept (memory stays linear
-        in the map size: the trace grows with the number of updates).  ``fixed``: propagate
-        as the fix does (:func:`propagate_on`); ``self.calls`` is then the calls it added."""
+        in the map size: the trace grows with the number of updates).  ``further`` > 0: the
+        further call of ``further`` cycles of the fix of docs/fix.md (:func:`propagate_on`);
+        ``self.calls`` is then the further calls made."""
         sx, sy = start
         gx, gy = goal
         self.calls = 0
         while True:
-            if fixed:
+            if further:
                 reached, self.calls = propagate_on(
-                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
+                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles, further,
                     self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
                     self.trace if record_trace else self.no_trace, self.counters, self.memo,
                 )

@@ -369,8 +369,9 @@ for _name in KERNELS:
     _literal = "site" in inspect.signature(_fn).parameters
     overload(_fn, jit_options=JIT_OPTIONS, prefer_literal=_literal)(_returning(_fn))
 
-# the helpers of the spec's loop steps the compiled loops run (calcPath's ring of eight and its
-# potentials, spec/extraction.py; the buffers' emptiness test, spec/propagation.py), callable the
-# same way
-for _fn in (E.ring_of_eight, E.ring_potentials, P.buffers_hold_cells):
+# the helpers of the spec's loop steps the compiled loops run (calcPath's ring of eight, its
+# potentials and its tests, spec/extraction.py; the buffers' emptiness test, spec/propagation.py),
+# callable the same way
+for _fn in (E.ring_of_eight, E.ring_potentials, E.off_the_rows, E.ring_leaves_the_array, E.grid_wanted,
+            P.buffers_hold_cells):
     overload(_fn, jit_options=JIT_OPTIONS)(_returning(_fn))

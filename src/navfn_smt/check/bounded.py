@@ -33,7 +33,7 @@ import z3
 from ..smt import smtlib, solvers
 from ..maps.regions import reaches_all, regions
 from ..spec.constants import COST_NEUTRAL, COST_OBS, POT_HIGH
-from ..spec.planner import path_cycle_limit
+from ..spec.planner import AS_SHIPPED, Fix, path_cycle_limit
 from . import properties as P
 from . import exhaustive
 from .concolic import ConcolicDomain, V, concrete, term  # noqa: F401  (V: named in docstrings)
@@ -412,17 +412,14 @@ HELD_ON_BOX, HELD_BY_QUERY, REFUTED, UNKNOWN = "i", "q", "r", "?"
 UNSAT, SAT = "u", "s"
 
 
-def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, variant: str = "original"):
-    S = make_domain()
-    D = ConcolicDomain(S)
-    inner = _interior(case.nx, case.ny)
-    costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}
-    fixed = variant == "fixed"
-    sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar, fixed)
+def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, fix: Fix = AS_SHIPPED):
+    """The case's run as terms in the concolic domain (``D, costs, propagation, extraction``):
+    propagation, then calcPath and the fix's fallback where it returns no path."""
+    D, costs, sp, _ = _propagation_run(case, conc, lo, hi, make_domain, fix)
     n = path_cycle_limit(case.nx)
     ex = extract(D, sp.potential, case.nx, case.ny, case.start, case.goal, n)
-    if fixed and concrete(ex.exit) != NEAR_GOAL and concrete(ex.exit) != EXIT_UNDEFINED:
-        ex = descend(D, sp.potential, case.nx, case.ny, case.start, case.goal, n)
+    if fix.fallback is not None and concrete(ex.exit) != NEAR_GOAL and concrete(ex.exit) != EXIT_UNDEFINED:
+        ex = descend(D, sp.potential, case.nx, case.ny, case.start, case.goal, n, fix)
     return D, costs, sp, ex
 
 
@@ -438,16 +435,13 @@ def reads_path(names) -> bool:
     return not set(names) <= PROPAGATION_ONLY
 
 
-def _propagation_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, variant: str = "original"):
+def _propagation_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callable, fix: Fix = AS_SHIPPED):
     """:func:`_symbolic_run` without calcPath (the same propagation, the same domains): for the
-    properties of :data:`PROPAGATION_ONLY`, which judge the potentials and the buffers alone.
-    Its first lines restate :func:`_symbolic_run`'s rather than being called from it: the
-    committed certificates' hash covers ``_symbolic_run``'s source, and a shared helper would
-    change it (``tests/test_check_bounded.py`` holds the two runs' propagation term-equal)."""
+    properties of :data:`PROPAGATION_ONLY`, which judge the potentials and the buffers alone."""
     D = ConcolicDomain(make_domain())
     inner = _interior(case.nx, case.ny)
     costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}
-    sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar, variant == "fixed")
+    sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar, fix)
     return D, costs, sp, NOT_EXTRACTED
 
 
@@ -493,10 +487,10 @@ def _takes_flip(branches: list, parent: list, j: int) -> bool:
 
 def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
             solve=solve_bitwuzla, initial: Optional[dict] = None,
-            exhaustive_limit: int = EXHAUSTIVE_LIMIT, variant: str = "original",
+            exhaustive_limit: int = EXHAUSTIVE_LIMIT, fix: Fix = AS_SHIPPED,
             incremental: bool = True, shortcuts: bool = True) -> CaseResult:
     """Every control path of ``case`` over the cost box ``lo..hi``; each property judged on each
-    (``variant="fixed"``: of the planner with the fix).  The run ends with propagation when no
+    (of the planner with ``fix``).  The run ends with propagation when no
     property reads calcPath's result (:func:`run_of`).  ``incremental``: a path's flips are
     asked of one solver instance (:class:`PathSolver`), what it leaves undecided of ``solve``.
     ``shortcuts``: before a flip is asked, an earlier flip's unsat core (:class:`UnsatCores`)
@@ -513,7 +507,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
     sampled = Samples(lo, hi)
     while todo:
         conc, bound, parent = todo.pop()
-        D, costs, sp, ex = run(case, conc, lo, hi, make_domain, variant)
+        D, costs, sp, ex = run(case, conc, lo, hi, make_domain, fix)
         if parent is not None and not _takes_flip(D.branches, parent, bound - 1):
             raise RuntimeError(f"{case}: the map {conc} found for flip {bound - 1} does not take that flip")
         out.paths += 1

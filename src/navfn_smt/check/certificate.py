@@ -1,9 +1,10 @@
 """Certificates of bounded checks: what a proof explored and asked, re-checked without searching.
 
 A certificate (gzipped JSON) holds, for one size: the arguments of the run, the hash of the
-code the queries are built from (:func:`code_hash`: the kernels, the encoding, the concolic
-and symbolic domains, the properties as conditions of the run; not the search strategy, which
-a replay does not use), the reduction's counts, the verdicts, and per explored case every
+meaning of the code the queries are built from (:func:`code_hash`: the abstract syntax trees,
+without docstrings, comments or layout, of the kernels, the encoding, the concolic and symbolic
+domains, the properties as conditions of the run; not the search strategy, which a replay does
+not use), the reduction's counts, the verdicts, and per explored case every
 control path: the costs it was found with (its *seed*), the first branch it was free to flip
 (its *bound*), how each property was judged on it (its *marks*), and how each flip was
 answered.
@@ -35,10 +36,12 @@ cut by QueuedStartReached, the cases decided by the reduction, the inductions).
 
 from __future__ import annotations
 
+import ast
 import gzip
 import hashlib
 import json
 import re
+import textwrap
 from collections import Counter
 from pathlib import Path
 from typing import Optional
@@ -48,6 +51,8 @@ import z3
 from ..errors import NavfnInputError
 from ..smt import portfolio, smtlib, solvers
 from . import bounded as B
+from .common import BATCH, PARALLEL_FROM, carried_at, carried_status, outside_decided, symbolic_domain
+from .common import replay as spec_replay
 
 FORMAT = "navfn-smt check certificate 1"
 SOURCES = ("spec/kernels.py", "spec/constants.py", "spec/numeric.py", "spec/extraction.py", "spec/fix.py",
@@ -59,21 +64,56 @@ FUNCTIONS = ("Case", "_symbolic_run", "_reached", "property_value", "component",
 PROPAGATION_FUNCTIONS = ("_propagation_run", "PROPAGATION_ONLY", "run_of")
 
 
+def _dump(node) -> str:
+    """``ast.dump(node, annotate_fields=True, include_attributes=False)`` without the fields that
+    are None (but a ``value``) or empty lists: the same text on Python 3.11, 3.12 and 3.13 for
+    code they parse alike, where ``ast.dump``'s is not (3.12 adds ``type_params=[]`` to every
+    function and class, 3.13 leaves out empty fields)."""
+    if isinstance(node, ast.AST):
+        fields = ((f, getattr(node, f, None)) for f in node._fields)
+        shown = [f"{f}={_dump(v)}" for f, v in fields if not (v is None and f != "value" or v == [])]
+        return f"{type(node).__name__}({', '.join(shown)})"
+    if isinstance(node, list):
+        return f"[{', '.join(_dump(x) for x in node)}]"
+    return repr(node)
+
+
+def meaning_of(text: str) -> bytes:
+    """What :func:`code_hash` hashes of a source text (a module, or a function or class as
+    ``inspect.getsource`` gives it, dedented when indented): its abstract syntax tree, parsed by
+    the running Python, with every docstring (the first statement of a module, class or function
+    body when it is a string constant) removed (``pass`` when the body would be empty), dumped
+    without positions (:func:`_dump`).  Comments, blank lines and layout are not in the tree."""
+    tree = ast.parse(textwrap.dedent(text) if text[:1] in (" ", "\t") else text)
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)) and node.body:
+            first = node.body[0]
+            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) and isinstance(first.value.value, str):
+                node.body = node.body[1:] or [ast.Pass()]
+    return _dump(tree).encode()
+
+
 def code_hash(names=None) -> str:
-    """SHA-256 over the sources the queries of a check of ``names`` are built from: the files of
-    :data:`SOURCES` and the functions of :data:`FUNCTIONS`, in order, and when no property of
-    ``names`` reads calcPath's result, those of :data:`PROPAGATION_FUNCTIONS` too."""
+    """SHA-256 over the meaning of the sources the queries of a check of ``names`` are built
+    from: the files of :data:`SOURCES` and the functions of :data:`FUNCTIONS`, in order, and when
+    no property of ``names`` reads calcPath's result, those of :data:`PROPAGATION_FUNCTIONS` too.
+
+    Each file and function is hashed as its abstract syntax tree without docstrings, comments or
+    layout (:func:`meaning_of`), so editing those leaves the hash (and the certificates) as they
+    are; a frozenset as its sorted members.  The tree is the running Python's parser's: an
+    upgrade that parses the same code to another tree (new syntax, a renamed node) changes the
+    hash, and a replay then says the code hash changed, which is safe."""
     import inspect
 
     root = Path(__file__).resolve().parents[1]
     h = hashlib.sha256()
     for rel in SOURCES:
-        h.update(rel.encode() + b"\0" + (root / rel).read_bytes() + b"\0")
+        h.update(rel.encode() + b"\0" + meaning_of((root / rel).read_text(encoding="utf-8")) + b"\0")
     extra = () if names is None or B.reads_path(names) else PROPAGATION_FUNCTIONS
     for name in FUNCTIONS + extra:
         obj = getattr(B, name)
-        text = repr(sorted(obj)) if isinstance(obj, frozenset) else inspect.getsource(obj)
-        h.update(name.encode() + b"\0" + text.encode() + b"\0")
+        text = repr(sorted(obj)).encode() if isinstance(obj, frozenset) else meaning_of(inspect.getsource(obj))
+        h.update(name.encode() + b"\0" + text + b"\0")
     return h.hexdigest()
 
 
@@ -84,7 +124,9 @@ def planner_of(doc: dict):
     from ..smt.domains import FP32_SEMANTICS
     from ..under_test import PlannerUnderTest
 
-    return PlannerUnderTest(doc["variant"], FP32_SEMANTICS[doc.get("semantics", "fp32")])
+    from ..spec.fixes import named
+
+    return PlannerUnderTest(named(doc["variant"]), FP32_SEMANTICS[doc.get("semantics", "fp32")])
 
 
 def case_key(case: B.Case) -> list:
@@ -288,15 +330,13 @@ def _marks_problem(names, marks: str, verdicts: dict, run: tuple, conc: dict, pl
     re-evaluated by the intervals (and asked of a solver with ``check_intervals``), held by a
     query added to ``unsat``, refuted only where the verdict is, its seed tried as a witness on
     the concrete spec (``out``'s witnesses and evidence), unknown never where proved."""
-    from .runner import replay as run_spec
-
     D, case, costs, sp, ex = run
     ev = out["evidence"]
     for n, m in zip(names, marks):
         if m in (B.REFUTED, B.UNKNOWN):
             if verdicts[n] != "refuted":
                 return f" marks {n} {MARKS[m]}; the certificate calls it {verdicts[n]}"
-            if m == B.REFUTED and n not in out["witnesses"] and run_spec(case, conc, n, planner)[2]:
+            if m == B.REFUTED and n not in out["witnesses"] and spec_replay(case, conc, n, planner)[2]:
                 out["witnesses"].append(n)
                 ev["refutations_witnessed"] += 1
             continue
@@ -324,8 +364,6 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, plann
     ``{"problems": [...], "evidence": {...}, "witnesses": [properties refuted at some path's seed
     on the concrete spec]}``.
     ``verdicts``: the certificate's verdict of each of ``names`` (default: every one proved)."""
-    from .runner import _domain
-
     verdicts = verdicts or {n: "proved" for n in names}
     proved = [n for n in names if verdicts.get(n) == "proved"]
     inner = [k for k in B._interior(case.nx, case.ny) if k not in case.lethal]
@@ -345,7 +383,7 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, plann
     open_sat: dict = {}  # flip index -> paths whose flip there is recorded sat and has no child yet
     for i, (seed, bound, marks, flips) in enumerate(log):
         conc = dict(zip(inner, seed))
-        D, costs, sp, ex = run(case, conc, lo, hi, _domain(planner.fp32_semantics()), planner.variant)
+        D, costs, sp, ex = run(case, conc, lo, hi, symbolic_domain(planner.fp32_semantics()), planner.fix)
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches
@@ -397,7 +435,7 @@ def header_problems(doc: dict) -> list[str]:
     """What is wrong with a certificate's header (empty: it is well formed)."""
     from ..smt.domains import FP32_SEMANTICS
     from ..spec.constants import COST_OBS
-    from ..spec.fix import VARIANTS
+    from ..spec.fixes import NAMES
 
     size, names, costs, modes = doc.get("size"), doc.get("properties"), doc.get("costs"), doc.get("modes")
     if not (isinstance(size, list) and len(size) == 2 and all(_is_int(v) and 3 <= v <= 64 for v in size)):
@@ -414,8 +452,8 @@ def header_problems(doc: dict) -> list[str]:
     if not (isinstance(modes, list) and modes and len(set(modes)) == len(modes)
             and all(m in ("astar", "dijkstra") for m in modes)):
         return [f"modes {modes!r} are not distinct modes (astar, dijkstra)"]
-    if doc.get("variant") not in VARIANTS:
-        return [f"variant {doc.get('variant')!r} is not one of {', '.join(VARIANTS)}"]
+    if doc.get("variant") not in NAMES:
+        return [f"variant {doc.get('variant')!r} is not one of {', '.join(NAMES)}"]
     if doc.get("semantics", "fp32") not in FP32_SEMANTICS:
         return [f"semantics {doc.get('semantics')!r} is not one of {', '.join(FP32_SEMANTICS)}"]
     if doc.get("ends", "any") not in ("any", "passable"):
@@ -438,9 +476,7 @@ def header_problems(doc: dict) -> list[str]:
 
 def induction_problems(doc: dict) -> list[str]:
     """A verdict the paths do not decide must be the one an induction gives at this size today
-    (:func:`~.runner.carried_at`, its status from what is known of its predicates)."""
-    from .runner import carried_at, carried_status
-
+    (:func:`~.common.carried_at`, its status from what is known of its predicates)."""
     nx, ny = doc["size"]
     carried = carried_at(nx, ny, planner_of(doc), *doc["costs"])
     for n, v in doc["verdicts"].items():
@@ -470,8 +506,6 @@ def _case_entries(doc: dict, memo: Optional[dict] = None) -> tuple[list, list]:
         if not ok:
             return [f"case entry {i} is not [[W, H, lethal, start, goal, astar], weight, paths] of this size"], []
         entries.append((case_of(key), weight, log))
-    from .runner import outside_decided
-
     how = (nx, ny, tuple(doc["modes"]), doc.get("ends", "any"), doc.get("semantics", "fp32"))
     red = None if memo is None else memo.setdefault("reductions", {}).get(how)
     if red is None:
@@ -529,7 +563,6 @@ def transcript(doc: dict, jobs=1, progress=None) -> dict:
     same transcript replay the certificate alike: the same queries to the solvers, the same
     decisions.  ``{"sha256", "code_hash", "cases", "queries"}``."""
     from ..engine import as_engine, in_order, stream
-    from .runner import BATCH, PARALLEL_FROM
 
     problems = header_problems(doc)
     if problems:
@@ -591,7 +624,7 @@ def _witness_problems(doc: dict, witnessed: set) -> list[str]:
         try:
             planner = planner_of(doc)
             r = run_spec(np.array(w["costs"], np.uint8), tuple(w["start"]), tuple(w["goal"]), w["mode"] == "astar",
-                         variant=planner.variant, arith=planner.navfn_arithmetic())
+                         fix=planner.fix, arith=planner.navfn_arithmetic())
             ok = np.array(w["costs"]).shape == (doc["size"][1], doc["size"][0]) and judge(n, r) is not None
         except (TypeError, KeyError, ValueError, IndexError):
             ok = False
@@ -620,7 +653,6 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
     hash, inductions, coverage of the cases) but the paths of the k-th n-th of its cases only
     (:func:`part_range`); the n part reports together are a whole replay (:func:`combine`)."""
     from ..engine import as_engine, in_order, stream
-    from .runner import BATCH, PARALLEL_FROM
 
     doc = read(path) if doc is None else doc
     head = {k: doc[k] for k in ("size", "properties", "costs", "modes", "variant", "semantics", "verdicts", "induction")

@@ -25,10 +25,12 @@ from dataclasses import dataclass, field
 
 from ..spec import kernels as K
 from ..spec.constants import COST_OBS, PATH_STEP, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
+from ..spec import extraction as E
 from ..spec.extraction import EXIT_UNDEFINED, ExtractionExit, exit_code
-from ..spec.fix import descent_ring, extra_cycles
+from ..spec.fix import DESCENT_GOES_ON
 from ..spec.numeric import CONCRETE
-from ..spec.propagation import cycle_limit
+from ..spec.planner import AS_SHIPPED, Fix
+from ..spec.propagation import call_ends_at_the_start, cycle_runs, update_neighbours
 
 
 @dataclass
@@ -83,12 +85,13 @@ def _choose(D, c, a: Buffer, b: Buffer) -> Buffer:
     return Buffer([D.ite(c, x, y) for x, y in zip(a.slots, b.slots)], D.ite(c, a.fill, b.fill))
 
 
-def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed: bool = False) -> SymbolicPropagation:
+def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fix: Fix = AS_SHIPPED) -> SymbolicPropagation:
     """Propagation on an ``nx`` x ``ny`` map; ``costs[k]`` is interior cell k's cost as a domain
-    byte (``D.cost(...)``) or an int.  Border cells are COST_OBS.  ``fixed``: the fix's
-    ``calcNavFn*`` (:func:`navfn_smt.spec.fix.propagate_on`), which calls ``propNavFn*(nx*ny)``
-    once more when the start is unreached and a buffer holds cells: only in a domain that follows
-    one control path (the concolic domain), which decides whether it calls."""
+    byte (``D.cost(...)``) or an int.  Border cells are COST_OBS.  ``fix``: its hooks of
+    ``calcNavFn*`` (:func:`navfn_smt.spec.planner.calc_navfn`): the cycles of the first
+    ``propNavFn*`` call, and a further call where its test holds, only in a domain that follows
+    one control path (the concolic domain), which decides whether it calls.  The loop's tests are
+    the spec's (``cycle_runs``, ``call_ends_at_the_start``, the fix's test)."""
     inner = _interior(nx, ny)
     n_slots = len(inner)
     empty = Buffer([0] * n_slots, 0)
@@ -119,24 +122,24 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
     running = True
     trace = []
     buffers = [cur]
-    limit, calls, in_call = cycle_limit(nx, ny), 0, 0
+    limit, calls, in_call = fix.cycles(nx, ny), 0, 0
     certain = None
     while True:
         if in_call == limit:  # propNavFn* returns; the fix calls it once more where it must
-            if not fixed or calls:
+            if fix.further is None or calls:
                 break
-            again = _fix(D, D.and_(D.not_(D.lt(pot[start_cell], high)),
-                                   D.not_(D.and_(D.eq(cur.fill, 0), D.eq(nxt.fill, 0)))))
+            again = _fix(D, fix.further.test(D, pot[start_cell], cur.fill, nxt.fill))
             if again is False:
                 break
             if again is not True:
-                raise ValueError("the fixed variant is encoded only in a domain that follows one control path")
-            calls, limit = 1, extra_cycles(nx, ny)
+                raise ValueError(f"the {fix.name} planner's further call is encoded only in a domain that follows "
+                                 f"one control path")
+            calls, limit = 1, fix.further.cycles(nx, ny)
             if astar:  # curT += dist at the entry of propNavFnAstar
                 cur_t = D.add(heuristic(goal[0] - start[0], goal[1] - start[1]), cur_t)
             running, in_call = True, 0
+        running = D.and_(running, cycle_runs(D, in_call, limit, cur.fill, nxt.fill))
         in_call += 1
-        running = D.and_(running, D.not_(D.and_(D.eq(cur.fill, 0), D.eq(nxt.fill, 0))))
         if certain is None and running is True and _queued(D, cur, start_cell):
             certain = len(D.branches)
         cycles = D.ite(running, D.add_int(cycles, 1), cycles)
@@ -151,7 +154,8 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
                 here = D.and_(active[i], D.eq(s, n))
                 if here is False:
                     continue  # a domain that follows one control path knows this slot is not cell n
-                l, r, u, d = pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx]
+                around = update_neighbours(n, nx)
+                l, r, u, d = (pot[j] for j in around)
                 new, changed = K.cell_update(D, pot[n], l, r, u, d, cost_int[n], hf[n])
                 upd = _fix(D, D.and_(here, changed))
                 if upd is False:
@@ -159,7 +163,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
                 pot[n] = D.ite(upd, new, pot[n])
                 key = D.add(new, heuristic(n % nx - start[0], n // nx - start[1])) if astar else new
                 low = _fix(D, K.to_low_buffer(D, key, cur_t))
-                for m, pm in ((n - 1, l), (n + 1, r), (n - nx, u), (n + nx, d)):
+                for m, pm in zip(around, (l, r, u, d)):
                     if m not in cost_int:
                         continue  # the border: lethal, never pushed
                     fill = D.ite(low, new_nxt.fill, new_over.fill)
@@ -180,7 +184,7 @@ def propagate(D, costs: dict, nx: int, ny: int, start, goal, astar: bool, fixed:
         nxt = _choose(D, running, empty, nxt)
         buffers += [new_nxt, new_over, cur, over]
         cur_t = D.ite(D.and_(running, drained), D.add(cur_t, inc), cur_t)
-        running = _fix(D, D.and_(running, D.not_(D.lt(pot[start_cell], high))))
+        running = _fix(D, D.and_(running, D.not_(call_ends_at_the_start(D, pot[start_cell]))))
     reached = D.lt(pot[start_cell], high)
     if not astar:  # Dijkstra returns cycle < cycles: true when it stopped early
         reached = D.not_(running)
@@ -253,8 +257,8 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
         running = D.eq(code, RUNNING)
         near = K.nearest_cell(D, stc, dx, dy, nx, ns)
         at_goal = _fix(D, K.near_goal(D, _mux(D, near, pot.__getitem__, cells)))
-        oob = _fix(D, D.or_(D.lt(stc, nx), D.lt(ns - nx, stc)))
-        ub_ring = _fix(D, D.or_(D.lt(D.add_int(stc, -nx - 1), 0), D.le(ns, D.add_int(stc, nx + 1))))
+        oob = _fix(D, E.off_the_rows(D, stc, nx, ns))
+        ub_ring = _fix(D, E.ring_leaves_the_array(D, stc, nx, ns))
         x0, y0 = dx, dy
         px = _mux(D, stc, lambda c: K.path_point(D, c, nx, x0, y0)[0], cells)
         py = _mux(D, stc, lambda c: K.path_point(D, c, nx, x0, y0)[1], cells)
@@ -268,13 +272,10 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
         osc = False
         if i >= 2:
             qx, qy, _ = points[i - 2]
-            osc = D.and_(D.eq(px, qx), D.eq(py, qy))
+            osc = E.oscillates(D, px, py, qx, qy)
         centre = _mux(D, stc, pot.__getitem__, inside)
         ring = [_mux(D, stc, lambda c, o=o: pot[c + o], inside) for o in ring_offsets]
-        fallback = D.or_(osc, K.unreached(D, centre))
-        for p in ring:
-            fallback = D.or_(fallback, K.unreached(D, p))
-        fallback = _fix(D, fallback)
+        fallback = _fix(D, E.grid_wanted(D, centre, ring, osc))
         stc_fb = stc_step = stuck = ub_grad = flat = False
         ndx = ndy = zero
         if fallback is not False:
@@ -292,7 +293,7 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
                      for a in (0, 1)]
                 x = K.interpolate_gradient(D, dx, dy, *g[0])
                 y = K.interpolate_gradient(D, dx, dy, *g[1])
-                flat = _fix(D, D.and_(D.eq(x, zero), D.eq(y, zero)))
+                flat = _fix(D, E.zero_gradient(D, x, y))
                 if flat is not True:
                     ndx, ndy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
                     stc_step = D.add_int(D.add_int(stc, cdx), cdy * nx)
@@ -312,38 +313,43 @@ def extract(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtr
     return SymbolicExtraction(code, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
 
 
-def descend(D, pot: list, nx: int, ny: int, start, goal, n: int) -> SymbolicExtraction:
-    """The fix's ``calcPathDescent(n)`` on potentials ``pot`` (terms), as
-    :func:`navfn_smt.spec.fix.descend`: only in a domain that follows one control path (each
-    step's choice, the kernel ``lowest_neighbour``, is decided, so the cell stays a plain int)."""
+class _HighOffTheArray:
+    """``potarr[i]`` of a list of terms, POT_HIGH outside it (the descent reads its ring before its
+    bounds test, which refuses such a read before it counts)."""
+
+    def __init__(self, D, pot: list):
+        self.pot, self.high = pot, D.f32const(POT_HIGH)
+
+    def __getitem__(self, i: int):
+        return self.pot[i] if 0 <= i < len(self.pot) else self.high
+
+
+def descend(D, pot: list, nx: int, ny: int, start, goal, n: int, fix: Fix) -> SymbolicExtraction:
+    """The fallback of ``fix`` (the fix of docs/fix.md's ``calcPathDescent(n)``) on potentials
+    ``pot`` (terms): the spec's loop iteration (``fix.fallback.iteration``) run until it stops, only
+    in a domain that follows one control path (each step's choice, the kernel
+    ``lowest_neighbour``, is decided, so the cell stays a plain int)."""
+    iteration = fix.fallback.iteration
     ns = nx * ny
     zero = D.f32const(0.0)
     stc, goal_cell = start[1] * nx + start[0], goal[1] * nx + goal[0]
     points: list = []
+    reader = _HighOffTheArray(D, pot)
 
-    def end(e: ExtractionExit) -> SymbolicExtraction:
-        return SymbolicExtraction(exit_code(e), points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
+    def end(code) -> SymbolicExtraction:
+        return SymbolicExtraction(code, points, (D.int_to_f32(goal[0]), D.int_to_f32(goal[1])))
 
     if _decided(D, K.unreached(D, pot[stc])):
-        return end(ExtractionExit.HIGH_POTENTIAL)
+        return end(exit_code(ExtractionExit.HIGH_POTENTIAL))
     while True:
-        if len(points) >= n:  # no room for another point: the budget is spent
-            return end(ExtractionExit.EXHAUSTED)
-        if stc == goal_cell:  # the goal point is the extraction's own last point (SymbolicExtraction)
-            return end(ExtractionExit.NEAR_GOAL)
-        if stc <= nx or stc >= ns - nx - 1:
-            return end(ExtractionExit.OUT_OF_BOUNDS)
+        code, nxt = iteration(D, reader, stc, len(points), n, nx, ns, goal_cell)
+        if not isinstance(code, int) or not isinstance(nxt, int):
+            raise ValueError("the fallback is encoded only in a domain that follows one control path")
+        if code != DESCENT_GOES_ON:  # the goal point is the extraction's own last point (SymbolicExtraction)
+            return end(code)
         px, py = K.path_point(D, stc, nx, zero, zero)
         points.append((px, py, True))
-        ring = descent_ring(stc, nx)
-        best = K.lowest_neighbour(D, pot[stc], [pot[m] for m in ring])
-        k = best if isinstance(best, int) else next(
-            (j for j in range(-1, len(ring) - 1) if _decided(D, D.eq(best, j))), len(ring) - 1)
-        if k < 0:
-            return end(ExtractionExit.ZERO_GRADIENT)
-        stc = ring[k]
-
-
+        stc = nxt
 def _decided(D, c) -> bool:
     """A condition as the plain bool of this control path (recorded as a branch when open)."""
     c = _fix(D, c)

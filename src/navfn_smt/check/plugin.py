@@ -176,7 +176,8 @@ def centre(cm: Costmap, x: int, y: int) -> Pose:
 
 @dataclass
 class PropertyCount:
-    """One property for one variant over an enumeration: cases judged, failures, the first failure."""
+    """One property for one planner over an enumeration (``variant``: its fix's name): cases judged,
+    failures, the first failure."""
 
     property: str
     variant: str
@@ -197,19 +198,20 @@ def sampled_layouts(w: int, h: int, values, count: int, seed: int) -> list[np.nd
     return out
 
 
-def check_plugin(names, sizes, values, variants, tolerances, distro: str = "rolling", backend: str = "jit",
+def check_plugin(names, sizes, values, fixes, tolerances, distro: str = "rolling", backend: str = "jit",
                  progress: Optional[Callable[[str, int, int], None]] = None, sample: int = 0,
                  seed: int = 0) -> list[PropertyCount]:
     """Every costmap of :func:`layouts` for each size of ``sizes`` (smallest first), or ``sample``
     random ones (:func:`sampled_layouts`), every robot and goal at distinct interior cell
-    centres, both modes, each tolerance, each variant: each property judged on the plugin
+    centres, both modes, each tolerance, each fix of ``fixes`` (:class:`~navfn_smt.spec.planner.Fix`
+    values): each property judged on the plugin
     model's run.  The first failure of a property is the one of the smallest size, then the
     first layout in lexicographic (or drawing) order."""
     from dataclasses import replace
 
     from ..nav2.plugin import create_plan
 
-    counts = {(n, v): PropertyCount(n, v) for n in names for v in variants}
+    counts = {(n, f): PropertyCount(n, f.name) for n in names for f in fixes}
     for w, h in sizes:
         maps = sampled_layouts(w, h, values, sample, seed) if sample else layouts(w, h, values)
         for i, costs in enumerate(maps):
@@ -217,9 +219,8 @@ def check_plugin(names, sizes, values, variants, tolerances, distro: str = "roll
             cells = [(x, y) for y in range(1, h - 1) for x in range(1, w - 1)]
             for astar in (False, True):
                 for tol in tolerances:
-                    for variant in variants:
-                        params = replace(PlannerParams(), use_astar=astar, tolerance=tol, distro=distro,
-                                         variant=variant)
+                    for fix in fixes:
+                        params = replace(PlannerParams(), use_astar=astar, tolerance=tol, distro=distro, fix=fix)
                         for r in cells:
                             for g in cells:
                                 if r == g:
@@ -227,7 +228,7 @@ def check_plugin(names, sizes, values, variants, tolerances, distro: str = "roll
                                 start, goal = centre(cm, *r), centre(cm, *g)
                                 run = create_plan(cm, start, goal, params, backend)
                                 for n in names:
-                                    c = counts[(n, variant)]
+                                    c = counts[(n, fix)]
                                     why = PLUGIN_PROPERTIES[n].judge(cm, start, goal, params, run)
                                     c.judged += 1
                                     if why is not None:

@@ -22,10 +22,9 @@ import numpy as np
 from ..maps.regions import reaches, regions
 from ..spec.constants import COST_OBS, POT_HIGH
 from ..spec.costs import add_border
-from ..spec.extraction import ExtractionExit, UndefinedBehaviour, calc_path
-from ..spec.planner import path_cycle_limit
-from ..spec.propagation import cycle_limit, propagate, setup
-from ..spec import fix as F
+from ..spec.extraction import ExtractionExit, UndefinedBehaviour
+from ..spec.planner import AS_SHIPPED, Fix, calc_navfn, extract, path_cycle_limit
+from ..spec.propagation import setup
 
 _HIGH = np.float32(POT_HIGH)
 
@@ -54,29 +53,24 @@ class Run:
         return self.potential[self.start[1], self.start[0]]
 
 
-def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = None,
-        variant: str = F.DEFAULT_VARIANT, arith=None) -> Run:
-    """Plan like :func:`navfn_smt.spec.planner.plan`, also noting every cell ever queued.
+def run(costs: np.ndarray, start, goal, astar: bool, capacity: Optional[int] = None, fix: Fix = AS_SHIPPED,
+        arith=None) -> Run:
+    """Plan like :func:`navfn_smt.spec.planner.plan` (its :func:`~navfn_smt.spec.planner.calc_navfn`
+    and :func:`~navfn_smt.spec.planner.extract`), also noting every cell ever queued.
 
-    ``capacity`` bounds each priority buffer (PRIORITYBUFSIZE, as in C++, when None);
-    ``variant="fixed"`` plans with the fix (:mod:`navfn_smt.spec.fix`); ``arith``: the
+    ``capacity`` bounds each priority buffer (PRIORITYBUFSIZE, as in C++, when None); ``fix``:
+    the planner's :class:`~navfn_smt.spec.planner.Fix`; ``arith``: the
     :class:`~navfn_smt.spec.arithmetic.Arithmetic` of the build to plan as (None: x86-64's)."""
-    fixed = F.check_variant(variant) == "fixed"
     arr = add_border(np.asarray(costs, dtype=np.uint8))
     ny, nx = arr.shape
     start, goal = (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1]))
     st = setup(arr.ravel().tolist(), nx, ny, goal, capacity, arith)
     queued = set(st.cur)
     hook = lambda cycle, cells: queued.update(cells)  # noqa: E731
-    if fixed:
-        reached, _ = F.propagate_on(st, start, goal, astar, cycle_limit(nx, ny), trace_hook=hook, record_trace=False)
-    else:
-        reached = propagate(st, start, goal, astar, cycle_limit(nx, ny), trace_hook=hook, record_trace=False)
+    reached, _ = calc_navfn(st, start, goal, astar, fix, trace_hook=hook, record_trace=False)
     queued.update(st.cur, st.nxt, st.over)
     try:
-        ext = calc_path(st.potential, nx, ny, start, goal, path_cycle_limit(nx), arith=arith)
-        if fixed and ext.exit is not ExtractionExit.NEAR_GOAL:
-            ext = F.descend(st.potential, nx, ny, start, goal, path_cycle_limit(nx))
+        ext, _ = extract(st.potential, nx, ny, start, goal, path_cycle_limit(nx), fix, arith)
         path, exit_ = np.array(ext.path, np.float32).reshape(-1, 2), ext.exit.value
     except UndefinedBehaviour:
         path, exit_ = np.zeros((0, 2), np.float32), "undefined"

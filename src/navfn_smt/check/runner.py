@@ -12,7 +12,6 @@ predicate that carries the induction are checked (:data:`INDUCTION`).
 
 from __future__ import annotations
 
-import functools
 import math
 
 import time
@@ -21,22 +20,19 @@ from typing import Callable, Optional
 
 from ..engine import Engine, as_engine, in_order, stream  # noqa: F401  (Engine: named in docstrings)
 from ..errors import NavfnInputError
-from ..spec.constants import COST_NEUTRAL, COST_OBS
 from ..under_test import ORIGINAL, PlannerUnderTest
-from . import properties as P
 from .bounded import CHECKABLE, Case, cases, check_cost_box, explore, reduce_cases  # noqa: F401  (CHECKABLE: re-exported)
+from .certificate import case_key
+from .common import BATCH, PARALLEL_FROM, carried_at, carried_status, outside_decided, replay, symbolic_domain
+from .journal import Journal, header
 
 # Properties that hold by induction over the run, and the predicate whose obligations carry it.
 INDUCTION = {
     "queues-obstacle-free": ("ObstacleFreeQueue", "PendingMatchesBuffers"),
     "no-path-before-start-potential": ("NoPathWithoutFinitePotential",),
 }
-# ... and with the fix (variant "fixed"): complete and start-reached become inductive too
-INDUCTION_FIXED = {
-    **INDUCTION,
-    "complete": ("DescentPath",),
-    "start-reached": ("ConnectedStartReached",),
-}
+# ... and with a fix, those its value names (Fix.proved: with the fix of docs/fix.md, complete
+# and start-reached become inductive too)
 # ... each under the run-time conditions its predicate lists as open (proofs/__init__.py): said
 # with the every-size verdict, which holds only where they do
 def conditions(name: str, planner: PlannerUnderTest = ORIGINAL) -> list[str]:
@@ -47,12 +43,8 @@ def conditions(name: str, planner: PlannerUnderTest = ORIGINAL) -> list[str]:
     carriers = inductive(planner).get(name, ())
     return [o for p in PREDICATES if p.name in carriers for o in p.open]
 
-# ... and on a narrow size (interior at most two cells wide or tall, at most 4*nx cells), NavFn as
-# shipped: calcPath takes its fallback at every step there (every cell has a border neighbour)
-INDUCTION_NARROW = {"complete": ("FallbackPath",)}
-BOUND_CELLS = 2_000_000  # FallbackPath's bound 2**30 holds below this many passable cells (506 * cells)
-PARALLEL_FROM = 200  # --jobs auto: local workers from this many cases of a size on
-BATCH = 4  # cases per task: a case of a small size takes milliseconds, a task's round trip about as much
+# ... and on a narrow size, NavFn as shipped: complete, by FallbackPath (.common.INDUCTION_NARROW,
+# carried_at: shared with a certificate's replay)
 
 NOT_INDUCTIVE = {
     "valid-path": "its induction (FinitePotentialPath, ValidPath) has links that are open in float32 "
@@ -91,69 +83,6 @@ SLOWEST = 10  # explored cases a size's report lists with their times
 MAX_CELLS = 12  # interior cells a bounded check enumerates at most
 
 
-def narrow(nx: int, ny: int) -> bool:
-    """An interior at most two cells wide or tall, of at most 4*nx cells: where FallbackPath carries complete."""
-    w, h = nx - 2, ny - 2
-    return min(w, h) <= 2 and w * h <= 4 * nx and w * h < BOUND_CELLS
-
-
-def carried_at(nx: int, ny: int, planner: PlannerUnderTest = ORIGINAL, lo: int = COST_NEUTRAL,
-               hi: int = COST_OBS - 1) -> dict:
-    """The properties an induction decides on every map of this size without exploring, and
-    the predicates that carry each.  The inductions' obligations assume the costs setCostmap
-    produces (COST_NEUTRAL..COST_OBS-1): a wider cost box (``--costs 0..253``) is explored.
-    Whether the induction decides is :func:`carried_status`'s, in the planner's arithmetic."""
-    if planner.variant != "original" or not narrow(nx, ny) or lo < COST_NEUTRAL or hi >= COST_OBS:
-        return {}
-    return INDUCTION_NARROW
-
-
-@functools.lru_cache(maxsize=None)  # the proof files are read once a run, not once a size
-def _verdict_of():
-    """What is known of every obligation (declarations, splits, the bound cache), as
-    :func:`~navfn_smt.smt.chains.known_verdicts` gives it."""
-    from ..proofs import PREDICATES
-    from ..smt.chains import known_verdicts
-    from ..smt.runner import default_proof_files
-    from ..smt.split import known_of_files
-
-    return known_verdicts(known_of_files(default_proof_files(), None, PREDICATES))
-
-
-def _derived(name: str, semantics: str) -> str:
-    """The status of the predicate ``name`` in ``semantics``, derived from what is known."""
-    from ..proofs import PREDICATES
-    from ..smt.chains import derive
-
-    return derive(next(p for p in PREDICATES if p.name == name), semantics, _verdict_of(), PREDICATES)["status"]
-
-
-def outside_decided(planner: PlannerUnderTest = ORIGINAL) -> bool:
-    """Whether a start outside the goal's component is decided without exploring
-    (:func:`~.bounded.reduce_cases`): ReachedWithinComponent gives it no finite potential, and
-    NoPathWithoutFinitePotential then no path, which holds only where its links are proved in the
-    planner's arithmetic (not in aarch64's, whose saturating ``(int)`` lets calcPath's fallback
-    walk from a cell never reached).  Elsewhere those starts are explored like any other."""
-    semantics = planner.fp32_semantics()
-    return all(_derived(p, semantics) == "proved" for p in ("ReachedWithinComponent", "NoPathWithoutFinitePotential"))
-
-
-@functools.lru_cache(maxsize=None)
-def carried_status(carriers: tuple, semantics: str = "fp32") -> tuple[str, str]:
-    """``(status, why)`` of a size decided by the predicates ``carriers``: their status in the
-    float32 ``semantics`` (``fp32``: x86-64's arithmetic), derived from what is known of their
-    links (declarations, splits, the bound cache: what ``navfn-smt prove`` checks and CI
-    re-checks), ``proved`` for the size when that status is proved or bounded (the bound,
-    potentials below 2**30, holds on a map below BOUND_CELLS passable cells: see FallbackPath),
-    ``unknown`` otherwise."""
-    from ..smt.chains import STATUS_RANK
-
-    statuses = [_derived(name, semantics) for name in carriers]
-    worst = max(statuses, key=STATUS_RANK.index) if statuses else "open"
-    why = f"induction: {', '.join(carriers)} ({semantics} {worst})"
-    return ("proved" if worst in ("proved", "bounded") else "unknown"), why
-
-
 def check_size(nx: int, ny: int) -> None:
     if nx < 3 or ny < 3:
         raise NavfnInputError(f"--size {nx} {ny}: NavFn needs at least 3x3 cells (the border is lethal)")
@@ -162,30 +91,11 @@ def check_size(nx: int, ny: int) -> None:
                               f"2**cells layouts and cells**2 start/goal pairs (at most {MAX_CELLS} cells)")
 
 
-def _domain(semantics: str):
-    """The symbolic domain of a float32 ``semantics`` (``fp32``, or ``fp32@NAME`` in a build's
-    arithmetic: :data:`~navfn_smt.smt.domains.FP32_SEMANTICS`)."""
-    from ..smt.domains import DOMAINS, is_fp32
-
-    if not is_fp32(semantics):
-        raise NavfnInputError("check: only --semantics fp32 is implemented for whole-planner checks "
-                              "(the concolic exploration follows float32 control paths)")
-    return DOMAINS[semantics]
-
-
 def _explore_job(args):
     """The exploration of each case of a batch (a task: run by a worker, or in this process)."""
     batch, names, lo, hi, planner, timeout, limit = args
-    return [explore(case, names, lo, hi, _domain(planner.fp32_semantics()), timeout=timeout, exhaustive_limit=limit,
-                    variant=planner.variant) for case in batch]
-
-
-def replay(case: Case, costs: dict, name: str, planner: PlannerUnderTest = ORIGINAL):
-    """The counterexample map run by the reference spec as ``planner`` plans (its variant, in its
-    arithmetic); the judge's reason, or None if it holds."""
-    arr = case.costs_array(costs)
-    r = P.run(arr, case.start, case.goal, case.astar, variant=planner.variant, arith=planner.navfn_arithmetic())
-    return arr, r, P.judge(name, r)
+    return [explore(case, names, lo, hi, symbolic_domain(planner.fp32_semantics()), timeout=timeout,
+                    exhaustive_limit=limit, fix=planner.fix) for case in batch]
 
 
 def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
@@ -202,8 +112,8 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
     in order (:mod:`.certificate`).  ``journal``: a file (:mod:`.journal`) that records each
     explored case as it is decided; the cases it already holds are not explored again."""
     check_size(nx, ny)
-    _domain(semantics)
-    _domain(planner.fp32_semantics())
+    symbolic_domain(semantics)
+    symbolic_domain(planner.fp32_semantics())
     if not (timeout > 0 and math.isfinite(timeout)):
         raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
     if not exhaustive_limit >= 0:
@@ -234,8 +144,6 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
         eng = as_engine(jobs)
         book = None
         if journal is not None:
-            from .journal import Journal, header
-
             book = Journal(journal, header(explored, nx, ny, modes, lo, hi, planner, ends, start, goal, timeout,
                                            exhaustive_limit))
         done = {} if book is None else book.known(todo)
@@ -287,8 +195,6 @@ def _collect(batches, out: dict, todo: list, progress, planner: PlannerUnderTest
         w = 1 if weight is None else weight[cr.case]
         _fold(cr, out, planner, w)
         if certificate is not None:
-            from .certificate import case_key
-
             certificate.append([case_key(cr.case), w, cr.log])
 
 
@@ -394,7 +300,7 @@ def smallest_counterexample(results, name: str) -> Optional[dict]:
 
 def inductive(planner: PlannerUnderTest = ORIGINAL) -> dict:
     """The properties proved for every map size, and the predicates that carry them."""
-    return INDUCTION_FIXED if planner.variant == "fixed" else INDUCTION
+    return {**INDUCTION, **dict(planner.fix.proved)}
 
 
 def induction_status(name: str, verdict_of, planner: PlannerUnderTest = ORIGINAL) -> str:

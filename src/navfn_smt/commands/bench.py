@@ -38,20 +38,25 @@ def cmd_bench(args) -> int:
         if args.json:
             report.write_sweep_json(args.json, 0, rows)
         return 0
+    fix = _fix_of(args)
     if args.worst_cases:
         if not args.oracle:
             raise NavfnInputError("bench --worst-cases times the C++ as shipped and as patched: give --oracle DIR")
         from ..bench import bench_worst_cases
         from ..oracle.build import load_build
+        from ..oracle.client import navfn_program
+        from ..spec.fix import FIX as THE_FIX
 
         check_sizes(args.worst_cases, 1)
         check_files(args.json)
         build = load_build(args.oracle)
-        if "navfn-plain-fixed" not in build["programs"]:
-            raise NavfnInputError(f"{args.oracle}: this build has no navfn-plain-fixed; build it again with "
-                                  f"`navfn-smt oracle build`")
-        rows = bench_worst_cases(args.worst_cases, args.oracle)
-        report.worst_cases_table(args.oracle, rows)
+        worst = THE_FIX if fix.shipped else fix  # the fix of docs/fix.md unless --variant names another
+        program = navfn_program(worst, traced=False)
+        if program not in build["programs"]:
+            why = build.get("skipped", {}).get(program, "build it again with `navfn-smt oracle build`")
+            raise NavfnInputError(f"{args.oracle}: this build has no {program} ({why})")
+        rows = bench_worst_cases(args.worst_cases, args.oracle, worst)
+        report.worst_cases_table(args.oracle, rows, program)
         if args.json:
             report.write_worst_cases_json(args.json, args.oracle, build, rows)
         return 0
@@ -66,13 +71,14 @@ def cmd_bench(args) -> int:
     suite = suite_or_example(args.suite)
     check_files(args.json)
     planner = planner_of(args)
-    if args.variant == "fixed":
+    if not fix.shipped:
         if not args.oracle:
-            raise NavfnInputError("bench --variant fixed times the C++ as shipped and as patched: give --oracle DIR")
+            raise NavfnInputError(f"bench --variant {fix.name} times the C++ as shipped and as patched: give "
+                                  f"--oracle DIR")
         from ..bench import bench_fix
 
-        rows = bench_fix(suite, args.oracle, args.mode, args.repeat)
-        report.fix_table(suite, rows)
+        rows = bench_fix(suite, args.oracle, args.mode, args.repeat, fix)
+        report.fix_table(suite, rows, fix.name)
         if args.json:
             report.write_suite_json(args.json, suite, rows)
         return 0
@@ -93,11 +99,18 @@ def cmd_bench(args) -> int:
     return 0
 
 
+def _fix_of(args):
+    """The fix ``--variant`` names (:mod:`navfn_smt.spec.fixes`)."""
+    from ..spec import fixes
+
+    return fixes.named(args.variant)
+
+
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
     from ..maps.suite import MODE_CHOICES
-    from ..spec.fix import DEFAULT_VARIANT, VARIANTS
+    from ..spec import fixes
 
     be = sub.add_parser("bench", help="time the planner: a whole suite, or generated maps with --size")
     be.add_argument("suite", nargs="?", help="suite directory (default: the example suite)")
@@ -105,16 +118,17 @@ def register(sub) -> None:
                     help="instead of a suite, plan on generated NxN open and random-cost maps")
     be.add_argument("--worst-cases", nargs="+", type=int, metavar="N",
                     help="with --oracle: the fix's worst cases on generated NxN maps (a serpentine, a start on a "
-                         "wall, Nav2 #4655's room), on the C++ as shipped and as patched, each case in a fresh "
-                         "process: time, path points, peak memory")
+                         "wall, Nav2 #4655's room), on the C++ as shipped and as patched (the fix of docs/fix.md, "
+                         "or the one --variant names), each case in a fresh process: time, path points, peak memory")
     be.add_argument("--backend", choices=(*BACKENDS, "all"), default="all", help="planner implementations timed")
     be.add_argument("--mode", choices=MODE_CHOICES, default="both", help=MODE_HELP)
     be.add_argument("--repeat", type=int, default=3, metavar="K", help="plans per map and mode with --size (best is kept)")
     be.add_argument("--oracle", metavar="DIR", help="time the C++ NavFn built in DIR (navfn-smt oracle build) and "
                     "the JIT on the suite in the same run, and print their ratio")
-    be.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT,
-                    help="fixed: with --oracle, time the cases the original plans on the C++ as shipped and as "
-                    "patched with the fix, and on the JIT without and with it (--repeat times, best kept)")
+    be.add_argument("--variant", choices=fixes.NAMES, default=fixes.DEFAULT.name,
+                    help=fixes.HELP + "; a fix with patches: with --oracle, time the cases the original plans on "
+                    "the C++ as shipped and as patched with the fix (navfn-<fix>), and on the JIT without and with "
+                    "it (--repeat times, best kept)")
     be.add_argument("--target", metavar="NAME", help=TARGET_HELP + " (a suite's timing)")
     be.add_argument("--json", metavar="FILE", help="write the figures as JSON")
     be.add_argument("--sweep", nargs="?", type=int, const=400, metavar="N",

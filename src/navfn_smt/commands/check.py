@@ -127,7 +127,7 @@ def _suffix(planner) -> str:
     arithmetic (``-fixed``, ``-aarch64``, ``-fixed-aarch64``): the names stay apart in one folder
     and in the record of transcripts, which is by file name."""
     arith = planner.navfn_arithmetic().name
-    return ("" if planner.variant == "original" else f"-{planner.variant}") + ("" if arith == "x86-64" else f"-{arith}")
+    return ("" if planner.fix.shipped else f"-{planner.variant}") + ("" if arith == "x86-64" else f"-{arith}")
 
 
 def _certify(args, planner, lo: int, hi: int, modes):

@@ -88,9 +88,9 @@ def add_planner_arguments(parser, arithmetic: bool = True, variant_help: str = "
     """The options that name the planner under test: ``--variant``, and with ``arithmetic``
     ``--target NAME``, and with ``oracle_help`` ``--oracle DIR`` (commands that compare with a
     build add their own ``--oracle``, which names the planner the same way)."""
-    from ..spec.fix import DEFAULT_VARIANT, VARIANT_HELP, VARIANTS
+    from ..spec import fixes
 
-    parser.add_argument("--variant", choices=VARIANTS, default=DEFAULT_VARIANT, help=VARIANT_HELP + variant_help)
+    parser.add_argument("--variant", choices=fixes.NAMES, default=fixes.DEFAULT.name, help=fixes.HELP + variant_help)
     if arithmetic:
         parser.add_argument("--target", metavar="NAME", help=TARGET_HELP)
     if oracle_help:
@@ -102,9 +102,10 @@ def planner_of(args, variant=None):
     options name, made once: ``--variant`` (or ``variant``), ``--target NAME`` or ``--oracle DIR``
     (whose build.json gives its distribution and arithmetic), ``--distro`` where the command
     has it; contradicting options are a clear error."""
+    from ..spec import fixes
     from ..under_test import PlannerUnderTest
 
-    variant = variant or getattr(args, "variant", None) or "original"
+    variant = fixes.named(variant or getattr(args, "variant", None) or fixes.DEFAULT)
     target, oracle = getattr(args, "target", None), getattr(args, "oracle", None)
     distro = getattr(args, "distro", None)
     if oracle:

@@ -77,7 +77,7 @@ def cmd_diagnose(args) -> int:
         return _sweep(args, start, planner, arith)
     goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
     setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside,
-                        args.resolution, tuple(args.origin), planner.variant, layers_arithmetic_of(planner, args.map))
+                        args.resolution, tuple(args.origin), planner.fix, layers_arithmetic_of(planner, args.map))
     t0 = time.perf_counter()
     results = []
     batch = len(goals) > 1 or bool(args.goals)
@@ -114,7 +114,7 @@ def _sweep(args, start, planner, arith) -> int:
                               f"{planner.label} does: diagnose the goals one by one there (--goals FILE)")
     n = None if args.sweep == "all" else _sample_size(args.sweep)
     setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside,
-                        args.resolution, tuple(args.origin), planner.variant, layers_arithmetic_of(planner, args.map))
+                        args.resolution, tuple(args.origin), planner.fix, layers_arithmetic_of(planner, args.map))
     cm = setup.costmap
     from ..report.tables import progress_bar
     from ..diagnose.sweep import select_goals

@@ -13,19 +13,21 @@ def cmd_difftest(args) -> int:
     from ..engine import engine
     from ..report import difftest as report
     from ..report.tables import progress_bar
+    from ..spec import fixes
 
     check_files(args.json)
-    if args.variant == "fixed" and args.level == "costmap":
-        raise NavfnInputError("--variant is for NavFn and the planner plugin; the fix does not touch the costmap")
+    fix = fixes.named(args.variant)
+    if not fix.shipped and args.level == "costmap":
+        raise NavfnInputError("--variant is for NavFn and the planner plugin; a fix does not touch the costmap")
     if args.level != "navfn":
         return _level(args)
     if args.unbounded and not args.oracle:
         raise NavfnInputError("--unbounded compares with the C++ built with unbounded buffers: give --oracle DIR")
-    if args.variant == "fixed" and not args.oracle:
-        raise NavfnInputError("--variant fixed compares with the C++ built with the fix's patch: give --oracle DIR "
-                              "(the golden files are the original's)")
-    if args.variant == "fixed" and args.unbounded:
-        raise NavfnInputError("--variant fixed and --unbounded exclude each other (no C++ build has both)")
+    if not fix.shipped and not args.oracle:
+        raise NavfnInputError(f"--variant {fix.name} compares with the C++ built with the fix's patch "
+                              f"(patches/{fix.patches}/): give --oracle DIR (the golden files are the original's)")
+    if not fix.shipped and args.unbounded:
+        raise NavfnInputError(f"--variant {fix.name} and --unbounded exclude each other (no C++ build has both)")
     suite, modes = suite_or_example(args.suite), modes_of(args.mode)
     eng = engine(args.jobs, args.scheduler)
     planner = planner_of(args)
@@ -53,14 +55,15 @@ def _live(args, suite, modes, planner) -> int:
     from ..report.tables import progress_bar
 
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
-    program = "unbounded" if args.unbounded else "fixed" if planner.variant == "fixed" else "traced"
-    library = (planner.doc.get("library") or {}).get("file", "") if program == "traced" else ""
+    # the C++ of the planner's fix (navfn-traced as shipped, navfn-<fix> patched) or the unbounded one
+    program = {"variant": "unbounded"} if args.unbounded else {"fix": planner.fix}
+    library = (planner.doc.get("library") or {}).get("file", "") if planner.fix.shipped and not args.unbounded else ""
     if library:
-        program = "plain"  # a library build: the library's own code, without the white-box trace
+        program = {"variant": "plain"}  # a library build: the library's own code, without the white-box trace
         print(f"{args.oracle} links a NavFn library ({library}): compared without the white-box trace (path, "
               f"potential, start reached)")
     planner.navfn_arithmetic()  # the spec computes in the build's arithmetic, found in the build
-    with Oracle(args.oracle, variant=program) as oracle:
+    with Oracle(args.oracle, **program) as oracle:
         label = f"difftest {suite} ({args.backend}, {planner.label})"
         with progress_bar(total, label, enabled=not args.quiet) as advance:
             summary = run_live(suite, modes, args.backend, oracle, progress=lambda o: advance(o.cases),
@@ -131,12 +134,12 @@ def _plugin_level(args, planner) -> int:
 
     arith = planner.plugin_arithmetic()  # the model computes as the build was found to
     distro = planner.distribution
-    with PluginOracle(args.oracle, planner.variant) as oracle:
+    with PluginOracle(args.oracle, planner.fix) as oracle:
         if args.map:
             configs = list(map_configs(args.map, args.params, distro, args.configs, args.seed, args.pairs, args.sweep))
         else:
             configs = list(generated_configs(distro, args.configs, args.seed, args.pairs))
-        configs = [replace(c, params=replace(c.params, variant=planner.variant)) for c in configs]
+        configs = [replace(c, params=replace(c.params, fix=planner.fix)) for c in configs]
         total = sum(len(c.pairs) for c in configs)
         label = (f"difftest --level plugin ({args.backend} model, {planner.variant}, against the C++ plugin of "
                  f"{distro} for {planner.target}: {arith.name})")
@@ -159,8 +162,9 @@ def register(sub) -> None:
                     "build), run live on every case, instead of the golden files")
     dt.add_argument("--unbounded", action="store_true", help="with --oracle: the C++ and the spec both with "
                     "priority buffers that never drop a push")
-    add_planner_arguments(dt, variant_help="; fixed needs --oracle (the C++ with the fix's patch); --target: the "
-                          "golden files were recorded from a build in this arithmetic")
+    add_planner_arguments(dt, variant_help="; a fix with patches needs --oracle (the build's C++ with its patch: "
+                          "navfn-<fix>, navfn-plugin-<fix>); --target: the golden files were recorded from a build "
+                          "in this arithmetic")
     dt.add_argument("--level", choices=("navfn", "plugin", "costmap"), default="navfn",
                     help="navfn: NavFn on a suite (default); plugin: Nav2's createPlan on generated costmaps, poses "
                     "and parameters (or --map); costmap: the static and inflation layers on generated grids and "

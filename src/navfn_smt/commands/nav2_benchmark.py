@@ -147,13 +147,14 @@ def cmd_nav2_benchmark(args) -> int:
         timing = "the model's create_plan (jit), wall time per pair; give --oracle DIR for the C++'s"
         if args.oracle:
             from ..oracle.client import PluginOracle
+            from ..spec import fixes
             from .common import planner_of
 
-            planner = planner_of(args, "original")  # the build's; each planner of the benchmark plans as it
+            planner = planner_of(args, fixes.AS_SHIPPED)  # the build's; each planner of the benchmark plans as it
             arith = planner.plugin_arithmetic()  # the model plans as the build was found to compute
-            first = stack.enter_context(PluginOracle(args.oracle, "original"))
-            oracles = {"original": first, **{v: stack.enter_context(PluginOracle(args.oracle, v))
-                                             for v in sorted({p.variant for p in planners} - {"original"})}}
+            # a running C++ plugin per fix of the benchmark's planners (as shipped, each patched one), by its name
+            oracles = {f.name: stack.enter_context(PluginOracle(args.oracle, f))
+                       for f in dict.fromkeys([fixes.AS_SHIPPED, *(p.fix for p in planners)])}
             build = planner.doc
             distro = planner.distribution
             layers_arith = _layers_arithmetic(planner)

@@ -1,6 +1,6 @@
 """``navfn-smt oracle build NAV2_SRC``: build the user's own Nav2 NavFn as an oracle;
 ``navfn-smt oracle nav2-tests NAV2_SRC``: build and run Nav2's own NavFn tests against it, as it
-is and with the fix.
+is and with a fix's patch (each fix of ``spec/fixes.py`` that has patches).
 
 The sources are compiled unchanged (:mod:`navfn_smt.oracle.build`); ``difftest --oracle DIR``
 and ``suite record --oracle DIR`` then run them live.  Nav2's tests: :mod:`navfn_smt.oracle.nav2_tests`.
@@ -30,16 +30,17 @@ def cmd_oracle_build(args) -> int:
 
 
 def cmd_oracle_nav2_tests(args) -> int:
-    from ..oracle.nav2_tests import PASSED, VARIANTS, failed, run_nav2_tests, without_fix
+    from ..oracle.nav2_tests import PASSED, failed, run_nav2_tests, without_fix
     from .common import toolchain_of
 
-    doc = run_nav2_tests(args.nav2_src, args.out, VARIANTS if args.variant == "both" else (args.variant,),
+    doc = run_nav2_tests(args.nav2_src, args.out, _variant_groups().get(args.variant, (args.variant,)),
                          tc=toolchain_of(args))
     variants = doc["variants"]
     runs = f", run under {' '.join(doc['runner'])}" if doc["runner"] else ""
+    patches = "".join(f"; {name}: {p['folder']}/{p['file']}" for name, p in doc.get("patches", {}).items())
     print(f"Nav2's own tests of nav2_navfn_planner, {doc['distribution']} ({doc['sources']}), built for "
           f"{doc['target']}{runs} with {doc['compiler_version'] or doc['compiler']} {' '.join(doc['flags'])} into "
-          f"{args.out}" + (f"; fixed: {doc['fix_patch']['file']}" if "fix_patch" in doc else "") + ":")
+          f"{args.out}{patches}:")
     rows = {}
     for r in doc["results"]:
         rows.setdefault((r["program"], r["case"] or "(the program)"), {})[r["variant"]] = r["status"]
@@ -68,7 +69,7 @@ def cmd_oracle_nav2_tests(args) -> int:
 def cmd_oracle_lint(args) -> int:
     from ..oracle.lint import lint_fix
 
-    doc = lint_fix(args.nav2_src, args.patch)
+    doc = lint_fix(args.nav2_src, args.patch, args.variant)
     print(f"Nav2's lint on {doc['patch']} for {doc['distribution']} ({doc['sources']}): {doc['uncrustify']['version']} "
           f"with ament's {doc['uncrustify']['config']}, cpplint with ament_cpplint's arguments:")
     print("| file | linter | findings as shipped | patched | added by the patch |")
@@ -88,6 +89,14 @@ def cmd_oracle_lint(args) -> int:
     return 1 if added else 0
 
 
+def _variant_groups() -> dict:
+    """``oracle nav2-tests --variant``'s groups: ``both`` (as shipped and the fix of docs/fix.md)
+    and ``all`` (as shipped and every patched fix); a fix's name stands for itself."""
+    from ..oracle.nav2_tests import ALL, BOTH
+
+    return {"both": BOTH, "all": ALL}
+
+
 def _sources_argument(parser) -> None:
     parser.add_argument("nav2_src", metavar="NAV2_SRC",
                         help="a navigation2 checkout, or a folder holding nav2_navfn_planner, nav2_core and nav2_costmap_2d")
@@ -95,6 +104,8 @@ def _sources_argument(parser) -> None:
 
 def register(sub) -> None:
     """The ``oracle`` command and its ``build`` subcommand."""
+    from ..spec import fixes
+    from ..spec.fix import FIX as THE_FIX
     from .common import add_toolchain_arguments
 
     orc = sub.add_parser("oracle", help="build the user's own Nav2 NavFn (unchanged) to test the spec against")
@@ -103,8 +114,10 @@ def register(sub) -> None:
                         description="Compile NavFn (navfn.cpp) from NAV2_SRC unchanged, with the project's "
                         "drivers and ROS stub headers: plain; with a white-box trace hook inserted at an anchor "
                         "line in a copy; with priority buffers that never drop (a copy of navfn.hpp); and the "
-                        "planner plugin (navfn_planner.cpp with Nav2's costmap_2d.cpp).  Record the compiler, "
-                        "flags, source hashes, git commit and distribution in DIR/build.json.")
+                        "planner plugin (navfn_planner.cpp with Nav2's costmap_2d.cpp); and for each fix with patches "
+                        "(patches/<fix>/<distribution>.patch) its traced NavFn, plugin and plain NavFn, "
+                        "navfn-<fix>, navfn-plugin-<fix>, navfn-plain-<fix>.  Record the compiler, "
+                        "flags, source hashes, patches, git commit and distribution in DIR/build.json.")
     _sources_argument(b)
     b.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="the build folder (default: %(default)s)")
     add_toolchain_arguments(b)
@@ -112,26 +125,32 @@ def register(sub) -> None:
                    "library (as a package build makes it, -fPIC -O2 -g), built from NAV2_SRC; its target is read from "
                    "the file and its arithmetic from its machine code; only navfn-plain is built")
     b.set_defaults(func=cmd_oracle_build)
-    t = osub.add_parser("nav2-tests", help="build and run nav2_navfn_planner's own gtests, as shipped and with the fix",
+    t = osub.add_parser("nav2-tests", help="build and run nav2_navfn_planner's own gtests, as shipped and with a fix",
                         description="Build every gtest that nav2_navfn_planner/test/CMakeLists.txt of NAV2_SRC declares "
-                        "against NavFn as it is (original) and as the fix's patch makes it (fixed), with googletest "
-                        "from its sources (Debian: libgtest-dev) and, for the tests that make the planner plugin, the "
-                        "project's ROS stub headers; the tests the fix's patch adds are run against both too.  Report every gtest "
+                        "against NavFn as it is (original) and as a fix's patch makes it (fixed, cycles-only, ...), "
+                        "with googletest from its sources (Debian: libgtest-dev) and, for the tests that make the "
+                        "planner plugin, the project's ROS stub headers; the tests a fix's patch adds are run as "
+                        "shipped and with that fix.  Report every gtest "
                         "case; exit 1 when one fails where it should pass (every test patched, the sources' own as "
                         "shipped).")
     _sources_argument(t)
     t.add_argument("--out", metavar="DIR", default=DEFAULT_TESTS_OUT, help="the build folder (default: %(default)s)")
-    t.add_argument("--variant", choices=("original", "fixed", "both"), default="both",
-                   help="NavFn as shipped, with the fix (patches/navfn-fix/), or both (default: %(default)s)")
+    t.add_argument("--variant", choices=(*fixes.NAMES, *_variant_groups()), default="both",
+                   help=f"NavFn as shipped ({fixes.AS_SHIPPED.name}), with one fix's patch (patches/<fix>/: "
+                   f"{', '.join(f'{f.name}: patches/{f.patches}/' for f in fixes.PATCHED)}), both ({fixes.AS_SHIPPED.name} "
+                   f"and {THE_FIX.name}) or all (default: %(default)s)")
     t.add_argument("--json", metavar="FILE", help="write the report (every case, its status and message) as JSON")
     add_toolchain_arguments(t)
     t.set_defaults(func=cmd_oracle_nav2_tests)
-    lint = osub.add_parser("lint", help="Nav2's lint (ament's uncrustify and cpplint) on the fix's patch",
+    lint = osub.add_parser("lint", help="Nav2's lint (ament's uncrustify and cpplint) on a fix's patch",
                            description="Run uncrustify with ament's configuration and cpplint with ament_cpplint's "
-                           "arguments on each file the fix's patch touches, as shipped and patched, and report the "
+                           "arguments on each file a fix's patch touches, as shipped and patched, and report the "
                            "findings the patch adds (the same message, line numbers aside).  Exit 1 when it adds one.")
     _sources_argument(lint)
-    lint.add_argument("--patch", metavar="FILE", help="another patch to judge (default: the distribution's "
-                      "patches/navfn-fix/ patch)")
+    lint.add_argument("--variant", choices=tuple(f.name for f in fixes.PATCHED), default=THE_FIX.name,
+                      help="the fix whose patch is judged: the distribution's patches/<fix>/ patch (default: "
+                      "%(default)s)")
+    lint.add_argument("--patch", metavar="FILE", help="another patch to judge (default: the --variant fix's patch "
+                      "for the distribution)")
     lint.add_argument("--json", metavar="FILE", help="write the report (counts and added findings) as JSON")
     lint.set_defaults(func=cmd_oracle_lint)

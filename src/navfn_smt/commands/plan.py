@@ -25,7 +25,7 @@ def _plan_world(args) -> int:
     check_params_file(args.params)
     planner = planner_of(args)
     arith = plugin_arithmetic_of(planner, "--world")
-    overrides = {"use_astar": True if args.astar else False if args.dijkstra else None, "variant": planner.variant}
+    overrides = {"use_astar": True if args.astar else False if args.dijkstra else None, "fix": planner.fix}
     setup = load_setup(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside, overrides,
                        args.resolution, tuple(args.origin), layers_arithmetic_of(planner, args.map))
     run = create_plan(setup.costmap, start, goal, setup.params, args.backend, arith)

@@ -13,7 +13,14 @@ from ..errors import NavfnInputError
 from .common import check_files, check_positive, vars_of
 
 EXAMPLE_MAP = Path(__file__).resolve().parent.parent / "examples" / "mapserver" / "room.yaml"
-VARIANTS = ("original", "fixed")
+
+
+def _fixes() -> tuple:
+    """The planners compared: NavFn as shipped and with the fix of docs/fix.md."""
+    from ..spec import fixes
+    from ..spec.fix import FIX as THE_FIX
+
+    return fixes.AS_SHIPPED, THE_FIX
 
 
 def _check_args(args) -> list[Path]:
@@ -40,13 +47,13 @@ def _planners(args, stack) -> tuple[dict, str]:
         from ..oracle.client import PluginOracle
         from .common import planner_of
 
-        planner = planner_of(args, "original")
+        planner = planner_of(args, _fixes()[0])
         distro, arith = planner.distribution, planner.plugin_arithmetic()
-        for v in VARIANTS:
-            planners[("C++", v)] = T.oracle_planner(stack.enter_context(PluginOracle(args.oracle, v)))
-    for v in VARIANTS:
-        model = T.model_planner(v, arith)
-        planners[("model", v)] = (lambda m: (lambda cm, p, pairs: m(cm, replace(p, distro=distro), pairs)))(model)
+        for fix in _fixes():
+            planners[("C++", fix.name)] = T.oracle_planner(stack.enter_context(PluginOracle(args.oracle, fix)))
+    for fix in _fixes():
+        model = T.model_planner(fix, arith)
+        planners[("model", fix.name)] = (lambda m: (lambda cm, p, pairs: m(cm, replace(p, distro=distro), pairs)))(model)
     return planners, distro
 
 
@@ -91,12 +98,12 @@ def cmd_planner_tester(args) -> int:
                 doc["random"].setdefault(str(m), {})[" ".join(key)] = [
                     {**vars(r), "passed": r.passed} for r in results]
         if args.oracle:  # the C++ and the model, answer by answer
-            for v in VARIANTS:
+            for v in (f.name for f in _fixes()):
                 model, cpp = answers[("model", v)], answers[("C++", v)]
                 bad = [k for k, (a, b) in enumerate(zip(model, cpp)) if not _same(a, b)]
                 if len(model) != len(cpp) or bad:
                     doc["differences"].append({"variant": v, "answers": len(model), "differ": bad[:20]})
-            doc["compared_answers"] = sum(len(answers[("model", v)]) for v in VARIANTS)
+            doc["compared_answers"] = sum(len(answers[("model", f.name)]) for f in _fixes())
     doc["seconds"] = time.perf_counter() - t0
     _print(doc, console, duration)
     if args.json:

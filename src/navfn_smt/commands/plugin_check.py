@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ..spec import fixes
+from ..spec.fix import FIX as THE_FIX
 from ..errors import NavfnInputError
 from .common import check_files, vars_of
 
@@ -36,7 +38,7 @@ def cmd_plugin_check(args) -> int:
                               f"{limit} interior cells (every robot and goal cell are enumerated"
                               + (")" if args.sample else "; every layout too, unless --sample)"))
     values = _values(args.values)
-    variants = ("original", "fixed") if args.variant == "both" else (args.variant,)
+    chosen = (fixes.AS_SHIPPED, THE_FIX) if args.variant == "both" else (fixes.named(args.variant),)
     sizes = [s for s in sizes_up_to(w, h) if (s[0] - 2) * (s[1] - 2) >= 2]
     t0 = time.perf_counter()
 
@@ -46,13 +48,13 @@ def cmd_plugin_check(args) -> int:
 
     if args.sample:
         sizes = [tuple(args.max_size)]
-    counts = check_plugin(names, sizes, values, variants, tuple(args.tolerance), args.distro, args.backend,
+    counts = check_plugin(names, sizes, values, chosen, tuple(args.tolerance), args.distro, args.backend,
                           progress, args.sample, args.seed)
     seconds = round(time.perf_counter() - t0, 1)
     what = (f"{args.sample} random {w}x{h} costmaps (seed {args.seed})" if args.sample
             else f"every costmap up to {w}x{h}")
     report.table(f"plugin-check: {what}, values {','.join(map(str, values))} ({seconds} s)", counts)
-    induction = {n: ind for n in names if "fixed" in variants and (ind := induction_known(n))}
+    induction = {n: ind for n in names if THE_FIX in chosen and (ind := induction_known(n))}
     for n, ind in induction.items():
         print(f"{n} (fixed): every costmap size by induction, under {len(ind['conditions'])} run-time conditions: "
               f"{ind['status']} (" + ", ".join(f"{p} {st}" for p, st in ind["predicates"].items()) + ")")
@@ -86,8 +88,9 @@ def register(sub) -> None:
                     help="instead of every layout, N random costmaps of --max-size exactly, each interior cell drawn "
                     "from --values (at most 64 interior cells; default: 0, every layout)")
     pc.add_argument("--seed", type=int, default=0, help="the seed of --sample")
-    pc.add_argument("--variant", choices=("original", "fixed", "both"), default="both",
-                    help="the plugin as shipped, with the fix of docs/fix.md, or both (default)")
+    pc.add_argument("--variant", choices=(*fixes.NAMES, "both"), default="both",
+                    help="the plugin as shipped, with a fix (" + fixes.HELP + "), or both: as shipped and with the fix of "
+                    "docs/fix.md (default)")
     pc.add_argument("--tolerance", nargs="+", type=float, default=(0.0, 1.0), metavar="M",
                     help="the plugin's tolerance values, in cells (resolution 1; default: 0 1)")
     pc.add_argument("--distro", default=DEFAULT_DISTRO, choices=tuple(DISTROS),

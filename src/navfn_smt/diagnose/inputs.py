@@ -15,17 +15,18 @@ from ..errors import NavfnInputError
 from ..nav2.mapserver import DEFAULT_DISTRO
 from ..nav2.plugin import Pose, check_pose
 from ..nav2.setup import Setup, check_params_file, load_setup
+from ..spec.planner import AS_SHIPPED, Fix
 
 
 
 
 def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
-                resolution=None, origin=(0.0, 0.0), variant: str = "original", layers_arith=None) -> Setup:
+                resolution=None, origin=(0.0, 0.0), fix: Fix = AS_SHIPPED, layers_arith=None) -> Setup:
     """Map (or costmap file) + optional params file -> the costmap and the plugin's parameters
-    (:func:`load_setup`), for NavFn as shipped or with the fix (``variant``), the layers computing
+    (:func:`load_setup`), for NavFn as shipped or with a fix (``fix``), the layers computing
     in ``layers_arith`` (None: x86-64's)."""
     check_params_file(params_file)
-    return load_setup(map_yaml, params_file, distro, allow_outside, {"variant": variant}, resolution=resolution,
+    return load_setup(map_yaml, params_file, distro, allow_outside, {"fix": fix}, resolution=resolution,
                       origin=origin, layers_arith=layers_arith)
 
 

@@ -316,7 +316,9 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         res.path_length[p] = out_f[p, S.LENGTH] * cm.resolution
     offsets = out_i[:, S.PATH_OFF].copy()
     pts = pts[:st[S.NPTS]] if keep_paths else None
-    if params.variant == "fixed":  # the compiled loops plan as the original; the fix acts only where it fails
+    if not params.fix.shipped:  # the compiled loops plan as the original; a fix acts only where it fails
+        # (each registered fix changes the propagation only where the first call leaves the start
+        # unreached with cells buffered, and calcPath only where it returns no path)
         failed = [_CODE[o] for o in ("ok_tolerance", "no_legal", "legal_no_plan")]
         fallback += [k for k in planned.tolist() if res.outcome[k] in failed]
     if fallback:

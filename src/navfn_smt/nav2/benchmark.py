@@ -56,6 +56,8 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from ..spec.fix import FIX as THE_FIX
+from ..spec.planner import AS_SHIPPED, Fix
 from ..errors import NavfnInputError
 from .params import PlannerParams
 from .plugin import EMPTY_PATH, Costmap, Pose, create_plan
@@ -70,10 +72,14 @@ DRAWS_PER_PAIR = 10_000  # cells drawn per pair at most before the map is declar
 
 @dataclass(frozen=True)
 class Planner:
-    """One row of the table: NavFn ``variant`` ("original" or "fixed") in one mode."""
+    """One row of the table: NavFn with ``fix`` (as shipped, or patched) in one mode."""
 
-    variant: str
+    fix: Fix
     use_astar: bool
+
+    @property
+    def variant(self) -> str:
+        return self.fix.name
 
     @property
     def mode(self) -> str:
@@ -84,7 +90,7 @@ class Planner:
         return f"NavFn {self.variant} {'A*' if self.use_astar else 'Dijkstra'}"
 
 
-PLANNERS = (Planner("original", False), Planner("fixed", False), Planner("original", True), Planner("fixed", True))
+PLANNERS = tuple(Planner(f, astar) for astar in (False, True) for f in (AS_SHIPPED, THE_FIX))
 
 
 def planners_for(modes) -> tuple[Planner, ...]:
@@ -294,10 +300,10 @@ class FixComparison:
 
 def compare_fix(rows: list) -> list:
     """:class:`FixComparison` per mode where both variants ran."""
-    by = {(r.planner.variant, r.planner.mode): r for r in rows}
+    by = {(r.planner.fix.shipped, r.planner.mode): r for r in rows}
     out = []
     for mode in ("dijkstra", "astar"):
-        o, f = by.get(("original", mode)), by.get(("fixed", mode))
+        o, f = by.get((True, mode)), by.get((False, mode))
         if o is None or f is None:
             continue
         changed, fixed_only, same, planned = [], [], 0, 0
@@ -362,7 +368,7 @@ def run_benchmark(cm: Costmap, params: PlannerParams, pairs: list, planners=PLAN
         oracle = (oracles or {}).get(planner.variant)
         if oracles is not None and oracle is None:
             raise ValueError(f"no oracle for the {planner.variant} variant")
-        p = replace(params, variant=planner.variant, use_astar=planner.use_astar)
+        p = replace(params, fix=planner.fix, use_astar=planner.use_astar)
         configured.append((planner, p, oracle))
         if pairs:  # warm-up, untimed
             create_plan(cm, pairs[0].start, pairs[0].goal, p, backend, arith)

@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
+from ..spec.planner import AS_SHIPPED, Fix
 
 NAVFN_TYPES = ("nav2_navfn_planner::NavfnPlanner", "nav2_navfn_planner/NavfnPlanner")
 DEFAULT_PLUGINS = ("GridBased",)
@@ -35,7 +36,7 @@ class PlannerParams:
     use_final_approach_orientation: bool = False
     plugin: str = "GridBased"  # the plugin's name in planner_server (where the values were read)
     distro: str = "rolling"  # whose navfn_planner.cpp reads them (see nav2.plugin.FLAVOURS)
-    variant: str = "original"  # NavFn as shipped, or "fixed": with the fix (navfn_smt.spec.fix)
+    fix: Fix = AS_SHIPPED  # NavFn as shipped, or with a fix (navfn_smt.spec.fixes)
 
 
 _TYPES = {"tolerance": float, "use_astar": bool, "allow_unknown": bool, "max_cycles_factor": int,

@@ -57,8 +57,8 @@ class Answer:
     poses: np.ndarray
 
 
-def model_planner(params_variant: str, arith=None) -> Planner:
-    """The specification's model of the plugin, NavFn ``params_variant`` ("original" or "fixed"),
+def model_planner(fix, arith=None) -> Planner:
+    """The specification's model of the plugin, NavFn with ``fix`` (a :class:`~navfn_smt.spec.planner.Fix`),
     computing as a build of the plugin arithmetic ``arith`` does (None: x86-64's)."""
     from dataclasses import replace
 
@@ -66,7 +66,7 @@ def model_planner(params_variant: str, arith=None) -> Planner:
     from .plugin import EMPTY_PATH, create_plan
 
     def plan(cm, params, pairs):
-        p = replace(params, variant=params_variant)
+        p = replace(params, fix=fix)
         out = []
         for s, g in pairs:
             run = create_plan(cm, s, g, p, arith=arith)

@@ -47,6 +47,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec.planner import AS_SHIPPED, Fix
 from ..spec.arithmetic import PLUGIN_X86_64, PluginArithmetic
 from ..spec.constants import DBL_MAX, FREE_SPACE, INT_MAX, LETHAL_OBSTACLE, POT_HIGH
 from ..spec.costs import add_border, set_costmap
@@ -438,7 +439,7 @@ def make_plan(cm: Costmap, start: Pose, goal: Pose, params: PlannerParams, run: 
         return
     run.target_cell = target
     try:
-        _propagate(run, target, robot, params.use_astar, backend, params.variant)
+        _propagate(run, target, robot, params.use_astar, backend, params.fix)
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))
         return
@@ -566,13 +567,11 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
         return []
     run.max_cycles = n
     try:
-        planner = get_backend(backend, PlannerUnderTest(arithmetic=run.arith.navfn)).prepare(run.costs)
+        planner = get_backend(backend, PlannerUnderTest(params.fix, run.arith.navfn)).prepare(run.costs)
         run.extraction, path = planner.extract(run.potential, cell, run.robot_cell, n)
-        if params.variant == "fixed" and run.extraction is not ExtractionExit.NEAR_GOAL:
+        if params.fix.fallback is not None:
             # the patched calcPath: calcPathGradient (its exhaustion logged at DEBUG only), then
             # calcPathDescent, and one WARN when that fails too
-            run.extraction, path = get_backend(backend, PlannerUnderTest("fixed", run.arith.navfn)).prepare(run.costs).extract(
-                run.potential, cell, run.robot_cell, n)
             if run.extraction is not ExtractionExit.NEAR_GOAL:
                 run.lines.append((WARN, FIXED_NO_PATH_WARNING))
         elif run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
@@ -611,63 +610,57 @@ def _final_approach_orientation(poses: list, start: Pose) -> list:
 
 
 def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[int, int], astar: bool,
-               backend: str, variant: str = "original") -> None:
-    """``setStart``/``setGoal`` then ``calcNavFnAstar`` or ``calcNavFnDijkstra(atStart=true)``
-    (``variant="fixed"``: as patched, propagating on while the start is unreached).
+               backend: str, fix: Fix = AS_SHIPPED) -> None:
+    """``setStart``/``setGoal`` then ``calcNavFnAstar`` or ``calcNavFnDijkstra(atStart=true)``,
+    as ``fix`` changes them (:func:`navfn_smt.spec.planner.calc_navfn`).
 
     Cells one past the edge (see :func:`plugin_world_to_map`) reach NavFn unchecked; their index
     ``y * nx + x`` then names cell (0, y + 1), and their coordinates enter the A* heuristic
     and the path's last point: that case runs with the raw coordinates (:func:`_propagate_raw`).
     """
     from ..backends import get_backend
-    from ..spec import fix
-    from ..spec.propagation import cycle_limit
 
     ny, nx = run.costs.shape
-    run.cycle_limit = cycle_limit(nx, ny)
+    run.cycle_limit = fix.first_cycles(nx, ny)  # the first call's: max(nx*ny/20, nx+ny) as shipped
     on_map = all(0 <= c[0] < nx and 0 <= c[1] < ny for c in (navfn_start, navfn_goal))
     if on_map:
-        # calcNavFn* only propagate; calcPath comes later, from the chosen pose's cell
-        planner = get_backend(backend, PlannerUnderTest(arithmetic=run.arith.navfn)).prepare(run.costs)
+        # calcNavFn* only propagate; calcPath comes later, from the chosen pose's cell (the
+        # backend's calcPath of 0 points and the fix's fallback of 0 points cost nothing)
+        planner = get_backend(backend, PlannerUnderTest(fix, run.arith.navfn)).prepare(run.costs)
         r = planner.run(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
-        if variant == "fixed" and not fix.reached(r.start_potential):
-            r = planner.run_fixed(navfn_start, navfn_goal, astar, trace=False, path_cycles=0)
         run.potential, run.reached, run.cycles, run.dropped = r.potential, r.start_reached, r.cycles, r.dropped
         return
     for what, c in (("start", navfn_start), ("goal", navfn_goal)):
         if c[1] * nx + c[0] >= nx * ny:
             raise UndefinedBehaviour(f"NavFn's {what} cell {c} indexes {c[1] * nx + c[0]}, past the end of potarr "
                                      f"({nx * ny} cells)")
-    _propagate_raw(run, navfn_start, navfn_goal, astar, backend, variant)
+    _propagate_raw(run, navfn_start, navfn_goal, astar, backend, fix)
 
 
 def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend: str = "jit",
-                   variant: str = "original") -> None:
+                   fix: Fix = AS_SHIPPED) -> None:
     """Propagation with a cell one past the edge, its coordinates as they are: on the reference
-    spec, or compiled (the JIT's loop, without its heuristic memo, which assumes cells on the map);
-    the fixed variant on the spec."""
-    from ..spec import fix
-    from ..spec.propagation import propagate, setup
+    spec (:func:`~navfn_smt.spec.planner.calc_navfn`), or compiled (the JIT's loop, without its
+    heuristic memo, which assumes cells on the map) where the fix adds no further call."""
+    from ..spec.planner import calc_navfn
+    from ..spec.propagation import setup
 
     ny, nx = run.costs.shape
-    if backend == "jit" and variant != "fixed":
+    if backend == "jit" and fix.further is None:
         from ..backends import jit as J
 
         planner = J.JitPlanner(add_border(run.costs), arith=run.arith.navfn)
         no_memo = np.empty(0, np.float32)
         run.reached = bool(J.propagate(planner.D, planner.costs, nx, ny, navfn_start[0], navfn_start[1], navfn_goal[0],
-                                       navfn_goal[1], astar, run.cycle_limit, planner.pot, planner.pending, planner.pb,
-                                       planner.fill, planner.role, planner.curt, planner.no_trace, planner.counters,
-                                       no_memo))
+                                       navfn_goal[1], astar, run.cycle_limit, planner.pot, planner.pending,
+                                       planner.pb, planner.fill, planner.role, planner.curt, planner.no_trace,
+                                       planner.counters, no_memo))
         run.potential = planner.pot.reshape(ny, nx).copy()
         run.cycles, run.dropped = int(planner.counters[J.CYCLES]), int(planner.counters[J.DROPPED])
         return
     st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal, arith=run.arith.navfn)
-    if variant == "fixed":
-        run.reached, _ = fix.propagate_on(st, navfn_start, navfn_goal, astar, run.cycle_limit, record_trace=False)
-    else:
-        run.reached = bool(propagate(st, navfn_start, navfn_goal, astar, run.cycle_limit, at_start=True,
-                                     record_trace=False))
+    run.reached, _ = calc_navfn(st, navfn_start, navfn_goal, astar, fix, record_trace=False)
+    run.reached = bool(run.reached)
     run.potential = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
     run.cycles, run.dropped = st.cycles, st.dropped
 

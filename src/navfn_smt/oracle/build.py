@@ -23,13 +23,19 @@ content (:mod:`.objects`):
 - ``costmap-layers``: the global costmap's sources and its static and inflation layers
   (:data:`LAYER_SOURCES`, those the version has) with ``layers_driver.cpp``, ``ros_stubs/``,
   ``-fopenmp`` and Eigen 3 where the version's inflation layer needs it;
-- ``navfn-fixed``, ``navfn-plugin-fixed`` and ``navfn-plain-fixed``: the traced NavFn, the
-  plugin and the plain NavFn (to time the fix as Nav2 compiles it) with the fix of ``docs/fix.md``: copies of ``navfn.cpp`` and ``navfn.hpp`` in the build folder, patched by
-  ``patch -p1`` with the distribution's ``patches/navfn-fix/<distribution>.patch``; the NavFn
-  driver then calls the patched ``calcNavFnAstar`` / ``calcNavFnDijkstra``.  Sources that carry
-  the fix already (a contributor's branch: the patch applies in reverse) give them from their
-  own files, and ``build.json`` says ``sources_carry_fix``: the other NavFn programs are then
-  fixed too, and the clients refuse to run them as NavFn as shipped;
+- for each patched fix of :data:`navfn_smt.spec.fixes.PATCHED` (:func:`fix_programs`):
+  ``navfn-<name>``, ``navfn-plugin-<name>`` and ``navfn-plain-<name>``, the traced NavFn, the
+  plugin and the plain NavFn (to time the fix as Nav2 compiles it) with that fix: copies of
+  ``navfn.cpp`` and ``navfn.hpp`` in the build folder, patched by ``patch -p1`` with the
+  distribution's ``patches/<fix.patches>/<distribution>.patch``; the NavFn driver then calls
+  the patched ``calcNavFnAstar`` / ``calcNavFnDijkstra`` (``NAVFN_SMT_CALC_NAVFN``).  So the
+  fix of ``docs/fix.md`` gives ``navfn-fixed``, ``navfn-plugin-fixed`` and
+  ``navfn-plain-fixed``.  A fix whose patch is missing or does not apply (without fuzz) is left
+  out, its programs named in ``skipped`` with why.  Sources that carry a fix already (a
+  contributor's branch: its patch applies in reverse) give that fix's programs from their own
+  files, and ``build.json`` says ``sources_carry_fix``: the other NavFn programs are then
+  patched too, the clients refuse to run them as NavFn as shipped, and the other fixes (whose
+  patches are for NavFn as shipped) are left out;
 - ``eigen-sqrt``: where the version's inflation layer uses Eigen, Eigen's square root built with
   the layers' flags (``eigen_sqrt.cpp``), to tell which one this machine takes.
 
@@ -55,6 +61,9 @@ from typing import Optional
 
 from ..errors import NavfnInputError
 from ..fileio import atomic_folder
+from ..spec import fixes
+from ..spec.fix import FIX as THE_FIX
+from ..spec.planner import Fix
 from .arithmetic import find as find_arithmetic
 from .arithmetic import layers_find, plugin_find
 from .arithmetic import record as record_arithmetic
@@ -66,10 +75,23 @@ HERE = Path(__file__).resolve().parent
 ANCHOR = "// reset pending flags on current priority buffer"  # once in each propagation loop
 ANCHORS_EXPECTED = 2
 HOOK = "NAVFN_SMT_CYCLE(curP, curPe);"
-PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers", "eigen-sqrt",
-            "navfn-fixed", "navfn-plugin-fixed", "navfn-plain-fixed")
-FIXED_PROGRAMS = ("navfn-fixed", "navfn-plugin-fixed", "navfn-plain-fixed")  # left out, and named, without a patch for the version
-PATCHES = HERE.parent / "patches" / "navfn-fix"  # the fix, one patch per distribution
+PATCHES_ROOT = HERE.parent / "patches"  # a folder per patched fix (Fix.patches), one patch per distribution
+CALC_NAVFN = "NAVFN_SMT_CALC_NAVFN"  # the NavFn driver calls calcNavFn*, where a fix's patch changes the planning
+
+
+def fix_programs(fix: Fix) -> tuple[str, str, str]:
+    """The programs of a patched fix: its traced NavFn, its planner plugin and its plain NavFn."""
+    return f"navfn-{fix.name}", f"navfn-plugin-{fix.name}", f"navfn-plain-{fix.name}"
+
+
+SHIPPED_PROGRAMS = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin", "costmap-layers", "eigen-sqrt")
+PATCHED_PROGRAMS = {p: f for f in fixes.PATCHED for p in fix_programs(f)}  # each left out, and named, without its patch
+if len(PATCHED_PROGRAMS) != 3 * len(fixes.PATCHED) or set(PATCHED_PROGRAMS) & set(SHIPPED_PROGRAMS):
+    raise RuntimeError(f"the fixes {', '.join(f.name for f in fixes.PATCHED)} name programs twice: rename one in "
+                       f"spec/fixes.py (its programs are navfn-NAME, navfn-plugin-NAME, navfn-plain-NAME)")
+PROGRAMS = (*SHIPPED_PROGRAMS, *PATCHED_PROGRAMS)
+FIXED_PROGRAMS = fix_programs(THE_FIX)  # the fix of docs/fix.md: navfn-fixed, navfn-plugin-fixed, navfn-plain-fixed
+PATCHES = PATCHES_ROOT / THE_FIX.patches  # the fix of docs/fix.md, one patch per distribution
 NAVFN_FILES = ("nav2_navfn_planner/src/navfn.cpp", "nav2_navfn_planner/include/nav2_navfn_planner/navfn.hpp")
 EIGEN_PROGRAMS = ("costmap-layers", "eigen-sqrt")  # left out, and named, when Eigen is missing
 EIGEN_DIRS = ("/usr/include/eigen3", "/usr/local/include/eigen3")
@@ -164,26 +186,42 @@ def traced_copy(navfn_cpp: Path, out: Path) -> Path:
     return out
 
 
-def fix_patch(src: Path) -> Path:
-    """The fix's patch for the version of ``src`` (``patches/navfn-fix/<distribution>.patch``)."""
-    return PATCHES / f"{distribution(src)}.patch"
+def patches_of(fix: Fix) -> Path:
+    """The folder of a patched fix's patches (``patches/<fix.patches>/``)."""
+    if fix.shipped:
+        raise NavfnInputError(f"the {fix.name} planner is NavFn as shipped: it has no patch")
+    return PATCHES_ROOT / fix.patches
 
 
-def _patch_applies(src: Path) -> bool:
-    """Whether the fix's patch applies to the sources as they are (``patch --dry-run``, no fuzz)."""
-    r = subprocess.run(["patch", "-p1", "-F0", "--dry-run", "-d", str(src), "-i", str(fix_patch(src))],
+def fix_patch(src: Path, fix: Fix = THE_FIX) -> Path:
+    """``fix``'s patch (default: the fix of docs/fix.md) for the version of ``src``
+    (``patches/<fix.patches>/<distribution>.patch``)."""
+    return patches_of(fix) / f"{distribution(src)}.patch"
+
+
+def _dry_run(src: Path, patch: Path, *extra) -> bool:
+    """Whether ``patch -p1 -F0 --dry-run`` (with ``extra``) succeeds on the sources as they are."""
+    r = subprocess.run(["patch", "-p1", "-F0", *extra, "--dry-run", "-d", str(src), "-i", str(patch)],
                        capture_output=True, text=True)
     return r.returncode == 0
 
 
-def carries_fix(src: Path) -> bool:
-    """Whether the sources already carry the fix (a contributor's branch): its patch applies to
+def _patch_applies(src: Path, fix: Fix = THE_FIX) -> bool:
+    """Whether ``fix``'s patch applies to the sources as they are (``patch --dry-run``, no fuzz)."""
+    return _dry_run(src, fix_patch(src, fix))
+
+
+def carries_fix(src: Path, fix: Fix = THE_FIX) -> bool:
+    """Whether the sources already carry ``fix`` (a contributor's branch): its patch applies to
     them in reverse, without fuzz."""
-    if not fix_patch(src).is_file() or shutil.which("patch") is None:
+    if not fix_patch(src, fix).is_file() or shutil.which("patch") is None:
         return False
-    r = subprocess.run(["patch", "-p1", "-F0", "-R", "--dry-run", "-d", str(src), "-i", str(fix_patch(src))],
-                       capture_output=True, text=True)
-    return r.returncode == 0
+    return _dry_run(src, fix_patch(src, fix), "-R")
+
+
+def carried_fix(src: Path) -> Optional[Fix]:
+    """The patched fix of :data:`~navfn_smt.spec.fixes.PATCHED` the sources carry already, if any."""
+    return next((f for f in fixes.PATCHED if carries_fix(src, f)), None)
 
 
 def patched_files(patch: Path) -> list[str]:
@@ -191,11 +229,11 @@ def patched_files(patch: Path) -> list[str]:
     return [line.split()[1][2:] for line in patch.read_text(encoding="utf-8").splitlines() if line.startswith("+++ b/")]
 
 
-def patched_copy(src: Path, root: Path, patch: Optional[Path] = None) -> Path:
-    """Copies under ``root`` of the files the fix (or ``patch``) touches, with the patch applied
-    by ``patch -p1`` (no fuzz): ``navfn.cpp``, ``navfn.hpp``, and the tests it adds to
+def patched_copy(src: Path, root: Path, patch: Optional[Path] = None, fix: Fix = THE_FIX) -> Path:
+    """Copies under ``root`` of the files ``fix``'s patch (or ``patch``) touches, with the patch
+    applied by ``patch -p1`` (no fuzz): ``navfn.cpp``, ``navfn.hpp``, and the tests it adds to
     ``nav2_navfn_planner/test``; a clear error when the patch does not apply."""
-    patch = Path(patch).absolute() if patch is not None else fix_patch(src)
+    patch = Path(patch).absolute() if patch is not None else fix_patch(src, fix)
     for rel in dict.fromkeys([*NAVFN_FILES, *patched_files(patch)]):
         (root / rel).parent.mkdir(parents=True, exist_ok=True)
         if (src / rel).is_file():
@@ -271,19 +309,21 @@ def _jobs(src: Path, tmp: Path) -> dict:
     costmap = src / "nav2_costmap_2d"
     layers = [HERE / "layers_driver.cpp", *[costmap / f for f in LAYER_SOURCES if (costmap / f).is_file()]]
     plugin_defines = plugin_api(src)
-    fixed = {}
-    if _skipped(src, "navfn-fixed") is None:
-        root = src if carries_fix(src) else patched_copy(src, tmp / "fixed")
-        fixed_pkg = root / "nav2_navfn_planner"
-        fixed_cpp = traced_copy(fixed_pkg / "src" / "navfn.cpp", tmp / "navfn_fixed_traced.cpp")
-        fixed = {
-            "navfn-fixed": ([driver, fixed_cpp], [HERE / "stubs", fixed_pkg / "include", *includes[1:]],
-                            [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_FIXED"]),
-            "navfn-plugin-fixed": ([plugin[0], plugin[1], fixed_pkg / "src" / "navfn.cpp", *plugin[3:]],
-                                   [plugin_includes[0], fixed_pkg / "include", *plugin_includes[1:]], plugin_defines),
-            "navfn-plain-fixed": ([driver, fixed_pkg / "src" / "navfn.cpp"],
-                                  [HERE / "stubs", fixed_pkg / "include", *includes[1:]], [*defines, "NAVFN_SMT_FIXED"]),
-        }
+    patched = {}
+    for fix in fixes.PATCHED:  # each fix's three programs, from its patched copy of navfn.cpp and navfn.hpp
+        traced_name, plugin_name, plain_name = fix_programs(fix)
+        if _skipped(src, traced_name) is not None:
+            continue
+        root = src if carries_fix(src, fix) else patched_copy(src, tmp / fix.name, fix=fix)
+        fix_pkg = root / "nav2_navfn_planner"
+        fix_cpp = traced_copy(fix_pkg / "src" / "navfn.cpp", tmp / f"navfn_{fix.name}_traced.cpp")
+        fix_includes = [HERE / "stubs", fix_pkg / "include", *includes[1:]]
+        patched.update({
+            traced_name: ([driver, fix_cpp], fix_includes, [*defines, "NAVFN_SMT_TRACED", CALC_NAVFN]),
+            plugin_name: ([plugin[0], plugin[1], fix_pkg / "src" / "navfn.cpp", *plugin[3:]],
+                          [plugin_includes[0], fix_pkg / "include", *plugin_includes[1:]], plugin_defines),
+            plain_name: ([driver, fix_pkg / "src" / "navfn.cpp"], fix_includes, [*defines, CALC_NAVFN]),
+        })
     layer_defines = [d for d in plugin_defines if d == "NAVFN_SMT_NAV2_NODE"] + (
         ["NAVFN_SMT_LEGACY_LAYER"] if (costmap / "plugins" / "legacy_inflation_layer.cpp").is_file() else [])
     return {
@@ -295,7 +335,7 @@ def _jobs(src: Path, tmp: Path) -> dict:
         "navfn-unbounded": ([driver, traced], [tmp / "unbounded", *includes],
                             [*defines, "NAVFN_SMT_TRACED", "NAVFN_SMT_UNBOUNDED"]),
         "navfn-plugin": (plugin, plugin_includes, plugin_defines),
-        **fixed,
+        **patched,
     }
 
 
@@ -344,21 +384,35 @@ def _used(src: Path, jobs: dict) -> list[Path]:
     return sorted(sources | {src / h for h in HEADERS if (src / h).is_file()})
 
 
+def fix_skipped(src: Path, fix: Fix) -> Optional[str]:
+    """Why the programs of the patched ``fix`` are left out of a build of ``src`` (None: they are
+    built): no patch for the version, no ``patch`` program, a patch that does not apply without
+    fuzz, or sources that carry another fix already."""
+    carried = carried_fix(src)
+    if carried == fix:
+        return None  # built from the sources as they are
+    folder, patch = patches_of(fix), fix_patch(src, fix)
+    if carried is not None:
+        return (f"these sources carry the {carried.name} fix already ({fix_patch(src, carried).name} of "
+                f"patches/{carried.patches}/ applies to them in reverse), and the {fix.name} patch is for NavFn as "
+                f"shipped")
+    if not patch.is_file():
+        have = ", ".join(sorted(p.stem for p in folder.glob("*.patch"))) or "none"
+        return f"no patch of the {fix.name} fix for {distribution(src)} (patches/{fix.patches}/ has {have})"
+    if shutil.which("patch") is None:
+        return f"the {fix.name} fix is applied with the patch program, which is not installed"
+    if not _patch_applies(src, fix):
+        return (f"patches/{fix.patches}/{patch.name} does not apply to these sources without fuzz, nor in reverse "
+                f"(the sources changed where it patches)")
+    return None
+
+
 def _skipped(src: Path, name: str) -> Optional[str]:
     """Why ``name`` is left out of this build (None: it is built): the Eigen programs without
-    Eigen, ``eigen-sqrt`` for a version whose inflation layer does not use it, the fixed
-    programs for a version without a patch or without the ``patch`` program."""
-    if name in FIXED_PROGRAMS:
-        if carries_fix(src):
-            return None  # built from the sources as they are
-        if not fix_patch(src).is_file():
-            return f"no patch of the fix for {distribution(src)} (patches/navfn-fix/ has {', '.join(sorted(p.stem for p in PATCHES.glob('*.patch')))})"
-        if shutil.which("patch") is None:
-            return "the fix is applied with the patch program, which is not installed"
-        if not _patch_applies(src):
-            return (f"{fix_patch(src).name} does not apply to these sources without fuzz, nor in reverse (the sources "
-                    f"changed where it patches)")
-        return None
+    Eigen, ``eigen-sqrt`` for a version whose inflation layer does not use it, a patched fix's
+    programs as :func:`fix_skipped` says."""
+    if name in PATCHED_PROGRAMS:
+        return fix_skipped(src, PATCHED_PROGRAMS[name])
     if name not in EIGEN_PROGRAMS:
         return None
     if not uses_eigen(src):
@@ -433,14 +487,30 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             doc["library"] = {"file": str(Path(library).resolve()), "sha256": _sha256(Path(library)),
                               "target": tc.target}
             doc["source_sha256"] = {k: v for k, v in doc["source_sha256"].items() if k.endswith(".hpp")}
-        if any(p in programs for p in FIXED_PROGRAMS):
-            carried = carries_fix(src)
-            doc["fix_patch"] = {"file": fix_patch(src).name, "sha256": _sha256(fix_patch(src)),
-                                "applied_by": "the sources" if carried else "this build"}
-            if carried:  # every NavFn program of the build is the fixed one
-                doc["sources_carry_fix"] = True
+        doc.update(_patches_record(src, programs))
         (tmp / "build.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
     return doc
+
+
+def _patches_record(src: Path, programs) -> dict:
+    """What build.json records of the patches: ``patches``, each built fix's patch by its name;
+    ``fix_patch``, the fix of docs/fix.md's (the key its readers know); ``sources_carry_fix``
+    (and ``sources_carry``, which fix and patch) when the sources carry a fix already: every NavFn
+    program of the build is then patched with it."""
+    carried = carried_fix(src)
+    out = {}
+    built = [f for f in fixes.PATCHED if any(p in programs for p in fix_programs(f))]
+    if built:
+        out["patches"] = {f.name: {"folder": f"patches/{f.patches}", "file": fix_patch(src, f).name,
+                                   "sha256": _sha256(fix_patch(src, f)),
+                                   "applied_by": "the sources" if carried == f else "this build",
+                                   "programs": [p for p in fix_programs(f) if p in programs]} for f in built}
+    if THE_FIX in built:
+        out["fix_patch"] = {k: v for k, v in out["patches"][THE_FIX.name].items() if k in ("file", "sha256", "applied_by")}
+    if carried is not None:
+        out["sources_carry_fix"] = True
+        out["sources_carry"] = {"fix": carried.name, "patch": f"patches/{carried.patches}/{fix_patch(src, carried).name}"}
+    return out
 
 
 def load_build(folder) -> dict:

@@ -21,11 +21,31 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
+from ..spec import fixes
+from ..spec.fix import FIX as THE_FIX
 from ..spec.planner import PlanResult
-from .build import load_build
+from .build import fix_programs, load_build
 
 
 AS_SHIPPED = ("navfn-plain", "navfn-traced", "navfn-unbounded", "navfn-plugin")  # NavFn as the sources have it
+
+
+def navfn_program(fix=fixes.AS_SHIPPED, traced: bool = True) -> str:
+    """The NavFn program of an oracle build that plans with ``fix`` (a
+    :class:`~navfn_smt.spec.planner.Fix` or its name): ``navfn-traced`` / ``navfn-plain`` as
+    shipped, else the fix's ``navfn-<name>`` (traced) / ``navfn-plain-<name>``."""
+    fix = fixes.named(fix)
+    if fix.shipped:
+        return "navfn-traced" if traced else "navfn-plain"
+    traced_name, _, plain_name = fix_programs(fix)
+    return traced_name if traced else plain_name
+
+
+def plugin_program(fix=fixes.AS_SHIPPED) -> str:
+    """The planner plugin program of an oracle build that plans with ``fix`` (a Fix or its name):
+    ``navfn-plugin`` as shipped, else the fix's ``navfn-plugin-<name>``."""
+    fix = fixes.named(fix)
+    return "navfn-plugin" if fix.shipped else fix_programs(fix)[1]
 
 
 class _Program:
@@ -43,12 +63,17 @@ class _Program:
         self.folder = Path(folder)
         self.build = load_build(self.folder)
         if self.build.get("sources_carry_fix") and self.program in AS_SHIPPED:
+            # a build before ``sources_carry`` was recorded: its fix was the one of docs/fix.md
+            carried = self.build.get("sources_carry") or {"fix": THE_FIX.name,
+                                                          "patch": self.build.get("fix_patch", {}).get("file", "its patch")}
             raise NavfnInputError(f"{self.folder}: the sources of this build carry the fix already "
-                                  f"({self.build['fix_patch']['file']} applies to them in reverse), so its "
-                                  f"{self.program} is not NavFn as shipped; compare it with --variant fixed")
+                                  f"({carried['patch']} applies to them in reverse), so its {self.program} is not "
+                                  f"NavFn as shipped; compare it with --variant {carried['fix']}")
         if self.program not in self.build["programs"]:
-            raise NavfnInputError(f"{self.folder}: this build has no {self.program} (it has "
-                                  f"{', '.join(self.build['programs'])}); build it again with `navfn-smt oracle build`")
+            why = self.build.get("skipped", {}).get(self.program)
+            raise NavfnInputError(f"{self.folder}: this build has no {self.program} ("
+                                  + (f"left out: {why}" if why else f"it has {', '.join(self.build['programs'])}; "
+                                     f"build it again with `navfn-smt oracle build`") + ")")
         env = {**os.environ, **self.ENV} if self.ENV else None
         # a program built for another machine runs under qemu-user (the build's runner)
         command = [*self.build.get("runner", []), str(self.folder / self.program)]
@@ -127,20 +152,33 @@ class _Program:
         return self._pending[:n]
 
 
-VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded", "fixed": "navfn-fixed",
-            "plain-fixed": "navfn-plain-fixed"}
+# the program variants of Oracle: as shipped, and for each patched fix its traced program (by the
+# fix's name: ``fixed`` is navfn-fixed) and its plain one (``plain-fixed`` is navfn-plain-fixed)
+VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded",
+            **{v: p for f in fixes.PATCHED for v, p in ((f.name, navfn_program(f)),
+                                                        (f"plain-{f.name}", navfn_program(f, traced=False)))}}
+UNTRACED = frozenset(navfn_program(f, traced=False) for f in fixes.FIXES.values())  # without the trace hook
 
 
 class Oracle(_Program):
     """A running C++ NavFn of an oracle build folder: ``traced`` (with the white-box trace),
-    ``plain`` (as Nav2 compiles it), ``unbounded`` (traced, buffers that never drop a push) or
-    ``fixed`` (traced, with the fix of ``patches/navfn-fix/``) or ``plain-fixed`` (untraced, with the fix: to
-    time and measure the fix as Nav2 would compile it)."""
+    ``plain`` (as Nav2 compiles it), ``unbounded`` (traced, buffers that never drop a push), or
+    NavFn with a patched fix: ``fix=`` a :class:`~navfn_smt.spec.planner.Fix` (or its name),
+    traced or not (``traced``), e.g. ``navfn-cycles-only``; :data:`VARIANTS` names the same
+    programs (``variant="fixed"``: traced, with the fix of ``patches/navfn-fix/``;
+    ``"plain-fixed"``: untraced, to time and measure the fix as Nav2 would compile it)."""
 
-    def __init__(self, folder, traced: bool = True, variant: Optional[str] = None):
-        variant = variant or ("traced" if traced else "plain")
-        self.program = VARIANTS[variant]
-        self.traced = variant not in ("plain", "plain-fixed")
+    def __init__(self, folder, traced: bool = True, variant: Optional[str] = None, fix=None):
+        if fix is not None:
+            if variant is not None:
+                raise ValueError("Oracle: give variant or fix, not both")
+            self.program = navfn_program(fix, traced)
+        else:
+            variant = variant or ("traced" if traced else "plain")
+            if variant not in VARIANTS:
+                raise NavfnInputError(f"no NavFn program variant {variant!r} (there are: {', '.join(VARIANTS)})")
+            self.program = VARIANTS[variant]
+        self.traced = self.program not in UNTRACED
         self.planning_seconds = 0.0  # the C++'s own time planning the last request's cases
         super().__init__(folder)
 
@@ -179,14 +217,15 @@ class PluginAnswer:
 
 
 class PluginOracle(_Program):
-    """A running C++ planner plugin (``navfn-plugin``, or with ``variant="fixed"``
-    ``navfn-plugin-fixed``): ``createPlan`` on a costmap, as Nav2's planner server calls it,
-    many pose pairs per configured plugin."""
+    """A running C++ planner plugin: ``createPlan`` on a costmap, as Nav2's planner server calls
+    it, many pose pairs per configured plugin.  ``variant``: the planner's fix, a
+    :class:`~navfn_smt.spec.planner.Fix` or its name (:func:`plugin_program`: ``navfn-plugin``
+    as shipped, ``navfn-plugin-fixed`` with the fix of docs/fix.md, ``navfn-plugin-<name>``)."""
 
     END = struct.pack("<3i", 0, 0, 0)
 
-    def __init__(self, folder, variant: str = "original"):
-        self.program = "navfn-plugin-fixed" if variant == "fixed" else "navfn-plugin"
+    def __init__(self, folder, variant=fixes.AS_SHIPPED):
+        self.program = plugin_program(variant)
         self.planning_seconds = 0.0
         super().__init__(folder)
 

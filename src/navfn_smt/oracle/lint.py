@@ -1,4 +1,4 @@
-"""Nav2's lint on the fix: what the patch adds to the findings of ament's two C++ linters.
+"""Nav2's lint on a fix: what its patch adds to the findings of ament's two C++ linters.
 
 Nav2 runs ``ament_uncrustify`` and ``ament_cpplint`` on its packages.  Here each file the
 distribution's patch touches is linted twice, as shipped and patched:
@@ -26,7 +26,9 @@ from collections import Counter
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from .build import distribution, find_sources, fix_patch, patched_copy, patched_files
+from ..spec import fixes
+from ..spec.fix import FIX as THE_FIX
+from .build import distribution, find_sources, fix_patch, patched_copy, patched_files, patches_of
 
 CONFIGS = Path(__file__).resolve().parent / "lint"
 CPPLINT_ARGS = ("--linelength=100", "--extensions=c,cc,cpp,cxx", "--headers=h,hh,hpp,hxx",
@@ -92,13 +94,16 @@ def added(shipped: list[dict], patched: list[dict]) -> list[dict]:
     return out
 
 
-def lint_fix(nav2_src, patch=None) -> dict:
-    """The two linters on each file the fix's patch (or ``patch``) touches, as shipped and
+def lint_fix(nav2_src, patch=None, fix=THE_FIX) -> dict:
+    """The two linters on each file ``fix``'s patch (a patched :class:`~navfn_smt.spec.planner.Fix`
+    or its name; default: the fix of docs/fix.md), or ``patch``, touches, as shipped and
     patched: the counts and the findings the patch adds."""
     src = find_sources(nav2_src)
-    patch = Path(patch) if patch is not None else fix_patch(src)
+    fix = fixes.named(fix)
+    patch = Path(patch) if patch is not None else fix_patch(src, fix)
     if not patch.is_file():
-        raise NavfnInputError(f"no patch {patch.name} of the fix for {distribution(src)} (patches/navfn-fix/)")
+        raise NavfnInputError(f"no patch {patch.name} of the {fix.name} fix for {distribution(src)} "
+                              f"(patches/{patches_of(fix).name}/)")
     cfg, version = uncrustify_config()
     files = [f for f in patched_files(patch) if f.endswith(CXX_FILES)]
     with tempfile.TemporaryDirectory() as tmp:
@@ -115,6 +120,6 @@ def lint_fix(nav2_src, patch=None) -> dict:
                     after = cpplint_findings(fixed / package, inner)
                 rows.append({"file": rel, "tool": tool, "shipped": len(before), "patched": len(after),
                              "added": added(before, after)})
-    return {"sources": str(src.resolve()), "distribution": distribution(src), "patch": patch.name,
+    return {"sources": str(src.resolve()), "distribution": distribution(src), "patch": patch.name, "fix": fix.name,
             "uncrustify": {"version": version, "config": cfg.name}, "cpplint": {"arguments": list(CPPLINT_ARGS)},
             "files": rows}

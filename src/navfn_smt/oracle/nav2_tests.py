@@ -1,15 +1,16 @@
 """Nav2's own tests of ``nav2_navfn_planner``, built and run against the sources as they are and
-as the fix patches them, so that what the patch changes is shown by Nav2's tests, not ours.
+as each fix's patch makes them, so that what a patch changes is shown by Nav2's tests, not ours.
 
 Each ``nav2_add_gtest(NAME SOURCES...)`` (``ament_add_gtest`` in older versions) of
 ``nav2_navfn_planner/test/CMakeLists.txt`` is one program, compiled as the oracle's programs are
 (:mod:`.objects`, one source at a time, each object kept once per content):
 
-- the test's own sources, unchanged: those the sources declare, and those the fix's patch adds
-  (each run against both variants, to show that it fails as shipped and passes patched);
-- NavFn: ``navfn.cpp`` as it is (``original``) or the copy the fix's patch makes (``fixed``,
-  :func:`.build.patched_copy`); sources that carry the fix already (a contributor's branch) are
-  the fixed variant as they are, and have no original;
+- the test's own sources, unchanged: those the sources declare, and those a fix's patch adds
+  (each run as shipped and with that fix, to show that it fails as shipped and passes patched);
+- NavFn: ``navfn.cpp`` as it is (``original``) or the copy a fix's patch makes (the variant
+  named by the fix, e.g. ``fixed``, ``cycles-only``: :data:`navfn_smt.spec.fixes.PATCHED`,
+  :func:`.build.patched_copy`); sources that carry a fix already (a contributor's branch) are
+  that fix's variant as they are, and have no original;
 - for a test that makes the planner plugin (it includes ``navfn_planner.hpp``): the plugin's
   sources with Nav2's ``costmap_2d.cpp``, and the project's ROS stub headers (``ros_stubs/``), in
   which a parameter request is answered as rclcpp's parameter service answers it;
@@ -33,12 +34,17 @@ from typing import Optional
 
 from ..errors import NavfnInputError
 from ..fileio import atomic_folder
-from .build import (HERE, ROOT_NAMES, _compile_all, _jobs, _sha256, _skipped, carries_fix, cxx_standard, distribution,
-                    find_sources, fix_patch, patched_copy)
+from ..spec import fixes
+from ..spec.fix import FIX as THE_FIX
+from .build import (HERE, ROOT_NAMES, _compile_all, _jobs, _sha256, carried_fix, cxx_standard, distribution,
+                    find_sources, fix_patch, fix_skipped, patched_copy)
 from .objects import Compiler, cache_dir
 from .targets import Toolchain, toolchain
 
-VARIANTS = ("original", "fixed")
+BOTH = (fixes.AS_SHIPPED.name, THE_FIX.name)  # as shipped, and with the fix of docs/fix.md
+ALL = tuple(fixes.NAMES)  # as shipped, and with every patched fix of the registry
+VARIANTS = BOTH  # the default
+PATCH_TESTS = "the fix's patch"  # a test's "from" in the report when a fix's patch adds it
 GTEST_ROOTS = (Path("/usr/src/googletest/googletest"), Path("/usr/src/gtest"))
 GTEST_CALL = re.compile(r"\b(?:nav2|ament)_add_gtest\(\s*([A-Za-z0-9_]+)\s+([^)]*)\)")
 TIMEOUT = 600  # seconds a test program may run (under qemu too)
@@ -91,27 +97,45 @@ def googletest() -> Path:
                           + "); Debian: apt-get install libgtest-dev")
 
 
-def _fixed_root(src: Path, tmp: Path) -> Optional[Path]:
-    """The tree of the fixed variant: the sources themselves when they carry the fix, else a
-    patched copy of the files the patch touches; None when the fix cannot be built."""
-    if carries_fix(src):
+def _root(src: Path, fix, tmp: Path) -> Path:
+    """The tree of ``fix``'s variant: the sources themselves as shipped or when they carry the
+    fix, else a patched copy of the files its patch touches; a clear error when the fix cannot
+    be built."""
+    if fix.shipped or carried_fix(src) == fix:
         return src
-    if _skipped(src, "navfn-fixed"):
-        return None
-    return patched_copy(src, tmp / "fixed")
+    why = fix_skipped(src, fix)
+    if why:
+        raise NavfnInputError(f"the {fix.name} variant cannot be built: {why}")
+    return patched_copy(src, tmp / fix.name, fix=fix)
 
 
-def _programs(src: Path, fixed: Optional[Path], tests, variants, tmp: Path) -> dict:
-    """Each ``(test, variant)`` program's job, as :func:`.build._compile_all` takes them."""
+def _variant_tests(src: Path, roots: dict) -> dict:
+    """Each variant's tests: those of its tree (a patched copy's CMakeLists.txt declares the
+    tests its patch adds), and, as shipped, also those every other variant's patch adds (each is
+    run as shipped too, to show what its fix changes)."""
+    # a patch that touches no test leaves its copy without test/CMakeLists.txt: the sources' tests
+    per = {v: nav2_tests(root, src) if (root / "nav2_navfn_planner" / "test" / "CMakeLists.txt").is_file()
+           else nav2_tests(src) for v, root in roots.items() if not fixes.named(v).shipped}
+    for v in roots:
+        if fixes.named(v).shipped:
+            shipped = nav2_tests(src)
+            names = {t.name for t in shipped}
+            added = {t.name: t for ts in per.values() for t in ts if t.name not in names}
+            per[v] = [*shipped, *added.values()]
+    return {v: per[v] for v in roots}
+
+
+def _programs(src: Path, roots: dict, tests: dict, tmp: Path) -> dict:
+    """Each ``(test, variant)`` program's job, as :func:`.build._compile_all` takes them:
+    ``roots`` and ``tests`` give each variant's tree and tests."""
     base = _jobs(src, tmp / "oracle")
     gtest = googletest()
     gtest_job = [gtest / "src" / "gtest-all.cc"]
     gtest_inc = [gtest / "include", gtest]
     jobs, names = {}, {}
-    for variant in variants:
-        root = fixed if variant == "fixed" else src
+    for variant, root in roots.items():
         navfn_cpp, navfn_inc = root / "nav2_navfn_planner" / "src" / "navfn.cpp", root / "nav2_navfn_planner" / "include"
-        for t in tests:
+        for t in tests[variant]:
             main = [] if t.has_main else [gtest / "src" / "gtest_main.cc"]
             if t.plugin:
                 sources, includes, defines = base["navfn-plugin"][:3]
@@ -144,31 +168,52 @@ def _results(xml: Path, run: subprocess.CompletedProcess) -> list[dict]:
     return out
 
 
+def _chosen(src: Path, variants) -> list:
+    """The fixes ``variants`` (names or :class:`~navfn_smt.spec.planner.Fix` values) name, once
+    each; on sources that carry a fix already only that fix, a clear error when it is not named."""
+    chosen = list(dict.fromkeys(fixes.named(v) for v in variants))
+    if not chosen:
+        raise NavfnInputError("no variant to test")
+    carried = carried_fix(src)
+    if carried is None:
+        return chosen
+    # a contributor's branch: its NavFn as it is is the carried fix's
+    if carried not in chosen:
+        what = ("there is no NavFn as shipped to test" if all(f.shipped for f in chosen) else
+                f"there is no NavFn as shipped to patch with {', '.join(f.name for f in chosen if not f.shipped)}")
+        raise NavfnInputError(f"{src}: these sources carry the fix already ({fix_patch(src, carried).name} of "
+                              f"patches/{carried.patches}/ applies to them in reverse): {what}; use --variant "
+                              f"{carried.name}")
+    return [carried]
+
+
 def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = None) -> dict:
-    """Build each of Nav2's NavFn tests for each variant into ``out`` and run it; returns the
-    report (also ``out/nav2-tests.json``).  The folder is written whole or not at all."""
+    """Build each of Nav2's NavFn tests for each variant (a fix's name or
+    :class:`~navfn_smt.spec.planner.Fix`: as shipped, or a patched fix of
+    :data:`navfn_smt.spec.fixes.PATCHED`) into ``out`` and run it; returns the report (also
+    ``out/nav2-tests.json``).  The folder is written whole or not at all."""
     src = find_sources(nav2_src)
     out = Path(out)
     if out.exists() and not (out / "nav2-tests.json").is_file():
         raise NavfnInputError(f"{out}: exists and is not a folder of Nav2's tests (no nav2-tests.json); name a new folder")
     shipped = {t.name for t in nav2_tests(src)}
-    if carries_fix(src):  # a contributor's branch: its NavFn as it is is the fixed one
-        if "original" in variants and len(variants) == 1:
-            raise NavfnInputError(f"{src}: these sources carry the fix already ({fix_patch(src).name} applies to them "
-                                  "in reverse): there is no NavFn as shipped to test; use --variant fixed")
-        variants = ("fixed",)
+    chosen = _chosen(src, variants)
+    carried = carried_fix(src)
+    variants = tuple(f.name for f in chosen)
     tc = replace(tc or toolchain(), std=cxx_standard(src))
     tc.check()
     runner = tc.runner()
     with atomic_folder(out) as tmp:
         (tmp / "oracle").mkdir()
-        fixed = _fixed_root(src, tmp)
-        if fixed is None and "fixed" in variants:
-            raise NavfnInputError(f"the fixed variant cannot be built: {_skipped(src, 'navfn-fixed')}")
-        # the shipped tests and those the fix's patch adds, each run against every variant: a
-        # test of the patch should fail as shipped and pass patched
-        tests = nav2_tests(fixed, src) if fixed is not None else nav2_tests(src)
-        jobs, names = _programs(src, fixed, tests, variants, tmp)
+        roots = {f.name: _root(src, f, tmp) for f in chosen}
+        # the shipped tests and those each fix's patch adds: a test of a patch runs as shipped
+        # and patched, where it should fail as shipped and pass patched; as shipped, the tests of
+        # every fix's patch run (those of the fixes not chosen too, where their patch applies)
+        others = {f.name: _root(src, f, tmp) for f in fixes.PATCHED
+                  if any(c.shipped for c in chosen) and f not in chosen and fix_skipped(src, f) is None}
+        found = _variant_tests(src, {**roots, **others})
+        tests = {v: found[v] for v in roots}
+        jobs, names = _programs(src, roots, tests, tmp)
         compiler = Compiler(tc, {src: ROOT_NAMES["src"], HERE: ROOT_NAMES["package"], tmp: ROOT_NAMES["build"],
                                  googletest(): "/googletest"}, cache_dir())
         _compile_all(compiler, jobs, list(jobs), tmp)
@@ -190,22 +235,51 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
             "googletest": str(googletest()),
             "objects": {"cache": str(compiler.cache) if compiler.cache else None, "compiled": compiler.compiled,
                         "reused": compiler.reused},
-            "programs": {t.name: {"sources": [s.name for s in t.sources], "plugin": t.plugin,
-                                  "from": "the sources" if t.name in shipped else "the fix's patch"} for t in tests},
-            "source_sha256": {str(s.relative_to(s.parents[2])): _sha256(s) for t in tests for s in t.sources},
-            "variants": list(variants), "results": results, **({"sources_carry_fix": True} if carries_fix(src) else {}),
-            **({"fix_patch": {"file": fix_patch(src).name, "sha256": _sha256(fix_patch(src))}} if "fixed" in variants else {}),
+            "programs": _programs_record(tests, found, shipped),
+            "source_sha256": {str(s.relative_to(s.parents[2])): _sha256(s) for ts in tests.values() for t in ts
+                              for s in t.sources},
+            "variants": list(variants), "results": results,
+            **({"sources_carry_fix": True, "sources_carry": carried.name} if carried is not None else {}),
+            **_patches(src, chosen),
         }
-        for stale in (tmp / "oracle", tmp / "fixed"):
+        for stale in (tmp / "oracle", *(tmp / f.name for f in fixes.PATCHED)):
             shutil.rmtree(stale, ignore_errors=True)
         (tmp / "nav2-tests.json").write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
     return doc
 
 
+def _programs_record(tests: dict, found: dict, shipped: set) -> dict:
+    """The report's ``programs``: each test run (``tests``, by variant), its sources, whether it
+    makes the plugin, and where it is from: the sources, or a fix's patch (``fix`` then names
+    the fix whose tree declares it in ``found``)."""
+    origin = {t.name: v for v in found if not fixes.named(v).shipped for t in found[v]}
+    out = {}
+    for ts in tests.values():
+        for t in ts:
+            if t.name not in out:
+                out[t.name] = {"sources": [s.name for s in t.sources], "plugin": t.plugin,
+                               "from": "the sources" if t.name in shipped else PATCH_TESTS,
+                               **({} if t.name in shipped else {"fix": origin[t.name]})}
+    return out
+
+
+def _patches(src: Path, chosen) -> dict:
+    """What the report records of the patches: ``patches`` by fix name; ``fix_patch``, the one of
+    the fix of docs/fix.md (the key its readers know)."""
+    patched = [f for f in chosen if not f.shipped]
+    if not patched:
+        return {}
+    out = {"patches": {f.name: {"folder": f"patches/{f.patches}", "file": fix_patch(src, f).name,
+                                "sha256": _sha256(fix_patch(src, f))} for f in patched}}
+    if THE_FIX in patched:
+        out["fix_patch"] = {k: out["patches"][THE_FIX.name][k] for k in ("file", "sha256")}
+    return out
+
+
 def without_fix(doc: dict, r: dict) -> bool:
-    """Whether the result ``r`` is of a test the fix's patch adds, run as shipped (where it is
+    """Whether the result ``r`` is of a test a fix's patch adds, run as shipped (where it is
     meant to fail: it shows what the fix changes)."""
-    return r["variant"] == "original" and doc["programs"][r["program"]]["from"] == "the fix's patch"
+    return fixes.named(r["variant"]).shipped and doc["programs"][r["program"]]["from"] == PATCH_TESTS
 
 
 def failed(doc: dict) -> list[dict]:

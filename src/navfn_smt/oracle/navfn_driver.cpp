@@ -13,9 +13,10 @@
 // The unbounded build (NAVFN_SMT_UNBOUNDED, with a navfn.hpp whose PRIORITYBUFSIZE is
 // navfn_smt_buffer_size) gives each buffer nx * ny cells, so no push is ever dropped.
 // The traced build (NAVFN_SMT_TRACED, its navfn.cpp with the trace hook) reports cycles, updates
-// and the trace; the plain build reports -1 and an empty trace.  The fixed build
-// (NAVFN_SMT_FIXED, a navfn.cpp patched with the fix) calls calcNavFnAstar / calcNavFnDijkstra(atStart = true),
-// which run setupNavFn(true) and the propagation with the fix's loop, before calcPath(4 * nx).
+// and the trace; the plain build reports -1 and an empty trace.  The build of a patched fix
+// (NAVFN_SMT_CALC_NAVFN, a navfn.cpp patched with one of patches/<fix>/: the fix lives in
+// calcNavFn*, its cycle limit, its further call) calls calcNavFnAstar / calcNavFnDijkstra(atStart = true),
+// which run setupNavFn(true) and the propagation as the patch makes it, before calcPath(4 * nx).
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -88,9 +89,9 @@ int main()
       nav->setGoal(goal);
       nav->setStart(start);
       bool reached;
-#ifdef NAVFN_SMT_FIXED
-      // the fix lives in calcNavFn*: setupNavFn(true), then propagation (priInc stays the
-      // constructor's 2 * COST_NEUTRAL)
+#ifdef NAVFN_SMT_CALC_NAVFN
+      // a patched fix lives in calcNavFn*: setupNavFn(true), then propagation with the patch's
+      // cycle limit (priInc stays the constructor's 2 * COST_NEUTRAL)
 #ifdef NAVFN_SMT_CANCEL_CHECKER
       auto never = []() {return false;};
       reached = astar ? nav->calcNavFnAstar(never) : nav->calcNavFnDijkstra(never, true);

@@ -171,7 +171,7 @@ ConnectedStartReached = Predicate(
               "gets a finite potential, when no push is dropped for want of room, every potential stays below "
               "2**30 and the wave empties its buffers within the fix's cap (nx*ny more cycles).",
     applies="the fix: calcNavFnAstar / calcNavFnDijkstra call propNavFn* once more, for nx*ny cycles, when the "
-            "start is unreached and a buffer holds cells (spec/fix.py: propagate_on), for every map size",
+            "start is unreached and a buffer holds cells (spec/planner.py: calc_navfn with spec/fix.py's further call), for every map size",
     lemmas=("update_wants_an_unreached_neighbour", "unreached_cell_beside_a_reached_one_gets_reached",
             "update_lowers_when_it_changes", "Monotone.update_never_raises",
             "propagation_stops_only_at_a_reached_start_with_empty_buffers_or_its_cycles_spent"),

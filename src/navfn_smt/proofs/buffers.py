@@ -39,6 +39,7 @@ from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.constants import POT_HIGH, PRIORITYBUFSIZE
+from navfn_smt.spec.propagation import update_neighbours
 
 BUFFERS = ("cur", "nxt", "over")
 # proved in every semantics; a model of a negation is over arrays, which the concrete spec cannot replay
@@ -85,6 +86,11 @@ class Map:
     def neighbours(self, q):
         """``n+1, n-1, n-nx, n+nx``: the order of initCost's pushes."""
         return q + 1, q - 1, q - self.nx, q + self.nx
+
+    def updated(self, q):
+        """``n-1, n+1, n-nx, n+nx``: the order updateCell reads its neighbours (``l, r, u, d``) and
+        pushes them, the spec's (:func:`~navfn_smt.spec.propagation.update_neighbours`)."""
+        return update_neighbours(q, self.nx)
 
     def neighbour(self, q, e):
         """The 4-neighbour of ``q`` in direction ``e`` (0..3, as :meth:`neighbours`)."""
@@ -351,7 +357,7 @@ def update_reaches_only_cells_of_the_component(D):
     s = Buffers(D)
     pot = potentials(D)
     n = s.slots["cur"][k]
-    new, changed = K.cell_update(D, pot[n], *(pot[j] for j in m.neighbours(n)), m.cost_int(n),
+    new, changed = K.cell_update(D, pot[n], *(pot[j] for j in m.updated(n)), m.cost_int(n),
                                  D.cost_as_f32(m.cost[n]))
     after = z3.Store(pot, n, new)
     pre = all_of(D, m.well_formed(), D.ge(k, 0), D.lt(k, s.fill["cur"]), at_slot(D, s, "cur", k),

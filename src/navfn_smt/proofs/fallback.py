@@ -16,7 +16,7 @@ small map far below it.  The chain, its trusted steps and what it rests on are s
 """
 
 from navfn_smt.proofs import FallbackPath
-from navfn_smt.proofs.induction import UnboundedMap, _base, _step
+from navfn_smt.proofs.induction import UnboundedMap, invariant_base, invariant_step
 from navfn_smt.smt.obligation import Bound, obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of, any_of, minimum
 from navfn_smt.spec import kernels as K
@@ -28,7 +28,7 @@ FLOOR = dict(expect={"real": "proved", "fp32": "proved", "fp32@x86-64-v3": "prov
              arrays=True)
 
 
-def _update(D):
+def one_update(D):
     """One update of a cell with any neighbours, ``l`` the lowest and reached: ``(pre, l, hf, new, changed)``."""
     old, l, r, u, d = (D.f32(v) for v in ("old", "l", "r", "u", "d"))
     c = D.cost("cost")
@@ -49,7 +49,7 @@ def update_keeps_a_neighbour_below_its_floor(D):
     cost in [50, 253], valid potentials, l the lowest neighbour and reached
     ==>  updateCell(n) changes pot(n)  implies  l < (float)(int)pot'(n)
     """
-    pre, l, _, new, changed = _update(D)
+    pre, l, _, new, changed = one_update(D)
     return pre, any_of(D, D.not_(changed), D.lt(l, D.int_to_f32(D.to_int32(new))))
 
 
@@ -62,7 +62,7 @@ def update_raises_at_most_twice_its_cost(D):
     cost in [50, 253], valid potentials, l the lowest neighbour and reached
     ==>  updateCell(n) changes pot(n)  implies  pot'(n) <= l + (hf + hf)
     """
-    pre, l, hf, new, changed = _update(D)
+    pre, l, hf, new, changed = one_update(D)
     return pre, any_of(D, D.not_(changed), D.le(new, D.add(l, D.add(hf, hf))))
 
 
@@ -123,7 +123,7 @@ def setup_gives_every_reached_cell_a_neighbour_below_its_floor(D):
 
     costs as setCostmap makes them  ==>  the invariant of FloorMap at any cell n, pot[g] = 0
     """
-    return _base(D, FloorMap)
+    return invariant_base(D, FloorMap)
 
 
 @obligation(FallbackPath, scope="one updateCell at any cell of a map of any width (32-bit cell numbers), any "
@@ -136,7 +136,7 @@ def update_keeps_a_neighbour_below_the_floor_at_the_updated_cell(D):
     the invariant at c, its neighbours and the goal; in float32 the potential the update writes
     below 2**30  ==>  after pot[c] := updateCell(c), the invariant at c and pot[g] = 0
     """
-    return _step(D, "updated", FloorMap)
+    return invariant_step(D, "updated", FloorMap)
 
 
 @obligation(FallbackPath, scope="one updateCell at any cell of a map of any width (32-bit cell numbers), any "
@@ -148,4 +148,4 @@ def update_keeps_a_neighbour_below_the_floor_at_every_other_cell(D):
     the invariant at n, c, their neighbours and the goal; n != c  ==>  after the update, the
     invariant at n and pot[g] = 0
     """
-    return _step(D, "other", FloorMap)
+    return invariant_step(D, "other", FloorMap)

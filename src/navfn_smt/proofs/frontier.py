@@ -121,7 +121,7 @@ def update_and_its_pushes_keep_the_frontier(D):
     """
     m, p, c, s, pot, dropped, k = pair_state(D, "k")
     n = s.slots["cur"][k]
-    nb = m.neighbours(n)
+    nb = m.updated(n)
     new, changed = K.cell_update(D, pot[n], *(pot[j] for j in nb), m.cost_int(n), D.cost_as_f32(m.cost[n]))
     pot2 = z3.Store(pot, n, new)
     key = D.f32("key")  # new, or new plus A*'s heuristic

@@ -91,10 +91,10 @@ def setup_and_init_cost_establish_the_invariant(D):
     costs as setCostmap makes them, the goal's passable or not
     ==>  pot = POT_HIGH everywhere but pot[g] = 0  satisfies the invariant at any cell n
     """
-    return _base(D)
+    return invariant_base(D)
 
 
-def _base(D, kind=UnboundedMap):
+def invariant_base(D, kind=UnboundedMap):
     """setupNavFn and initCost's potentials, the invariant of a map of class ``kind`` asked at a
     cell n: (pre, claim)."""
     m = kind(D)
@@ -104,7 +104,7 @@ def _base(D, kind=UnboundedMap):
     return all_of(D, m.W != 0, *costs), z3.And(m.invariant(pot, n), m.goal_zero(pot))
 
 
-def _step(D, where, kind=UnboundedMap):
+def invariant_step(D, where, kind=UnboundedMap):
     """One updateCell at cell c, the claim asked at cell n (``where``: "updated", n = c; "other",
     n != c), on a map of class ``kind`` (its invariant): (pre, claim)."""
     m = kind(D)
@@ -132,7 +132,7 @@ def update_keeps_the_invariant_at_the_updated_cell(D):
     writes below 2**30
     ==>  after pot[c] := updateCell(c), the invariant at c and pot[g] = 0
     """
-    return _step(D, "updated")
+    return invariant_step(D, "updated")
 
 
 @obligation(PositionSafeAndProgressInductive, scope="one updateCell at any cell of a map of any width "
@@ -145,4 +145,4 @@ def update_keeps_the_invariant_at_every_other_cell(D):
     potential the update writes below 2**30
     ==>  after pot[c] := updateCell(c), the invariant at n and pot[g] = 0
     """
-    return _step(D, "other")
+    return invariant_step(D, "other")

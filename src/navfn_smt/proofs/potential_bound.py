@@ -15,7 +15,7 @@ step of one update.
 """
 
 from navfn_smt.proofs import FallbackPath
-from navfn_smt.proofs.fallback import _update  # one update, its lowest neighbour reached
+from navfn_smt.proofs.fallback import one_update  # one update, its lowest neighbour reached
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import all_of, any_of
 from navfn_smt.spec.fix import POT_BOUND
@@ -33,6 +33,6 @@ def update_raises_at_most_256_above_its_lowest_neighbour(D):
     cost in [50, 253], valid potentials, l the lowest neighbour, l < 2**30
     ==>  updateCell(n) changes pot(n)  implies  pot'(n) <= l + 256
     """
-    pre, l, _, new, changed = _update(D)
+    pre, l, _, new, changed = one_update(D)
     pre = all_of(D, pre, D.lt(l, D.f32const(POT_BOUND)))
     return pre, any_of(D, D.not_(changed), D.le(new, D.add(l, D.f32const(RISE))))

@@ -105,7 +105,7 @@ def update_of_any_slot_keeps_a_passed_queued_start_reached(D):
     m, s, pot, j, start = _waiting_start(D)
     k = D.int32("k")
     n = s.slots["cur"][k]
-    new, _ = K.cell_update(D, pot[n], *(pot[q] for q in m.neighbours(n)), m.cost_int(n), D.cost_as_f32(m.cost[n]))
+    new, _ = K.cell_update(D, pot[n], *(pot[q] for q in m.updated(n)), m.cost_int(n), D.cost_as_f32(m.cost[n]))
     after = z3.Store(pot, n, new)
     cells = [start, n]
     read = [*cells, *m.neighbours(start), *m.neighbours(n)]

@@ -75,22 +75,25 @@ def oracle_table(suite, distribution: str, rows: list[dict]) -> None:
                 "jit_over_cpp": lambda v: f"{v:.2f}x"})
 
 
-def fix_table(suite, rows: list[dict]) -> None:
-    """Print what the fix costs where it does not act: the C++ and the JIT, as shipped and fixed."""
+def fix_table(suite, rows: list[dict], name: str = "fixed") -> None:
+    """Print what a fix (``name``) costs where it does not act: the C++ and the JIT, as shipped and
+    with the fix (the ``*_fixed`` figures)."""
     ratio = lambda v: f"{v:.3f}x"  # noqa: E731
-    _table(f"bench: the fix where the original plans (C++ as shipped and patched, JIT without and with it), {suite}",
+    _table(f"bench: the {name} fix where the original plans (C++ as shipped and patched, JIT without and with it), "
+           f"{suite}",
            rows, ["mode", "cases_the_original_plans", "cpp_original", "cpp_fixed", "cpp_fixed_over_original",
                   "jit_original", "jit_fixed", "jit_fixed_over_original"],
-           headers={"cases_the_original_plans": "cases", "cpp_original": "C++", "cpp_fixed": "C++ fixed",
-                    "cpp_fixed_over_original": "fixed / original", "jit_original": "jit", "jit_fixed": "jit fixed",
-                    "jit_fixed_over_original": "fixed / original"},
+           headers={"cases_the_original_plans": "cases", "cpp_original": "C++", "cpp_fixed": f"C++ {name}",
+                    "cpp_fixed_over_original": f"{name} / original", "jit_original": "jit", "jit_fixed": f"jit {name}",
+                    "jit_fixed_over_original": f"{name} / original"},
            fmt={"cpp_original": duration, "cpp_fixed": duration, "jit_original": duration, "jit_fixed": duration,
                 "cpp_fixed_over_original": ratio, "jit_fixed_over_original": ratio})
 
 
-def worst_cases_table(folder, rows: list[dict]) -> None:
-    """Print the fix's worst cases: time, path points and peak memory, as shipped and patched."""
-    _table(f"bench: the fix's worst cases, C++ of {folder} as shipped (navfn-plain) and patched (navfn-plain-fixed)",
+def worst_cases_table(folder, rows: list[dict], program: str = "navfn-plain-fixed") -> None:
+    """Print a fix's worst cases: time, path points and peak memory, as shipped and patched
+    (``program``; the ``fixed`` figures)."""
+    _table(f"bench: the fix's worst cases, C++ of {folder} as shipped (navfn-plain) and patched ({program})",
            rows, ["size", "case", "mode", "t_original", "t_fixed", "points_original", "points_fixed", "mem_original",
                   "mem_fixed"],
            headers={"t_original": "time", "t_fixed": "time fixed", "points_original": "path points",

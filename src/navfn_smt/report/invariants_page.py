@@ -510,8 +510,9 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
     """The whole-planner properties: a summary table, then one subsection per property.  An
     induction's status is derived from its predicates' standings (``verdict_of``, the page's
     one status per obligation), not copied from the check report that ran it."""
+    from ..check.common import INDUCTION_NARROW
     from ..check.properties import PROPERTIES
-    from ..check.runner import CHECKABLE, INDUCTION, INDUCTION_NARROW, NOT_INDUCTIVE, induction_status
+    from ..check.runner import CHECKABLE, INDUCTION, NOT_INDUCTIVE, induction_status
     from .check import verdict_text
 
     rows, induction, not_inductive = _merge_checks(checks)

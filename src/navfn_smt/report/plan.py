@@ -153,8 +153,10 @@ def _pose(p) -> dict:
 
 def plugin_plan_doc(setup, run, start, goal, backend: str) -> dict:
     """The JSON object of one ``createPlan`` call: the path Nav2 publishes, or its exception."""
-    from dataclasses import asdict
+    from dataclasses import fields
 
+    # the plugin's parameters, the fix by its name (as ``--variant`` gives it)
+    params = {f.name: getattr(setup.params, f.name) for f in fields(setup.params) if f.name != "fix"}
     return {
         "map": str(setup.map.path),
         "size": [setup.costmap.size_x, setup.costmap.size_y],
@@ -162,7 +164,7 @@ def plugin_plan_doc(setup, run, start, goal, backend: str) -> dict:
         "origin": [setup.costmap.origin_x, setup.costmap.origin_y],
         "layers": setup.layers,
         "notes": setup.notes,
-        "params": asdict(setup.params),
+        "params": {**params, "variant": setup.params.fix.name},
         "backend": backend,
         "start": _pose(start), "goal": _pose(goal),
         "ok": run.ok,

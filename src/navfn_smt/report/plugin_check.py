@@ -8,9 +8,9 @@ import json
 from rich.table import Table
 
 from ..fileio import atomic_write_text
-from .tables import _console
+from .tables import make_console
 
-console = _console()
+console = make_console()
 
 
 def first_case(first) -> str:

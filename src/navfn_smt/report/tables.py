@@ -24,7 +24,7 @@ HEARTBEAT = 10.0  # seconds between two progress lines when stderr is not a term
 WIDE = 10_000  # the width of a console that is not a terminal: wide enough that no table wraps
 
 
-def _console(stderr: bool = False) -> Console:
+def make_console(stderr: bool = False) -> Console:
     """A rich console; when it does not write to a terminal and ``COLUMNS`` is unset, so wide
     that tables keep one line per row (they take only the width they need)."""
     stream = sys.stderr if stderr else sys.stdout
@@ -33,8 +33,8 @@ def _console(stderr: bool = False) -> Console:
     return Console(stderr=stderr, width=width)
 
 
-console = _console()
-err_console = _console(stderr=True)
+console = make_console()
+err_console = make_console(stderr=True)
 
 
 def duration(seconds: float) -> str:

@@ -29,6 +29,7 @@ import numpy as np
 
 from ..check import properties as P
 from ..errors import NavfnInputError
+from ..spec import fixes
 from ..fileio import jsonable
 from ..maps.suite import GOLDEN_FIELDS, MODES, load_golden, load_map, write_map_dir
 from ..spec.arithmetic import KNOWN, X86_64
@@ -65,8 +66,9 @@ def save_findings(findings, out_dir) -> list[Optional[str]]:
             continue
         extra = {k: field_of(f, k) for k in ("seconds", "evaluations", "plans", "seed")}
         extra["found_size"] = list(field_of(f, "found_size") or [])
-        if field_of(f, "variant", "original") != "original":
-            extra["variant"] = field_of(f, "variant")
+        planner = field_of(f, "planner")
+        if planner is not None and not planner.fix.shipped:
+            extra["variant"] = planner.variant
         d = save_counterexample(out_dir, costs, field_of(f, "start"), field_of(f, "goal"),
                                 field_of(f, "mode") == "astar", field_of(f, "kind"), field_of(f, "detail", {}),
                                 extra=extra, planner=field_of(f, "planner"))
@@ -172,17 +174,17 @@ def judge_kind(kind: str, r: P.Run, doc: Optional[dict] = None, arith=None) -> O
 def planner_of(doc: dict) -> PlannerUnderTest:
     """The planner a saved counterexample was found in: its variant, in the arithmetic its
     golden files were recorded in (``arithmetic``; x86-64's when it names none)."""
-    return PlannerUnderTest.of_target(doc.get("arithmetic"), doc.get("variant", "original"))
+    return PlannerUnderTest.of_target(doc.get("arithmetic"), fixes.named(doc.get("variant", fixes.DEFAULT.name)))
 
 
 def judged_in_each(doc: dict, costs: np.ndarray, start, goal) -> dict:
     """``{arithmetic: the detail of doc's kind's judge, None where the case is no counterexample}``,
     the spec planning ``start`` to ``goal`` on ``costs`` in each known arithmetic (the fixed
     variant in x86-64's only, the one it computes in so far)."""
-    variant = doc.get("variant", "original")
-    return {name: judge_kind(doc["kind"], P.run(costs, start, goal, doc["mode"] == "astar", variant=variant,
+    fix = planner_of(doc).fix
+    return {name: judge_kind(doc["kind"], P.run(costs, start, goal, doc["mode"] == "astar", fix=fix,
                                                 arith=arith), doc, arith)
-            for name, arith in KNOWN.items() if variant == "original" or arith == X86_64}
+            for name, arith in KNOWN.items() if fix.shipped or arith == X86_64}
 
 
 def stands_in(doc: dict, costs: np.ndarray) -> dict:

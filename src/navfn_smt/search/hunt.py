@@ -201,7 +201,7 @@ class Climb:
         self.closest = 0.0  # the highest guide seen
         self.seconds = 0.0  # time spent in this climb
         self.compiled = (steps.FocusSteps(w, h, FOCUS, cycle_limit(w, h), path_cycle_limit(w))
-                         if compiled and kind == "cost" and planner.variant == "original"
+                         if compiled and kind == "cost" and planner.fix.shipped
                          and planner.arithmetic == X86_64 else None)  # the compiled steps plan as x86-64 does
 
     @property
@@ -404,7 +404,7 @@ def _confirm(climb: Climb, kind: str, mode: str, seed: int, costs_range, shrink_
     if shrink_result:
         costs, start, goal = shrink(kind, costs, start, goal, astar, keep_size=keep_size, costs_range=costs_range,
                                     deadline=time.perf_counter() + shrink_seconds, planner=planner)
-    r = P.run(costs, start, goal, astar, variant=planner.variant, arith=planner.arithmetic)
+    r = P.run(costs, start, goal, astar, fix=planner.fix, arith=planner.arithmetic)
     detail = KINDS[kind].judge(r)
     if detail is None:
         say(f"[{climb.tag}] the reference spec does not confirm the candidate; nothing reported")

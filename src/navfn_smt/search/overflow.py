@@ -373,7 +373,7 @@ class _Search:
         return max(side, MIN_SIDE)
 
 
-def _modes(mode: str) -> tuple[str, ...]:
+def overflow_modes(mode: str) -> tuple[str, ...]:
     if mode not in MODE_CHOICES:
         raise NavfnInputError(f"unknown mode {mode!r} (choose {', '.join(MODES)} or both)")
     return tuple(reversed(modes_of(mode)))  # both: Dijkstra first, the order of its reports
@@ -406,7 +406,7 @@ def search_overflow(mode: str, size=None, max_size=None, timeout: float = 60.0, 
         raise NavfnInputError(f"unknown cost range {cost_range!r} (choose {', '.join(COST_RANGES)})")
     if timeout <= 0:
         raise NavfnInputError("timeout must be positive")
-    modes = _modes(mode)
+    modes = overflow_modes(mode)
     size, max_size = _side(size), _side(max_size)
     say = progress or (lambda line: None)
     results = []

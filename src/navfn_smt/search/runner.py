@@ -26,11 +26,11 @@ PARALLEL_SHARE = 10.0  # --jobs auto: modes side by side when each has this many
 def _overflow_search():
     """The overflow search and its modes (imported only when asked for)."""
     try:
-        from .overflow import _modes, search_overflow
+        from .overflow import overflow_modes, search_overflow
     except ImportError as e:
         raise NavfnInputError(f"the overflow search is not available in this installation "
                               f"(navfn_smt.search.overflow: {e})") from None
-    return _modes, search_overflow
+    return overflow_modes, search_overflow
 
 
 def _overflow(mode, size, max_size, timeout, seed, progress, planner) -> list:
@@ -67,7 +67,7 @@ def run_search(kind: str, mode: str = "both", size=None, max_size=None, timeout:
     if size is not None and max_size is not None:
         raise NavfnInputError("--size and --max-size exclude each other")
     planner = ORIGINAL if planner is None else planner
-    if planner.variant != "original" and kind == "overflow":
+    if not planner.fix.shipped and kind == "overflow":
         raise NavfnInputError("search overflow hunts the C++ buffers' overflow, which the fix does not touch: "
                               "no --variant")
     if size is not None:

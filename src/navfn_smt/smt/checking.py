@@ -100,6 +100,30 @@ def solve_z3(assertions, variables: dict, timeout: float):
     return "unknown", None, "z3", s.reason_unknown()
 
 
+def solve_query(solvers: tuple):
+    """A ``solve(assertions, variables, timeout)`` for :func:`check` over ``solvers``."""
+    if tuple(solvers) == ("z3",):
+        return solve_z3
+
+    def solve(assertions, variables, timeout):
+        from .portfolio import solve as portfolio_solve
+
+        res = portfolio_solve(assertions, timeout=timeout, solvers=solvers)
+        if res.status == "error":
+            raise RuntimeError("solvers disagree: " + "; ".join(f"{a.solver}={a.status}" for a in res.answers))
+        if res.status == "sat":
+            win = next(a for a in res.answers if a.solver == res.solver)
+            values = codec.replay_values(win.model or {}, variables)
+            if values is None:  # the winner gave no usable model: ask z3 for one
+                return solve_z3(assertions, variables, timeout)
+            return "sat", values, res.solver, ""
+        if res.status == "unsat":
+            return "unsat", None, res.solver, ""
+        return "unknown", None, ",".join(solvers), "; ".join(f"{a.solver}: {a.status}" for a in res.answers)
+
+    return solve
+
+
 def check(ob: Obligation, semantics: str, timeout: float = 30.0, solve=solve_z3, bounds: bool = True,
           known=None) -> Outcome:
     """Check one obligation in one semantics, judged against ``known`` (default: its declaration)."""

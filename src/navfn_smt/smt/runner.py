@@ -16,37 +16,12 @@ from typing import Callable, Optional, Union
 
 from ..engine import Engine, as_engine, default_jobs, stream
 from ..errors import NavfnInputError
-from . import codec
-from .checking import Outcome, check, solve_z3
+from .checking import Outcome, check, solve_query
 from .domains import is_fp32
 from .obligation import load_obligations, load_obligations_from
 
 SEMANTICS = ("real", "fp32")
 PARALLEL_FROM = 4  # --jobs auto: local workers from this many (obligation, semantics) tasks on, if the CPUs allow
-
-
-def solve_query(solvers: tuple):
-    """A ``solve(assertions, variables, timeout)`` for :func:`check` over ``solvers``."""
-    if tuple(solvers) == ("z3",):
-        return solve_z3
-
-    def solve(assertions, variables, timeout):
-        from .portfolio import solve as portfolio_solve
-
-        res = portfolio_solve(assertions, timeout=timeout, solvers=solvers)
-        if res.status == "error":
-            raise RuntimeError("solvers disagree: " + "; ".join(f"{a.solver}={a.status}" for a in res.answers))
-        if res.status == "sat":
-            win = next(a for a in res.answers if a.solver == res.solver)
-            values = codec.replay_values(win.model or {}, variables)
-            if values is None:  # the winner gave no usable model: ask z3 for one
-                return solve_z3(assertions, variables, timeout)
-            return "sat", values, res.solver, ""
-        if res.status == "unsat":
-            return "unsat", None, res.solver, ""
-        return "unknown", None, ",".join(solvers), "; ".join(f"{a.solver}: {a.status}" for a in res.answers)
-
-    return solve
 
 
 @dataclass(frozen=True)

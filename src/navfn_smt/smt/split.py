@@ -296,8 +296,7 @@ def check_part(job: tuple) -> Part:
 
 def _smt(ob, box: Box, timeout: float, solvers, semantics: str = "fp32") -> tuple:
     """The bit-precise query on the part; a model counts only once the concrete spec confirms it."""
-    from .checking import judge_model, query
-    from .runner import solve_query
+    from .checking import judge_model, query, solve_query
 
     D, assertions = query(ob, semantics, lambda D: box_formula(D, box))
     answer, values, solver, detail = solve_query(tuple(solvers))(assertions, D.variables, timeout)
@@ -349,8 +348,7 @@ _METHOD = {"smt": _smt, "errmodel": _errmodel, "enumerate": _enumerate}
 def check_cover(source: str, name: str, boxes: list, timeout: float, solvers=("z3",), semantics: str = "fp32") -> dict:
     """The cover obligation: ``pre ==> box_1 or ... or box_n`` (``pre`` in ``semantics``);
     ``proved`` when unsatisfiable."""
-    from .checking import domain_of
-    from .runner import solve_query
+    from .checking import domain_of, solve_query
 
     ob = obligation_named(source, name)
     t0 = time.perf_counter()

@@ -84,26 +84,53 @@ def ring_potentials(pot, ring):
 ITERATION_GOES_ON = -1  # iteration_test's code when calcPath writes the point and steps
 
 
+def off_the_rows(D, stc, nx, ns):
+    """calcPath's bounds test ``stc < nx || stc > ns - nx`` (ints): exit ``OUT_OF_BOUNDS``."""
+    return D.or_(D.lt(stc, nx), D.lt(ns - nx, stc))
+
+
+def ring_leaves_the_array(D, stc, nx, ns):
+    """``stc - nx - 1 < 0 || stc + nx + 1 >= ns`` (ints): the eight-cell ring of ``stc`` reaches
+    outside potarr, a read C++ leaves undefined."""
+    return D.or_(D.lt(D.add_int(stc, -nx - 1), 0), D.le(ns, D.add_int(stc, nx + 1)))
+
+
 def iteration_test(D, pot, stc, dx, dy, nx, ns):
     """calcPath's tests at the top of an iteration, before it writes a point: the exit's
     :func:`exit_code` (``NEAR_GOAL``: the near-goal probe reads a potential below
-    COST_NEUTRAL; ``OUT_OF_BOUNDS``: ``stc`` in the first or last row), :data:`EXIT_UNDEFINED`
-    (the ring would be read outside potarr) or :data:`ITERATION_GOES_ON`.  ``pot[i]`` is
+    COST_NEUTRAL; ``OUT_OF_BOUNDS``: :func:`off_the_rows`), :data:`EXIT_UNDEFINED`
+    (:func:`ring_leaves_the_array`) or :data:`ITERATION_GOES_ON`.  ``pot[i]`` is
     ``potarr[i]`` (a list, the JIT's array, or an SMT array in ``proofs/calcpath.py``); cells are
     the domain's ints."""
     near = K.nearest_cell(D, stc, dx, dy, nx, ns)
-    undefined = D.or_(D.lt(stc - nx - 1, 0), D.ge(stc + nx + 1, ns))
-    code = D.ite(undefined, EXIT_UNDEFINED, ITERATION_GOES_ON)
-    code = D.ite(D.or_(D.lt(stc, nx), D.gt(stc, ns - nx)), _OUT_OF_BOUNDS, code)
+    code = D.ite(ring_leaves_the_array(D, stc, nx, ns), EXIT_UNDEFINED, ITERATION_GOES_ON)
+    code = D.ite(off_the_rows(D, stc, nx, ns), _OUT_OF_BOUNDS, code)
     return D.ite(K.near_goal(D, pot[near]), _NEAR_GOAL, code)
 
 
-def follows_the_grid(D, pot, stc, nx, oscillation):
-    """calcPath's fallback test: the path oscillates, or ``stc`` or one of its 8 is unreached."""
-    test = D.or_(oscillation, K.unreached(D, pot[stc]))
-    for m in ring_of_eight(stc, nx):
-        test = D.or_(test, K.unreached(D, pot[m]))
+def oscillates(D, px, py, qx, qy):
+    """calcPath's oscillation test: the point just written equals the one two before (floats)."""
+    return D.and_(D.eq(px, qx), D.eq(py, qy))
+
+
+def grid_wanted(D, centre, ring, oscillation):
+    """calcPath's fallback test on the potentials it reads: the path oscillates, or the cell
+    (``centre``) or one of its eight (``ring``, in :func:`ring_of_eight`'s order) is unreached."""
+    test = D.or_(oscillation, K.unreached(D, centre))
+    for p in ring:
+        test = D.or_(test, K.unreached(D, p))
     return test
+
+
+def follows_the_grid(D, pot, stc, nx, oscillation):
+    """:func:`grid_wanted` at ``stc``, reading ``pot``."""
+    return grid_wanted(D, pot[stc], ring_potentials(pot, ring_of_eight(stc, nx)), oscillation)
+
+
+def zero_gradient(D, x, y):
+    """calcPath's test of the interpolated gradient: exactly ``(0, 0)`` (floats): exit ``ZERO_GRADIENT``."""
+    zero = D.f32const(0.0)
+    return D.and_(D.eq(x, zero), D.eq(y, zero))
 
 
 def grid_step(D, pot, stc, nx):
@@ -181,7 +208,7 @@ def calc_path(
         px, py = K.path_point(D, stc, nx, dx, dy)
         xs.append(px)
         ys.append(py)
-        oscillation = len(xs) > 2 and xs[-1] == xs[-3] and ys[-1] == ys[-3]
+        oscillation = len(xs) > 2 and oscillates(D, xs[-1], ys[-1], xs[-3], ys[-3])
         if follows_the_grid(D, pot, stc, nx, oscillation):
             if watch is not None:
                 watch.fallback(i, oscillation)
@@ -194,7 +221,7 @@ def calc_path(
                 grad(m)
             x = K.interpolate_gradient(D, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
             y = K.interpolate_gradient(D, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
-            if x == 0.0 and y == 0.0:
+            if zero_gradient(D, x, y):
                 return Extraction([], ExtractionExit.ZERO_GRADIENT, len(xs), stc)
             dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
             stc += cdx + cdy * nx

@@ -25,41 +25,19 @@ the kernels, each acting only where the original fails:
 
 from __future__ import annotations
 
-from typing import Optional
-
-import numpy as np
-
-from ..errors import NavfnInputError
 from . import kernels as K
 from .extraction import EXIT_CODES, Extraction, ExtractionExit, exit_code, ring_of_eight, ring_potentials
 from .constants import POT_HIGH
 from .numeric import CONCRETE as D
-from .propagation import PropagationState, TraceHook, buffers_hold_cells, propagate
+from .planner import Fallback, Fix, FurtherCall
+from .propagation import buffers_hold_cells
 
-VARIANTS = ("original", "fixed")
 POT_BOUND = 2.0**30  # the potential bound the guarantees need: Progress's float32 link is proved below it
-DEFAULT_VARIANT = "original"
-VARIANT_HELP = ("original: NavFn as Nav2 ships it; fixed: with the fix of docs/fix.md (propagate on once past "
-                "the cycle limit, descend the potential where calcPath fails); default: original")
 
 
 def extra_cycles(nx: int, ny: int) -> int:
     """The cap of the fix's one further ``propNavFn*`` call: ``nx * ny`` cycles."""
     return nx * ny
-
-
-def check_variant(variant: str) -> str:
-    """A variant's name, or a clear error naming the choices."""
-    if variant not in VARIANTS:
-        raise NavfnInputError(f"unknown variant {variant!r} (choose from {', '.join(VARIANTS)})")
-    return variant
-
-
-def check_cycles(cycles: int) -> int:
-    """The fix calls ``propNavFn*(cycles)`` until done: a limit below 1 would never end."""
-    if cycles < 1:
-        raise NavfnInputError(f"the fixed planner needs a cycle limit of at least 1, not {cycles}")
-    return cycles
 
 
 def reached(potential) -> bool:
@@ -71,22 +49,6 @@ def calls_again(D, start_pot, fill_cur, fill_next):
     """The fix's test after the first ``propNavFn*``: the start unreached (``potarr[startCell] >=
     POT_HIGH``, float) and a buffer holding cells (``curPe > 0 || nextPe > 0``, ints)."""
     return D.and_(K.unreached(D, start_pot), buffers_hold_cells(D, fill_cur, fill_next))
-
-
-def propagate_on(st: PropagationState, start: tuple[int, int], goal: tuple[int, int], astar: bool, cycles: int,
-                 at_start: bool = True, trace_hook: Optional[TraceHook] = None,
-                 record_trace: bool = True) -> tuple[bool, int]:
-    """The patched ``calcNavFn*`` after ``setupNavFn``: ``propNavFn*(cycles)``, then, if the
-    start is unreached and a buffer holds cells, ``propNavFn*(nx * ny)`` once.  Returns the last
-    call's return value and how many calls the fix added (0 or 1)."""
-    check_cycles(cycles)
-    start_cell = start[1] * st.nx + start[0]
-    done = propagate(st, start, goal, astar, cycles, at_start, trace_hook=trace_hook, record_trace=record_trace)
-    if calls_again(D, st.potential[start_cell], len(st.cur), len(st.nxt)):
-        done = propagate(st, start, goal, astar, extra_cycles(st.nx, st.ny), at_start, trace_hook=trace_hook,
-                         record_trace=record_trace)
-        return done, 1
-    return done, 0
 
 
 descent_ring = ring_of_eight  # calcPathDescent reads the ring of calcPath's grid fallback
@@ -157,14 +119,7 @@ def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
         stc = nxt
 
 
-def with_descent(res, start, goal, n: int):
-    """A plan result without a path, given the descent's path (``calcPathDescent(n)``) where it
-    finds one (``res.extra["fix"]`` then names it); the potential and every other field stay."""
-    ny, nx = res.potential.shape
-    ext = descend([float(v) for v in res.potential.ravel()], nx, ny, (int(start[0]), int(start[1])),
-                  (int(goal[0]), int(goal[1])), n)
-    if ext.exit is ExtractionExit.NEAR_GOAL:
-        res.path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
-        res.exit = ext.exit
-        res.extra = {**res.extra, "fix": [*res.extra.get("fix", []), "descent"]}
-    return res
+FIX = Fix("fixed", "with the fix of docs/fix.md: propagate on once past the cycle limit, descend the potential "
+          "where calcPath fails", patches="navfn-fix", further=FurtherCall(calls_again, extra_cycles),
+          fallback=Fallback(descend, descent_iteration),
+          proved=(("complete", ("DescentPath",)), ("start-reached", ("ConnectedStartReached",))))

@@ -1,24 +1,123 @@
-"""One NavFn planning call, exactly as Nav2 (and the golden suite) runs it.
+"""One NavFn planning call, exactly as Nav2 (and the golden suite) runs it, with a fix's hooks.
 
 For every case, on a fresh copy of the costs: ``setGoal``, ``setStart``,
 ``setupNavFn(true)``; then A* (``priInc = 2 * COST_NEUTRAL``,
 ``propNavFnAstar(max(nx*ny/20, nx+ny))``) or Dijkstra
 (``propNavFnDijkstra(max(nx*ny/20, nx+ny), atStart=true)``); then ``calcPath(4 * nx)``.
+
+A :class:`Fix` is a change to that call, stated as its hooks: the cycles ``calcNavFn*`` gives
+``propNavFn*``, a further ``propNavFn*`` call after the first, and a fallback where calcPath
+returns no path.  :data:`AS_SHIPPED` has none; the candidate fixes are registered in
+:mod:`.fixes`.  :func:`calc_navfn` (the propagation) and :func:`extract` (calcPath with the
+fix's fallback) are the call, written once; :func:`plan` and the models above the spec run them.
 """
 
 from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass, field
-from typing import Optional
+from typing import Callable, Optional
 
 import numpy as np
 
+from ..errors import NavfnInputError
 from ..inputs import check_inputs
 from .costs import add_border
-from .extraction import ExtractionExit, calc_path
-from .propagation import TraceHook, cycle_limit, propagate, setup
-from . import fix as F
+from .extraction import Extraction, ExtractionExit, calc_path
+from .numeric import CONCRETE as D
+from .propagation import PropagationState, TraceHook, cycle_limit, propagate, setup
+
+
+@dataclass(frozen=True)
+class FurtherCall:
+    """A further ``propNavFn*`` call after the first one returns: made when ``test(D, start_pot,
+    fill_cur, fill_next)`` holds (a function over a numeric domain, which the JIT compiles too),
+    with ``cycles(nx, ny)`` cycles."""
+
+    test: Callable
+    cycles: Callable[[int, int], int]
+
+
+@dataclass(frozen=True)
+class Fallback:
+    """What a patched calcPath does where following the gradient returns no path:
+    ``walk(potential, nx, ny, start, goal, n)``, an :class:`~.extraction.Extraction`, which runs
+    ``iteration(D, pot, stc, points, n, nx, ns, goal_cell)`` (``(code, next cell)``, over a numeric
+    domain) until its code is an exit's; the check's encoding runs the same iteration."""
+
+    walk: Callable
+    iteration: Callable
+
+
+@dataclass(frozen=True)
+class Fix:
+    """NavFn as shipped (no hook) or changed by a patch of ``navfn.cpp``, stated as hooks of the
+    planning call: ``cycles(nx, ny)``, the cycles ``calcNavFn*`` gives its ``propNavFn*`` call;
+    ``further``, a :class:`FurtherCall`; ``fallback``, a :class:`Fallback` where ``calcPath(n)``
+    returns no path; ``proved``, the
+    properties of ``check`` its proofs carry for every map size.  ``name`` is how the
+    command line and reports name it; ``patches``: the folder of ``patches/`` holding its
+    ``<distribution>.patch`` (None: NavFn as shipped)."""
+
+    name: str
+    summary: str
+    patches: Optional[str] = None
+    cycles: Callable[[int, int], int] = cycle_limit
+    further: Optional[FurtherCall] = None
+    fallback: Optional[Fallback] = None
+    proved: tuple = ()  # (property of check, the predicates of proofs/ that carry it for every map size) pairs
+
+    @property
+    def shipped(self) -> bool:
+        """NavFn as Nav2 ships it (no patch)."""
+        return self.patches is None
+
+    def first_cycles(self, nx: int, ny: int, cycles: Optional[int] = None) -> int:
+        """The first call's cycles: ``cycles`` when a caller replaces the budget, else the fix's."""
+        limit = self.cycles(nx, ny) if cycles is None else int(cycles)
+        if self.further is not None and limit < 1:  # a further call after 0 cycles would never end
+            raise NavfnInputError(f"the {self.name} planner needs a cycle limit of at least 1, not {limit}")
+        return limit
+
+
+AS_SHIPPED = Fix("original", "NavFn as Nav2 ships it")
+
+
+def calc_navfn(st: PropagationState, start: tuple[int, int], goal: tuple[int, int], astar: bool,
+               fix: Fix = AS_SHIPPED, cycles: Optional[int] = None, at_start: bool = True,
+               trace_hook: Optional[TraceHook] = None, record_trace: bool = True) -> tuple[bool, int]:
+    """``calcNavFnAstar`` / ``calcNavFnDijkstra(atStart)`` after ``setupNavFn``, with ``fix``'s
+    hooks: ``propNavFn*`` with the fix's cycles (or ``cycles``), then the fix's further call where
+    its test holds.  Returns the last call's return value and the further calls made (0 or 1)."""
+    limit = fix.first_cycles(st.nx, st.ny, cycles)
+    done = propagate(st, start, goal, astar, limit, at_start, trace_hook=trace_hook, record_trace=record_trace)
+    further = fix.further
+    if further is not None and further.test(D, st.potential[start[1] * st.nx + start[0]], len(st.cur),
+                                            len(st.nxt)):
+        done = propagate(st, start, goal, astar, further.cycles(st.nx, st.ny), at_start, trace_hook=trace_hook,
+                         record_trace=record_trace)
+        return done, 1
+    return done, 0
+
+
+def extract(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int,
+            fix: Fix = AS_SHIPPED, arith=None) -> tuple[Extraction, bool]:
+    """``calcPath(n)`` and, where it returns no path, the fix's fallback: the extraction, and
+    whether the fallback gave the path."""
+    ext = calc_path(potential, nx, ny, start, goal, n, arith=arith)
+    if fix.fallback is None or ext.exit is ExtractionExit.NEAR_GOAL:
+        return ext, False
+    ext = fix.fallback.walk(potential, nx, ny, start, goal, n)
+    return ext, ext.exit is ExtractionExit.NEAR_GOAL
+
+
+def acted(nx: int, ny: int, ran: int, calls: int, cycles: Optional[int], descended: bool) -> list:
+    """The parts of a fix that acted on a run of ``ran`` cycles on an ``nx`` by ``ny`` map
+    (``PlanResult.extra["fix"]``): ``"propagation"`` when it propagated past Nav2's budget (a
+    further call, or, the budget not replaced by ``cycles``, more cycles than
+    ``max(nx*ny/20, nx+ny)``), ``"descent"`` when its fallback gave the path."""
+    past = calls > 0 or (cycles is None and ran > cycle_limit(nx, ny))
+    return ["propagation"] * past + ["descent"] * descended
 
 
 def path_cycle_limit(nx: int) -> int:
@@ -66,41 +165,26 @@ def plan(
     path_cycles: Optional[int] = None,
     record_trace: bool = True,
     capacity: Optional[int] = None,
-    variant: str = F.DEFAULT_VARIANT,
-    descent: bool = True,
+    fix: Fix = AS_SHIPPED,
     arith=None,
 ) -> PlanResult:
     """Plan on NavFn-internal costs (a (height, width) uint8 array) with the reference spec.
 
     ``start`` is NavFn's start (where extraction begins), ``goal`` where propagation begins.
     ``capacity`` bounds each priority buffer (default PRIORITYBUFSIZE, as in C++).
-    ``variant="fixed"`` plans with the fix (:mod:`.fix`); ``extra["fix"]`` then lists the
-    parts that acted (``"propagation"``, ``"descent"``), empty where the original plans;
-    ``descent=False`` leaves the descent out (the fixed propagation and calcPath only).
+    ``fix``: the planner's :class:`Fix` (default NavFn as shipped); for a patched planner
+    ``extra["fix"]`` lists the parts that acted (:func:`acted`), empty where the original plans.
     ``arith``: the :class:`~.arithmetic.Arithmetic` of the build to plan as (default x86-64's).
     """
-    fixed = F.check_variant(variant) == "fixed"
     arr = check_inputs(costs, start, goal)
     ny, nx = arr.shape
     start = (int(start[0]), int(start[1]))
     goal = (int(goal[0]), int(goal[1]))
     cost_list = add_border(arr).ravel().tolist()
     st = setup(cost_list, nx, ny, goal, capacity, arith)
-    limit = cycle_limit(nx, ny) if cycles is None else cycles
-    acted = []
-    if fixed:
-        reached, calls = F.propagate_on(st, start, goal, astar, limit, True, trace_hook, record_trace)
-        if calls:
-            acted.append("propagation")
-    else:
-        reached = propagate(st, start, goal, astar, limit, at_start=True, trace_hook=trace_hook,
-                            record_trace=record_trace)
+    reached, calls = calc_navfn(st, start, goal, astar, fix, cycles, True, trace_hook, record_trace)
     n = path_cycle_limit(nx) if path_cycles is None else path_cycles
-    ext = calc_path(st.potential, nx, ny, start, goal, n, arith=arith)
-    if fixed and descent and ext.exit is not ExtractionExit.NEAR_GOAL:
-        ext = F.descend(st.potential, nx, ny, start, goal, n)
-        if ext.exit is ExtractionExit.NEAR_GOAL:
-            acted.append("descent")
+    ext, descended = extract(st.potential, nx, ny, start, goal, n, fix, arith)
     pot = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
     path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
     return PlanResult(
@@ -113,5 +197,5 @@ def plan(
         updates=st.updates,
         dropped=st.dropped,
         exit=ext.exit,
-        extra={"fix": acted} if fixed else {},
+        extra={} if fix.shipped else {"fix": acted(nx, ny, st.cycles, calls, cycles, descended)},
     )

@@ -111,6 +111,13 @@ def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
     return st
 
 
+def update_neighbours(n, nx):
+    """``updateCell(n)``'s four neighbours in the order it reads them (``l, r, u, d``) and pushes
+    them: ``n-1, n+1, n-nx, n+nx`` (ints, or a domain's int terms: the proofs over arrays take
+    them from here too)."""
+    return n - 1, n + 1, n - nx, n + nx
+
+
 def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, int]]) -> None:
     """``updateCell(n)`` (Dijkstra) or ``updateCellAstar(n)`` when ``astar_start`` is given."""
     st.updates += 1
@@ -119,7 +126,8 @@ def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, 
     cost = st.costs[n]
     if not K.is_passable(D, cost):  # skip the arithmetic on obstacles (cell_update keeps them)
         return
-    l, r, u, d = pot[n - 1], pot[n + 1], pot[n - nx], pot[n + nx]
+    around = update_neighbours(n, nx)
+    l, r, u, d = (pot[m] for m in around)
     new, changed = K.cell_update(st.domain, pot[n], l, r, u, d, cost, _HF[cost])
     pot[n] = new  # the old potential unless changed: cell_update is the `if (pot < potarr[n])`
     if not changed:
@@ -130,7 +138,7 @@ def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, 
         key = D.add(new, _heuristic(x - astar_start[0], y - astar_start[1]))
     buf = st.nxt if K.to_low_buffer(D, key, st.cur_t) else st.over
     costs = st.costs
-    for m, pm in ((n - 1, l), (n + 1, r), (n - nx, u), (n + nx, d)):
+    for m, pm in zip(around, (l, r, u, d)):
         if K.push_wanted(D, pm, key, _EDGE[costs[m]]):
             _push(st, buf, m)
 

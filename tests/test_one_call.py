@@ -1,0 +1,173 @@
+"""The planning call is written once (spec/planner.py) and a fix is a value: every planner of the
+package (the reference spec, the JIT, the check's encoding, the plugin model) runs a fix's own hook
+functions, and no code outside argument parsing and report writing compares a fix's name."""
+
+from __future__ import annotations
+
+import json
+import re
+from collections import Counter
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from navfn_smt.check import properties as P
+from navfn_smt.maps.suite import load_map
+from navfn_smt.spec import extraction as E
+from navfn_smt.spec import fix as F
+from navfn_smt.spec import fixes
+from navfn_smt.spec import propagation as PR
+from navfn_smt.spec.costs import add_border
+from navfn_smt.spec.planner import Fallback, Fix, FurtherCall, plan
+from navfn_smt.under_test import PlannerUnderTest
+
+REPO = Path(__file__).resolve().parent.parent
+SRC = REPO / "src" / "navfn_smt"
+CX = REPO / "tests" / "data" / "counterexamples"
+
+
+def _spy(calls: Counter, name: str, fn):
+    def spied(*args, **kwargs):
+        calls[name] += 1
+        return fn(*args, **kwargs)
+    return spied
+
+
+def _spy_fix(calls: Counter, test=True) -> Fix:
+    """The fix of docs/fix.md with every hook counted (``test=False``: its further call's test as
+    it is, the one the JIT compiles)."""
+    further = FurtherCall(_spy(calls, "test", F.calls_again) if test else F.calls_again,
+                          _spy(calls, "further cycles", F.extra_cycles))
+    return Fix("spy", "the fix of docs/fix.md, its hooks counted", patches="navfn-fix",
+               cycles=_spy(calls, "cycles", F.FIX.cycles), further=further,
+               fallback=Fallback(_spy(calls, "walk", F.descend), _spy(calls, "iteration", F.descent_iteration)))
+
+
+def _case(name: str):
+    d = CX / name
+    doc = json.loads((d / "counterexample.json").read_text())
+    sm = load_map(d)
+    sx, sy, gx, gy = (int(v) for v in sm.cases[0])
+    return sm.costs, (sx, sy), (gx, gy), doc["mode"] == "astar"
+
+
+# a map where the original leaves the start unreached (the further call acts) and one where
+# calcPath fails from a reached start (the fallback acts)
+UNREACHED, TRAPPED = "unreached-astar-7x8", "incomplete-astar-5x5"
+
+
+def _same(a, b) -> bool:
+    return np.asarray(a).tobytes() == np.asarray(b).tobytes()
+
+
+@pytest.mark.fast
+@pytest.mark.parametrize("name,acted", [(UNREACHED, ("cycles", "test", "further cycles")),
+                                        (TRAPPED, ("cycles", "test", "walk"))])
+def test_the_spec_and_the_judges_run_the_fixs_hooks(name, acted):
+    costs, s, g, astar = _case(name)
+    for run in (lambda fx: plan(costs, s, g, astar, fix=fx), lambda fx: P.run(costs, s, g, astar, fix=fx)):
+        calls = Counter()
+        got, want = run(_spy_fix(calls)), run(F.FIX)
+        assert all(calls[k] > 0 for k in acted), calls
+        assert _same(got.potential, want.potential) and _same(got.path, want.path)
+
+
+@pytest.mark.parametrize("name", [UNREACHED, TRAPPED])
+def test_the_jit_runs_the_fixs_hooks_and_compiles_the_specs_tests(name):
+    from navfn_smt.backends import get_backend
+    from navfn_smt.backends import jit as J
+
+    # the compiled tests are the spec's functions, compiled, not copies
+    for compiled, spec in ((J.cycle_runs, PR.cycle_runs), (J.call_ends_at_the_start, PR.call_ends_at_the_start),
+                           (J.calls_again, F.calls_again), (J.update_neighbours, PR.update_neighbours),
+                           (J.iteration_test, E.iteration_test), (J.follows_the_grid, E.follows_the_grid),
+                           (J.grid_step, E.grid_step), (J.oscillates, E.oscillates),
+                           (J.zero_gradient, E.zero_gradient)):
+        assert compiled.py_func is spec
+    costs, s, g, astar = _case(name)
+    calls = Counter()
+    got = get_backend("jit", PlannerUnderTest(_spy_fix(calls, test=False))).prepare(costs).run(s, g, astar)
+    want = plan(costs, s, g, astar, fix=F.FIX)
+    assert calls["cycles"] > 0 and calls["further cycles"] > 0
+    assert (calls["walk"] > 0) == (name == TRAPPED)
+    for field in ("potential", "path", "trace"):
+        assert _same(getattr(got, field), getattr(want, field)), field
+    assert got.extra == want.extra
+    with pytest.raises(Exception, match="compiles the further propNavFn\\* call of the fix of docs/fix.md only"):
+        get_backend("jit", PlannerUnderTest(_spy_fix(Counter())))
+
+
+@pytest.mark.parametrize("name", [UNREACHED, TRAPPED])
+def test_the_checks_encoding_runs_the_fixs_hooks(name):
+    from navfn_smt.check.bounded import Case, _symbolic_run
+    from navfn_smt.check.concolic import concrete
+    from navfn_smt.check.encoding import _interior
+    from navfn_smt.smt.domains import FPDomain
+    from navfn_smt.spec.constants import COST_OBS
+
+    costs, s, g, astar = _case(name)
+    arr = add_border(costs)
+    ny, nx = arr.shape
+    inner = _interior(nx, ny)
+    lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
+    conc = {k: int(arr.flat[k]) for k in inner if k not in lethal}
+    calls = Counter()
+    _, _, sp, ex = _symbolic_run(Case(nx, ny, lethal, s, g, astar), conc, 50, 253, FPDomain, _spy_fix(calls))
+    want = plan(costs, s, g, astar, fix=F.FIX)
+    assert calls["cycles"] > 0 and calls["test"] > 0
+    assert (calls["iteration"] > 0) == (name == TRAPPED) and calls["walk"] == 0  # the iteration, on terms
+    assert [float(concrete(p)) for p in sp.potential] == [float(v) for v in want.potential.ravel()]
+    assert concrete(ex.exit) == E.exit_code(want.exit)
+
+
+@pytest.mark.parametrize("name", [UNREACHED, TRAPPED])
+def test_the_plugin_model_runs_the_fixs_hooks(name):
+    from navfn_smt.nav2.params import PlannerParams
+    from navfn_smt.nav2.plugin import Costmap, create_plan
+    from navfn_smt.check.plugin import centre
+
+    costs, s, g, astar = _case(name)
+    ros = np.where(costs >= 254, 254, 0).astype(np.uint8)  # the counterexample's walls, the rest free
+    cm = Costmap(ros, 0.0, 0.0, 1.0)
+    runs = {}
+    for key, fx in (("spy", None), ("fixed", F.FIX)):
+        calls = Counter()
+        params = replace(PlannerParams(), use_astar=astar, tolerance=0.0, fix=fx or _spy_fix(calls, test=False))
+        runs[key] = create_plan(cm, centre(cm, *s), centre(cm, *g), params, "reference")
+        if fx is None:
+            assert calls["cycles"] > 0  # the plugin's calcNavFn* runs the fix's cycles hook
+    assert _same(runs["spy"].potential, runs["fixed"].potential)
+    assert runs["spy"].error == runs["fixed"].error
+
+
+NAME_TEST = re.compile(r"""(==|!=)\s*["'](original|fixed|cycles-only)["']|["'](original|fixed|cycles-only)["']\s*(==|!=)"""
+                       r"""|\bin\s*\(\s*["'](original|fixed)["']""")
+
+
+@pytest.mark.fast
+def test_no_code_compares_a_fixs_name_outside_argument_parsing_and_reports():
+    """Names of fixes live in argument parsing (commands/) and in what reports write (report/);
+    everywhere else a fix is its value (spec.planner.Fix)."""
+    found = []
+    for path in sorted(SRC.rglob("*.py")):
+        rel = path.relative_to(SRC).as_posix()
+        if rel.startswith(("commands/", "report/")):
+            continue
+        for i, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            if NAME_TEST.search(line.split("#")[0]):
+                found.append(f"{rel}:{i}: {line.strip()}")
+    assert found == []
+
+
+@pytest.mark.fast
+def test_the_registry_names_each_fix_once_and_parses_names():
+    assert fixes.NAMES == tuple(f.name for f in fixes.FIXES.values()) and len(set(fixes.NAMES)) == len(fixes.NAMES)
+    assert fixes.DEFAULT.shipped and all(not f.shipped for f in fixes.PATCHED)
+    assert {f.name for f in fixes.PATCHED} >= {"fixed", "cycles-only"}
+    assert all((SRC / "patches" / f.patches).is_dir() for f in fixes.PATCHED)
+    for name in fixes.NAMES:
+        assert fixes.named(name).name == name and fixes.named(fixes.named(name)) is fixes.named(name)
+    with pytest.raises(Exception, match="unknown variant 'patched'"):
+        fixes.named("patched")
