@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from navfn_smt.spec import fixes
 from navfn_smt.spec.fix import FIX
 from navfn_smt.cli import main
 from navfn_smt.diagnose.inputs import load_inputs
@@ -57,7 +58,7 @@ def test_the_robot_rounded_into_a_lethal_cell_gives_a_first_pose_in_it():
 
 def test_the_enumeration_counts_and_finds_the_smallest_case_first():
     counts = {(c.property, c.variant): c for c in check_plugin(tuple(PLUGIN_PROPERTIES), [(4, 3), (4, 4)], (0, 254),
-                                                               ("original", "fixed"), (0.0, 1.0))}
+                                                               (fixes.AS_SHIPPED, FIX), (0.0, 1.0))}
     # 4x3: 4 layouts x 2 pairs; 4x4: 16 layouts x 12 pairs; x 2 modes x 2 tolerances
     assert all(c.judged == (4 * 2 + 16 * 12) * 4 for c in counts.values())
     assert counts[("plugin-complete", "original")].failed == counts[("plugin-complete", "fixed")].failed == 0

@@ -177,10 +177,19 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
                         memo[mi] = h
                 key = D.add(new, h)
             dest = nxt if K.to_low_buffer(D, key, cur_t) else over
-            read = (l, r, u, d)
-            for j in range(4):
-                m = around[j]
-                pm = read[j]
+            for j in range(4):  # the four pushes, in updateCell's order (update_neighbours)
+                if j == 0:
+                    m = around[0]
+                    pm = l
+                elif j == 1:
+                    m = around[1]
+                    pm = r
+                elif j == 2:
+                    m = around[2]
+                    pm = u
+                else:
+                    m = around[3]
+                    pm = d
                 if K.push_wanted(D, pm, key, K.edge_weight(D, D.int_to_f32(costs[m]))):
                     admitted, lost, pending[m] = K.push(D, m, ns, pending[m], costs[m], fill[dest], cap)
                     if admitted:

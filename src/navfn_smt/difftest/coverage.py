@@ -48,7 +48,7 @@ REASONS = {
     "if m + nx >= ns:":
         "gradCell(ns - nx) is undefined behaviour of the C++; a planned potential never has the "
         "nine reached cells around (0, ny-2) or (nx-1, ny-3) that lead there",
-    "if x == 0.0 and y == 0.0:":
+    "if zero_gradient(D, x, y):":
         "an exactly zero gradient needs a plateau of equal potentials (cost-0 cells), which the "
         "paper's maps lack; reached by tests/data/unseen-suite (zero/*)",
     "if m < nx or m > ns - nx:":
