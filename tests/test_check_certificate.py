@@ -13,6 +13,7 @@ import pytest
 
 from navfn_smt.check import certificate as C
 from navfn_smt.errors import NavfnInputError
+from navfn_smt.spec import fixes
 
 REPORTS = Path(__file__).resolve().parents[1] / "docs" / "reports"
 FAST = ("bitwuzla",)  # the tests ask bitwuzla (fast); which solver answers is not what they test
@@ -370,7 +371,7 @@ def _harmless(doc, original, where) -> bool:
     run, names = B.run_of(doc["properties"]), doc["properties"]
 
     def flipped(seed):  # the branches the rule lets the search flip (flippable), as terms
-        D, _, sp, _ = run(case, dict(zip(inner, seed)), lo, hi, FPDomain, doc["variant"])
+        D, _, sp, _ = run(case, dict(zip(inner, seed)), lo, hi, FPDomain, fixes.named(doc["variant"]))
         return D.branches[:B.flippable(names, D.branches, sp, lo)]
 
     new, old = flipped(log[pi][0]), flipped(original["cases"][ci][2][pi][0])
