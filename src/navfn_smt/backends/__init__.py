@@ -235,7 +235,7 @@ def _again_where_failed(planner, cols: dict, cases: np.ndarray, astar: bool) -> 
     act (no path, or the start unreached) planned again by ``planner.run``: the further call is
     made only from an unreached start and the fallback only where calcPath returns no path, so
     every other case is planned as the fix plans it."""
-    reached = np.asarray(cols["start_potential"], np.float32) < np.float32(POT_HIGH)  # F.reached, per case
+    reached = np.asarray(cols["start_potential"], np.float32) < np.float32(POT_HIGH)  # potarr[startCell] < POT_HIGH
     failed = np.flatnonzero((cols["exit"] != EXIT_CODES.index(ExtractionExit.NEAR_GOAL)) | ~reached)
     if not len(failed):
         return cols

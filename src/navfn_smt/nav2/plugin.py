@@ -659,8 +659,8 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
         run.cycles, run.dropped = int(planner.counters[J.CYCLES]), int(planner.counters[J.DROPPED])
         return
     st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal, arith=run.arith.navfn)
-    run.reached, _ = calc_navfn(st, navfn_start, navfn_goal, astar, fix, record_trace=False)
-    run.reached = bool(run.reached)
+    reached, _ = calc_navfn(st, navfn_start, navfn_goal, astar, fix, record_trace=False)
+    run.reached = bool(reached)
     run.potential = np.array(st.potential, dtype=np.float32).reshape(ny, nx)
     run.cycles, run.dropped = st.cycles, st.dropped
 
