@@ -22,8 +22,8 @@ EXAMPLES = Path(__file__).resolve().parent.parent / "src" / "navfn_smt" / "examp
 
 def _check_between_cycles(st, where):
     """Invariant B of proofs/queues.py on a concrete state."""
-    held = st.cur + st.over
-    assert st.nxt == [], where
+    held = list(st.cur) + list(st.over)
+    assert st.nxt.fill == 0, where
     assert len(held) == len(set(held)), f"{where}: a cell is twice in the buffers"
     assert {n for n, p in enumerate(st.pending) if p} == set(held), f"{where}: flags differ from buffers"
 
@@ -80,11 +80,11 @@ def test_pending_flags_match_buffers_when_pushes_are_dropped():
 def test_check_between_cycles_can_fail():
     costs = np.full((5, 5), 50, np.uint8)
     st = P.setup(add_border(costs).ravel().tolist(), 5, 5, (2, 2))
-    st.pending[st.cur[0]] = False
+    st.pending[st.cur.cell(0)] = False
     with pytest.raises(AssertionError, match="flags differ"):
         _check_between_cycles(st, "tampered")
-    st.pending[st.cur[0]] = True
-    st.over.append(st.cur[0])
+    st.pending[st.cur.cell(0)] = True
+    st.over.append_if(True, st.cur.cell(0))
     with pytest.raises(AssertionError, match="twice"):
         _check_between_cycles(st, "tampered")
 

@@ -537,27 +537,30 @@ def test_push_to_full_buffer_is_dropped_and_not_pending():
     stt = P.PropagationState(
         nx=5, ny=5, costs=open_5x5_costs(), potential=[HIGH] * 25, pending=[False] * 25, cur_t=254.0
     )
-    stt.nxt = [7] * 10000  # full (contents irrelevant)
-    P._push(stt, stt.nxt, 12)
+    stt.nxt = P.Buffer([7] * 10000)  # full (contents irrelevant)
+    into_next, into_over = True, False  # push_next and push_over: the update's `low` picks the buffer
+    P.push(stt, 12, True, into_next)
     assert stt.dropped == 1 and not stt.pending[12] and len(stt.nxt) == 10000
-    P._push(stt, stt.nxt, 12)  # not pending, so a second attempt is a second drop
+    P.push(stt, 12, True, into_next)  # not pending, so a second attempt is a second drop
+    assert stt.dropped == 2
+    P.push(stt, 12, False, into_next)  # not wanted by the update: no push, no drop
     assert stt.dropped == 2
     # the other guards come first and are not drops: lethal, pending, off the map
-    P._push(stt, stt.nxt, 0)
+    P.push(stt, 0, True, into_next)
     stt.pending[6] = True
-    P._push(stt, stt.nxt, 6)
-    P._push(stt, stt.nxt, -1)
-    P._push(stt, stt.nxt, 25)
+    P.push(stt, 6, True, into_next)
+    P.push(stt, -1, True, into_next)
+    P.push(stt, 25, True, into_next)
     assert stt.dropped == 2 and len(stt.nxt) == 10000
     # a buffer with room admits and marks pending
-    P._push(stt, stt.over, 12)
-    assert stt.over == [12] and stt.pending[12]
-    P._push(stt, stt.nxt, 12)  # now pending: silently skipped, no drop
+    P.push(stt, 12, True, into_over)
+    assert list(stt.over) == [12] and stt.pending[12]
+    P.push(stt, 12, True, into_next)  # now pending: silently skipped, no drop
     assert stt.dropped == 2
-    # 9999 entries: one more fits exactly
-    stt.cur = [7] * 9999
-    P._push(stt, stt.cur, 13)
-    assert len(stt.cur) == 10000 and stt.cur[-1] == 13 and stt.pending[13] and stt.dropped == 2
+    # 9999 entries: one more fits exactly (push_cur)
+    stt.cur = P.Buffer([7] * 9999)
+    P.push(stt, 13, True)
+    assert len(stt.cur) == 10000 and stt.cur.cell(9999) == 13 and stt.pending[13] and stt.dropped == 2
 
 
 def stub_comb_map(K_cols: int, ny: int) -> np.ndarray:
@@ -670,10 +673,10 @@ def test_init_cost_pushes_right_left_up_down():
     # 5x5, 3x3 interior of cost 50; goal (1, 2) = cell 11: pushes 12 (right), 10 (left: the
     # lethal border, refused), 6 (up), 16 (down)
     stt = P.setup(open_5x5_costs(), 5, 5, (1, 2))
-    assert stt.cur == [12, 6, 16]
+    assert list(stt.cur) == [12, 6, 16]
     assert stt.potential[11] == 0.0
     assert [i for i, p in enumerate(stt.pending) if p] == [6, 12, 16]
-    assert stt.cur_t == 254.0 and stt.nxt == [] and stt.over == []
+    assert stt.cur_t == 254.0 and stt.nxt.fill == 0 and stt.over.fill == 0
 
 
 @pytest.mark.parametrize("astar", [True, False])

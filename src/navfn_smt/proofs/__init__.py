@@ -212,7 +212,8 @@ FallbackPath = Predicate(
             "FinitePotentialPath.grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero",
             "setup_gives_every_reached_cell_a_neighbour_below_its_floor",
             "update_keeps_a_neighbour_below_the_floor_at_the_updated_cell",
-            "update_keeps_a_neighbour_below_the_floor_at_every_other_cell"),
+            "update_keeps_a_neighbour_below_the_floor_at_every_other_cell",
+            "the_steps_around_the_updates_keep_a_neighbour_below_the_floor"),
     rests_on=("Progress", "PositionSafeAndProgressInductive"),
     trusted=("potentials strictly fall along the walk (each cell but the goal has a 4-neighbour below its "
              "potential's truncation: setup_gives_every_reached_cell_a_neighbour_below_its_floor and the two "
@@ -265,7 +266,7 @@ QueuedStartReached = Predicate(
             "Monotone.update_never_raises", "next_buffer_becomes_current_and_its_cycle_runs"),
     # a buffered cell has a reached 4-neighbour (below the bound: the run-time condition below); the
     # buffer invariant at the start's slot and the updated cell's; the cycle's loop over its current
-    # buffer's slots, read off the code as BuffersInductive's loops are
+    # buffer's slots is the spec's, cut at its invariant (smt/program.py)
     rests_on=("ReachedAndBufferedInductive", "BuffersInductive"),
     trusted=("the queueing is a fact of the control path up to the push (or the cycle's start): every run with "
              "the same branches that far queues the start the same way; argued: the soundness of symbolic "
@@ -280,15 +281,13 @@ QueuedStartReached = Predicate(
 PositionSafeAndProgressInductive = Predicate(
     "PositionSafeAndProgressInductive",
     statement="PositionSafe and Progress, with valid potentials and the goal's 0, hold of the whole potential "
-              "array after setup and are kept by every updateCell, on a map of any width.",
-    applies="propagation, stated over arrays (proofs/induction.py): the loop induction of PositionSafe and "
-            "Progress machine-checked as one invariant (issue #39), beside their per-update chains",
+              "array after setup and are kept by every step of propagation, on a map of any size.",
+    applies="propagation, stated over arrays (proofs/induction.py): the spec's setupNavFn, initCost and "
+            "propNavFn* run over SMT arrays, their loops cut at the invariant (smt/program.py), every segment "
+            "of the run machine-checked",
     base=("setup_and_init_cost_establish_the_invariant",),
-    lemmas=("update_keeps_the_invariant_at_the_updated_cell", "update_keeps_the_invariant_at_every_other_cell"),
-    trusted=("the base case's array is what setupNavFn and initCost write (spec/propagation.py's setup; the "
-             "difftest compares the potentials every run ends with), and after initCost updateCell is the only "
-             "write to the potential array; read off the code's structure (which statements write the array), "
-             "not checked by a solver",),
+    lemmas=("the_steps_around_the_updates_keep_the_invariant", "update_keeps_the_invariant_at_the_updated_cell",
+            "update_keeps_the_invariant_at_every_other_cell"),
     open=("in float32, that every potential an update writes stays below 2**30 is a run-time condition, as for "
           "Progress",),
 )
@@ -298,33 +297,27 @@ BuffersInductive = Predicate(
     statement="Each pending cell is in exactly one buffer slot (between cycles of the current or the overflow "
               "buffer, during a cycle of the next or the overflow one), no slot of a buffer repeats a cell, and "
               "every buffered cell is a passable cell of the goal's component on the map: true after setup and "
-              "kept by every step that touches the flags or the buffers, on a map of any size.",
-    applies="propagation, stated over arrays with ghost positions (proofs/buffers.py): setupNavFn and initCost, "
-            "the loop clearing the current buffer's flags, every push of an update, the end-of-cycle swap; the "
-            "loop induction of the buffers machine-checked (issue #39)",
+              "kept by every step of propagation, on a map of any size.",
+    applies="propagation, stated over arrays with ghost positions (proofs/buffers.py): the spec's setupNavFn, "
+            "initCost and propNavFn* run over SMT arrays, their loops (the cycles, the clearing of the flags, the "
+            "updates with their pushes) cut at their invariants (smt/program.py), every segment of the run "
+            "machine-checked, the component's closure assumed at the cells each segment touches",
     base=("setup_puts_each_pending_cell_in_one_slot",),
-    lemmas=("clearing_a_flag_keeps_the_clearing_invariant", "cleared_flags_give_the_cycle_invariant",
-            "push_keeps_each_pending_cell_in_one_slot", "swap_keeps_each_pending_cell_in_one_slot"),
-    trusted=("the loops change the flags and the buffers only by these steps, run as kernels.push, kernels."
-             "end_of_cycle and the clearing loop by the spec and the JIT (spec/propagation.py, backends/jit.py), "
-             "which the difftest ties to the C++, and push only inside an update that changed its cell (the "
-             "`if (pot < potarr[n])` block); a cycle updates the cells of its current buffer's slots 0 to curPe - 1 "
-             "in turn, and its pushes go to the next and the overflow buffer (the slot index k the frontier's and "
-             "the queued start's obligations take from k to k + 1); the component's closure is assumed at the "
-             "cells each step reads; the loops themselves are read off the code, not stated over arrays",),
+    lemmas=("a_cycle_starts_with_every_flag_to_clear", "clearing_a_flag_keeps_the_clearing_invariant",
+            "cleared_flags_give_the_cycle_invariant", "update_keeps_each_pending_cell_in_one_slot",
+            "swap_keeps_each_pending_cell_in_one_slot"),
 )
 
 ReachedAndBufferedInductive = Predicate(
     "ReachedAndBufferedInductive",
     statement="A reached cell is the goal or a cell of the goal's component, and a buffered cell has a reached "
-              "4-neighbour: true after setup and kept by every updateCell, push and swap, on a map of any size.",
+              "4-neighbour: true after setup and kept by every step of propagation, on a map of any size.",
     applies="propagation, stated over arrays beside the buffers (proofs/buffers.py): the loop induction of "
             "ReachedWithinComponent's and QueuedStartReached's facts about the run machine-checked (issue #39)",
     base=("setup_reaches_the_goal_alone_and_buffers_its_neighbours",),
-    lemmas=("update_reaches_only_cells_of_the_component", "push_buffers_only_a_neighbour_of_a_reached_cell",
-            "swap_keeps_every_buffered_cell_beside_a_reached_one"),
-    # the buffer invariant (an updated cell is a buffered cell of the component), valid potentials, and
-    # the steps being all the changes: stated once, in these two
+    lemmas=("the_steps_around_the_updates_keep_every_buffered_cell_beside_a_reached_one",
+            "update_and_its_pushes_reach_only_cells_of_the_component"),
+    # the buffer invariant (an updated cell is a buffered cell of the component) and valid potentials
     rests_on=("BuffersInductive", "PositionSafeAndProgressInductive"),
 )
 
@@ -338,8 +331,8 @@ FrontierInductive = Predicate(
     applies="propagation, stated over arrays beside the buffers (proofs/frontier.py), with a ghost flag for a "
             "dropped push: the loop induction behind ConnectedStartReached machine-checked (issue #39)",
     base=("setup_leaves_no_unreached_neighbour_unbuffered",),
-    lemmas=("clearing_a_flag_keeps_the_frontier", "frontier_holds_as_the_updates_start_and_after_the_swap",
-            "update_and_its_pushes_keep_the_frontier",
+    lemmas=("the_steps_around_the_updates_keep_the_frontier", "update_and_its_pushes_keep_the_frontier",
+            "astar_heuristic_is_not_negative",
             "empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one"),
     rests_on=("BuffersInductive", "PositionSafeAndProgressInductive"),
     open=("a changed cell's push key (its potential, plus A*'s heuristic) below 2**31 and every passable cost in "

@@ -22,12 +22,13 @@ The component is any set of cells closed as the goal's component is: the goal's 
 4-neighbours are in it, and a passable 4-neighbour of a cell in it is in it (each obligation
 assumes these at the cells it reads); the least such set is the goal's component.
 
-The steps are the ones the spec and the JIT run: setupNavFn and initCost's four
-``push_cur`` (:func:`~navfn_smt.spec.kernels.push`), the loop clearing the current buffer's
-flags (one iteration, with its loop invariant), one push of an update (``kernels.push`` into
-the buffer ``kernels.to_low_buffer`` picks, of a 4-neighbour of a cell of the current
-buffer), and the end of the cycle (``kernels.end_of_cycle``: the fills, the buffers' roles).
-The chain is the data of :data:`navfn_smt.proofs.BuffersInductive`.
+The steps are the spec's own: :mod:`navfn_smt.smt.program` runs
+:func:`~navfn_smt.spec.propagation.init_cost` and :func:`~navfn_smt.spec.propagation.propagate`
+over these arrays, their loops (the cycles; the clearing of the current buffer's flags; the
+updates, each with its four pushes) cut at the invariants B, C(k) and P, and each obligation is
+one segment of that run.  Every segment has its obligation; the chain is the data of
+:data:`navfn_smt.proofs.BuffersInductive`.  ReachedAndBufferedInductive's obligations (below)
+are stated on the same run.
 """
 
 import copy
@@ -38,18 +39,14 @@ from navfn_smt.proofs import BuffersInductive, ReachedAndBufferedInductive
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
-from navfn_smt.spec.constants import POT_HIGH, PRIORITYBUFSIZE
+from navfn_smt.spec.constants import PRIORITYBUFSIZE
 from navfn_smt.spec.propagation import update_neighbours
+from navfn_smt.smt.program import SEGMENTS, both_modes, cell_sort, condition
 
 BUFFERS = ("cur", "nxt", "over")
 # proved in every semantics; a model of a negation is over arrays, which the concrete spec cannot replay
 STATED = dict(expect={"real": "proved", "fp32": "proved", "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
               arrays=True)
-
-
-def cell_sort(D):
-    """The sort of a cell or slot number: the domain's int (32-bit bit-vector, or integer)."""
-    return D.int32("i_sort_probe").sort()
 
 
 class Buffers:
@@ -147,162 +144,98 @@ def fills(D, s: Buffers, during: bool):
     return z3.And(parts)
 
 
-def invariant(D, m: Map, s: Buffers, cells, slots, during: bool):
-    """The invariant at the given cells and at the given slot of every buffer."""
-    return z3.And(fills(D, s, during), *(at_cell(D, m, s, q, during) for q in cells),
-                  *(at_slot(D, s, b, i) for i in slots for b in BUFFERS))
+# ---------------------------------------------------- the spec's loops, cut at their invariants
+def buffer_invariant(D, m: Map):
+    """B at the cycle loop, C(k) at the clearing loop, P at the update loop (the bound: the
+    current buffer's fill, which neither loop changes): ``(whole, at_cell, at_slot)``."""
+    def at(loop, s, k, bound):
+        during = loop == "update"
+        whole = [fills(D, s, during)]
+        if loop != "cycle":
+            whole += [D.eq(s.fill["cur"], bound), D.ge(k, 0), D.le(k, bound)]
+        clearing = k if loop == "clear" else None
+        return (z3.And(whole), lambda q: at_cell(D, m, s, q, during, clearing),
+                lambda b, i: at_slot(D, s, b, i))
+    return at
 
 
-def push(D, m: Map, s: Buffers, target, n, wanted):
-    """One ``push_*`` macro on cell ``n`` into ``target`` (a buffer's name, or ``(cond, if, else)``
-    for the one ``to_low_buffer`` picks), when the update ``wanted`` it: (state after, admitted)."""
-    if isinstance(target, tuple):
-        cond, yes, no = target
-        fill_t = D.ite(cond, s.fill[yes], s.fill[no])
-        into = {yes: cond, no: z3.Not(cond)}
-    else:
-        fill_t = s.fill[target]
-        into = {target: True}
-    pushed, _, pending_after = K.push(D, n, m.ns, s.pending[n], m.cost_int(n), fill_t, PRIORITYBUFSIZE)
-    admitted = D.and_(wanted, pushed)
-    slots, fill, inside, slot_of = dict(s.slots), dict(s.fill), dict(s.inside), dict(s.slot_of)
-    for b, sel in into.items():
-        here = D.and_(admitted, sel)
-        slots[b] = z3.If(here, z3.Store(s.slots[b], s.fill[b], n), s.slots[b])
-        inside[b] = z3.If(here, z3.Store(s.inside[b], n, True), s.inside[b])
-        slot_of[b] = z3.If(here, z3.Store(s.slot_of[b], n, s.fill[b]), s.slot_of[b])
-        fill[b] = D.ite(here, D.add_int(s.fill[b], 1), s.fill[b])
-    pending = z3.Store(s.pending, n, D.ite(wanted, pending_after, s.pending[n]))
-    return s.copy(slots=slots, fill=fill, inside=inside, slot_of=slot_of, pending=pending), admitted
+def buffer_condition(D, source: str, target: str):
+    """The condition of the spec's segment from ``source`` to ``target``, for A* and for Dijkstra
+    (their keys differ), the invariant asked at any cell q and slot i: (pre, claim).  The buffers
+    read no float: the run leaves every float result free (:class:`~.program.FreeFloats`), which
+    covers every arithmetic."""
+    m = Map(D)
+    q, i = D.int32("q"), D.int32("i")
+    return both_modes(D, m, lambda segs: condition(D, m, segs[(source, target)], buffer_invariant(D, m), q, i),
+                      free_floats=True)
 
 
-def swapped(D, m: Map, s: Buffers) -> Buffers:
-    """The state after the swap at a cycle's end (``kernels.end_of_cycle``: the fills, and the
-    buffers' roles as the C++'s pointer swaps give them)."""
-    drained, fill_cur, fill_over, _ = K.end_of_cycle(D, s.fill["nxt"], s.fill["over"], D.f32("curT"), D.f32("inc"))
-    nothing = z3.K(cell_sort(D), False)
-    role = {"cur": lambda a: z3.If(drained, a["over"], a["nxt"]),
-            "nxt": lambda a: a["cur"],
-            "over": lambda a: z3.If(drained, a["nxt"], a["over"])}
-    return s.copy(slots={b: role[b](s.slots) for b in BUFFERS}, slot_of={b: role[b](s.slot_of) for b in BUFFERS},
-                   # the ghost: a buffer left behind empty holds no cell
-                   inside={"cur": role["cur"](s.inside), "nxt": nothing, "over": z3.If(drained, nothing, s.inside["over"])},
-                   fill={"cur": fill_cur, "nxt": D.int32("zero_nxt"), "over": fill_over})
-
-
-def after_init_cost(D, m: Map):
-    """setupNavFn (no flag set, every buffer empty) then initCost's four ``push_cur`` of the
-    goal's neighbours: (the state, the fills' zeros to assume)."""
-    nothing = z3.K(cell_sort(D), False)
-    s = Buffers(D).copy(pending=nothing, fill={b: D.int32(f"zero_{b}") for b in BUFFERS},
-                        inside={b: nothing for b in BUFFERS})
-    zeros = [D.eq(s.fill[b], 0) for b in BUFFERS]
-    for n in m.neighbours(m.g):
-        s, _ = push(D, m, s, "cur", n, True)
-    return s, zeros
-
-
-# ------------------------------------------------------------------------------ the base case
 @obligation(BuffersInductive, **STATED,
-            scope="setupNavFn and initCost at any goal of a map of any size (the domain's int cell numbers)")
+            scope="the spec's setupNavFn and initCost at any goal of a map of any size (the domain's int cell numbers)")
 def setup_puts_each_pending_cell_in_one_slot(D):
     """After setupNavFn (no flag set, every buffer empty) and initCost's four ``push_cur`` of the
     goal's neighbours, the buffer invariant B holds at every cell and slot.
 
-    costs any, the component closed at the four neighbours
-    ==>  B at any cell q and at slot i of every buffer
+    the component closed at the cells initCost reads  ==>  B at any cell q and slot i of every buffer
     """
-    m = Map(D)
-    q, i = D.int32("q"), D.int32("i")
-    s, zeros = after_init_cost(D, m)
-    closed = [m.closed_at(n) for n in m.neighbours(m.g)]
-    pre = all_of(D, m.well_formed(), m.on_map(m.g), *zeros, *closed)
-    return pre, invariant(D, m, s, [q], [i], during=False)
+    return buffer_condition(D, "setup", "cycle")
 
 
-# ------------------------------------------------------------------ the start of a cycle
 @obligation(BuffersInductive, **STATED,
-            scope="one iteration of the loop clearing the current buffer's flags, on a map of any size")
+            scope="the start of any cycle of the spec's propNavFn*, on a map of any size")
+def a_cycle_starts_with_every_flag_to_clear(D):
+    """A cycle starts the clearing loop in its invariant C(0): B.
+
+    B at q, slot i  ==>  C(0) at q and slot i, the bound the current buffer's fill
+    """
+    return buffer_condition(D, "cycle", "clear")
+
+
+@obligation(BuffersInductive, **STATED,
+            scope="one iteration of the spec's loop clearing the current buffer's flags, on a map of any size")
 def clearing_a_flag_keeps_the_clearing_invariant(D):
-    """One iteration ``pending[curP[j]] = false`` of the loop at a cycle's start keeps its loop
-    invariant C(j): B but that a cell of the current buffer is pending exactly when its slot is
-    at least ``j``.  C(0) is B; C(fill of cur) is P (the next buffer being empty).
+    """One iteration ``pending[curP[k]] = false`` keeps the clearing loop's invariant C(k): B but
+    that a cell of the current buffer is pending exactly when its slot is at least ``k``.
 
-    C(j) at q, at slot j of cur and at the cells and slots read, 0 <= j < fill of cur
-    ==>  C(j + 1) at q and at slot i of every buffer
+    C(k) at q, at the cell and slot read, 0 <= k < fill of cur  ==>  C(k + 1) at q and slot i
     """
-    m = Map(D)
-    q, i, j = D.int32("q"), D.int32("i"), D.int32("j")
-    s = Buffers(D)
-    c = s.slots["cur"][j]
-    after = s.copy(pending=z3.Store(s.pending, c, False))
-    pre = all_of(D, m.well_formed(), fills(D, s, False), D.ge(j, 0), D.lt(j, s.fill["cur"]),
-                 at_cell(D, m, s, q, False, j), at_cell(D, m, s, c, False, j), at_slot(D, s, "cur", j),
-                 *(at_slot(D, s, b, i) for b in BUFFERS))
-    claim = z3.And(at_cell(D, m, after, q, False, D.add_int(j, 1)), *(at_slot(D, after, b, i) for b in BUFFERS))
-    return pre, claim
+    return buffer_condition(D, "clear", "clear")
 
 
 @obligation(BuffersInductive, **STATED,
-            scope="the end of the loop clearing the current buffer's flags, on a map of any size")
+            scope="the end of the spec's clearing loop and the start of its update loop, on a map of any size")
 def cleared_flags_give_the_cycle_invariant(D):
-    """When the clearing loop is done (j = fill of cur), its invariant is P; at its start
-    (j = 0) it is B.
+    """When the clearing loop is done (k = fill of cur), its invariant is P, the update loop's.
 
-    C(fill of cur) at q  ==>  P at q;   B at q  ==>  C(0) at q
+    C(fill of cur) at q, slot i  ==>  P at q and slot i
     """
-    m = Map(D)
-    q = D.int32("q")
-    s = Buffers(D)
-    pre = all_of(D, m.well_formed(), fills(D, s, False))
-    claim = z3.And(z3.Implies(at_cell(D, m, s, q, False, s.fill["cur"]), at_cell(D, m, s, q, True)),
-                   z3.Implies(at_cell(D, m, s, q, False), at_cell(D, m, s, q, False, 0)))
-    return pre, claim
+    return buffer_condition(D, "clear exit", "update")
 
 
-# --------------------------------------------------------------------- a push of an update
-@obligation(BuffersInductive, **STATED,
-            scope="one push of updateCell or updateCellAstar, of a 4-neighbour of a cell of the current buffer, "
-                  "into the buffer to_low_buffer picks, on a map of any size")
-def push_keeps_each_pending_cell_in_one_slot(D):
-    """A push of an update keeps P: the cell enters one slot (the next free one of its buffer),
-    its flag set, and only a passable cell of the component on the map enters.
+@obligation(BuffersInductive, slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"), **STATED,
+            scope="one iteration of the spec's update loop (updateCell or updateCellAstar on slot k of the current "
+                  "buffer, with its four pushes), on a map of any size")
+def update_keeps_each_pending_cell_in_one_slot(D):
+    """An update of the cell in slot k of cur keeps P: each push puts its cell in one slot (the
+    next free one of the buffer to_low_buffer picks), its flag set, and only a passable cell of
+    the component on the map enters.
 
-    P at q, at the pushed cell, at slot i and slot fill of every buffer, at the updated cell's
-    slot k of cur; the component closed at the pushed cell; the pushed cell a 4-neighbour of
-    the cell in slot k of cur, k < fill of cur; any wanted, key and curT
-    ==>  P at q and at slot i of every buffer after the push
+    P at q, slot i, and at the cells and slots the update touches; the component closed at them;
+    k < fill of cur  ==>  P at q and slot i after the update
     """
-    m = Map(D)
-    q, i, k, d = D.int32("q"), D.int32("i"), D.int32("k"), D.int32("direction")
-    s = Buffers(D)
-    n = s.slots["cur"][k]  # the updated cell
-    pushed = m.neighbour(n, d)
-    wanted = z3.Bool("wanted")
-    low = K.to_low_buffer(D, D.f32("key"), D.f32("curT"))
-    after, _ = push(D, m, s, (low, "nxt", "over"), pushed, wanted)
-    cells, slots = [q, pushed, n], [i, *(s.fill[b] for b in BUFFERS)]
-    pre = all_of(D, m.well_formed(), invariant(D, m, s, cells, slots, True), at_slot(D, s, "cur", k),
-                 D.ge(k, 0), D.lt(k, s.fill["cur"]), m.closed_at(pushed))
-    return pre, invariant(D, m, after, [q], [i], True)
+    return buffer_condition(D, "update", "update")
 
 
-# ------------------------------------------------------------------------ the end of a cycle
 @obligation(BuffersInductive, **STATED,
-            scope="the end of any cycle (kernels.end_of_cycle: the fills and the buffers' roles), on a map of any "
-                  "size")
+            scope="the end of the spec's update loop and of the cycle (kernels.end_of_cycle: the fills and the "
+                  "buffers' roles), on a map of any size")
 def swap_keeps_each_pending_cell_in_one_slot(D):
     """The swap at a cycle's end turns P into B: the next buffer becomes current (when it is
     empty, the overflow buffer does), the buffer left behind is empty.
 
-    P at q and at slot i of every buffer  ==>  B at q and at slot i of every buffer after the swap
+    P at q and slot i  ==>  B at q and slot i after the swap
     """
-    m = Map(D)
-    q, i = D.int32("q"), D.int32("i")
-    s = Buffers(D)
-    after = swapped(D, m, s)
-    pre = all_of(D, m.well_formed(), D.eq(after.fill["nxt"], 0), invariant(D, m, s, [q], [i], True))
-    return pre, invariant(D, m, after, [q], [i], False)
+    return buffer_condition(D, "update exit", "cycle")
 
 
 # ------------------------------------------------------------------------------------------
@@ -326,77 +259,60 @@ def potentials(D):
     return z3.Array("pot", cell_sort(D), D.f32const(0.0).sort())
 
 
+def reach_condition(D, source: str, target: str):
+    """The condition of the spec's segment from ``source`` to ``target`` for R1 and R2 at any cell
+    q, with the buffer invariant and valid potentials (BuffersInductive,
+    PositionSafeAndProgressInductive) assumed where the segment reads: (pre, claim).  R1 and R2
+    read whether potentials are below POT_HIGH, not their values: the run leaves every float
+    result free but its comparisons (:class:`~.program.FreeFloats`), which covers every
+    arithmetic."""
+    m = Map(D)
+    q, i = D.int32("q"), D.int32("i")
+
+    def at(loop, s, k, bound):
+        return z3.BoolVal(True), (lambda c: reach(D, m, s, s.potential, c)), (lambda b, j: z3.BoolVal(True))
+
+    def valid(loop, s, k, bound):
+        return z3.BoolVal(True), (lambda c: ValidPotential(D, s.potential[c])), (lambda b, j: z3.BoolVal(True))
+
+    return both_modes(D, m, lambda segs: condition(D, m, segs[(source, target)], at, q, i,
+                                                   assumed=(buffer_invariant(D, m), valid)),
+                      free_floats="arithmetic")
+
+
 @obligation(ReachedAndBufferedInductive, **STATED,
-            scope="setupNavFn and initCost at any goal of a map of any size (the domain's int cell numbers)")
+            scope="the spec's setupNavFn and initCost at any goal of a map of any size (the domain's int cell numbers)")
 def setup_reaches_the_goal_alone_and_buffers_its_neighbours(D):
     """After setupNavFn and initCost (every potential POT_HIGH but the goal's 0, the goal's four
     neighbours pushed), R1 and R2 hold at every cell.
 
     ==>  R1 and R2 at any cell q
     """
-    m = Map(D)
-    q = D.int32("q")
-    s, zeros = after_init_cost(D, m)
-    pot = z3.Store(z3.K(cell_sort(D), D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
-    pre = all_of(D, m.well_formed(), *zeros)
-    return pre, reach(D, m, s, pot, q)
+    return reach_condition(D, "setup", "cycle")
 
 
 @obligation(ReachedAndBufferedInductive, **STATED,
-            scope="updateCell's write at any cell of the current buffer, on a map of any size")
-def update_reaches_only_cells_of_the_component(D):
-    """updateCell at a cell n of the current buffer (a cell of the component, by the buffer
-    invariant) keeps R1 and R2: it writes only pot[n], never higher; and when it changes n,
-    n is reached after (the pushes that follow are of a reached cell's neighbours).
+            scope="the steps of the spec's propNavFn* but the updates (a cycle's start, the clearing loop, its end, "
+                  "the swap), on a map of any size")
+def the_steps_around_the_updates_keep_every_buffered_cell_beside_a_reached_one(D):
+    """The clearing loop changes flags only, which R1 and R2 do not read; the swap moves cells
+    between the buffers' roles and empties one: R1 and R2 stay.
 
-    P at n and at its slot k of cur, R1 and R2 at q, valid potentials at n
-    ==>  after pot[n] := updateCell(n): R1 and R2 at q, and n reached if changed
+    R1 and R2 at q  ==>  R1 and R2 at q after the step
     """
-    m = Map(D)
-    q, k = D.int32("q"), D.int32("k")
-    s = Buffers(D)
-    pot = potentials(D)
-    n = s.slots["cur"][k]
-    new, changed = K.cell_update(D, pot[n], *(pot[j] for j in m.updated(n)), m.cost_int(n),
-                                 D.cost_as_f32(m.cost[n]))
-    after = z3.Store(pot, n, new)
-    pre = all_of(D, m.well_formed(), D.ge(k, 0), D.lt(k, s.fill["cur"]), at_slot(D, s, "cur", k),
-                 at_cell(D, m, s, n, True), ValidPotential(D, pot[n]), reach(D, m, s, pot, q))
-    return pre, z3.And(reach(D, m, s, after, q), z3.Implies(changed, Reached(D, after[n])))
+    parts = [reach_condition(D, s, t) for s, t in SEGMENTS if s not in ("setup", "update")]
+    return z3.BoolVal(True), z3.And([claim for _, claim in parts])
 
 
 @obligation(ReachedAndBufferedInductive, **STATED,
-            scope="one push of updateCell or updateCellAstar from a reached cell, into the buffer to_low_buffer "
-                  "picks, on a map of any size")
-def push_buffers_only_a_neighbour_of_a_reached_cell(D):
-    """A push of a 4-neighbour of the updated cell n, reached (the update changed it), keeps R1
-    and R2: the pushed cell is beside n.
+            scope="one iteration of the spec's update loop (updateCell or updateCellAstar on slot k of the current "
+                  "buffer, with its four pushes), on a map of any size")
+def update_and_its_pushes_reach_only_cells_of_the_component(D):
+    """An update of the cell n in slot k of cur (a cell of the component, by the buffer invariant)
+    keeps R1 and R2: it writes only pot[n], never higher, and when it changes n, n is reached;
+    its pushes, made only then, are of n's neighbours.
 
-    R1 and R2 at q, pot[n] < POT_HIGH, the pushed cell a 4-neighbour of n, any wanted, key, curT
-    ==>  R1 and R2 at q after the push
+    P at the cells touched, R1 and R2 at q and there, valid potentials there
+    ==>  R1 and R2 at q after the update and its pushes
     """
-    m = Map(D)
-    q, n, d = D.int32("q"), D.int32("n"), D.int32("direction")
-    s = Buffers(D)
-    pot = potentials(D)
-    pushed = m.neighbour(n, d)
-    low = K.to_low_buffer(D, D.f32("key"), D.f32("curT"))
-    after, _ = push(D, m, s, (low, "nxt", "over"), pushed, z3.Bool("wanted"))
-    pre = all_of(D, m.well_formed(), Reached(D, pot[n]), reach(D, m, s, pot, q))
-    return pre, reach(D, m, after, pot, q)
-
-
-@obligation(ReachedAndBufferedInductive, **STATED,
-            scope="the end of any cycle (kernels.end_of_cycle), on a map of any size")
-def swap_keeps_every_buffered_cell_beside_a_reached_one(D):
-    """The swap moves cells between the buffers' roles and empties one: R1 and R2 stay.
-
-    R1 and R2 at q  ==>  R1 and R2 at q after the swap
-    """
-    m = Map(D)
-    q = D.int32("q")
-    s = Buffers(D)
-    pot = potentials(D)
-    after = swapped(D, m, s)
-    pre = all_of(D, m.well_formed(), D.eq(after.fill["nxt"], 0), reach(D, m, s, pot, q))
-    return pre, reach(D, m, after, pot, q)
+    return reach_condition(D, "update", "update")

@@ -16,7 +16,7 @@ small map far below it.  The chain, its trusted steps and what it rests on are s
 """
 
 from navfn_smt.proofs import FallbackPath
-from navfn_smt.proofs.induction import UnboundedMap, invariant_base, invariant_step
+from navfn_smt.proofs.induction import UnboundedMap, frame_condition, invariant_condition
 from navfn_smt.smt.obligation import Bound, obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of, any_of, minimum
 from navfn_smt.spec import kernels as K
@@ -123,7 +123,7 @@ def setup_gives_every_reached_cell_a_neighbour_below_its_floor(D):
 
     costs as setCostmap makes them  ==>  the invariant of FloorMap at any cell n, pot[g] = 0
     """
-    return invariant_base(D, FloorMap)
+    return invariant_condition(D, "setup", "cycle", FloorMap)
 
 
 @obligation(FallbackPath, scope="one updateCell at any cell of a map of any width (32-bit cell numbers), any "
@@ -136,7 +136,7 @@ def update_keeps_a_neighbour_below_the_floor_at_the_updated_cell(D):
     the invariant at c, its neighbours and the goal; in float32 the potential the update writes
     below 2**30  ==>  after pot[c] := updateCell(c), the invariant at c and pot[g] = 0
     """
-    return invariant_step(D, "updated", FloorMap)
+    return invariant_condition(D, "update", "update", FloorMap, "updated")
 
 
 @obligation(FallbackPath, scope="one updateCell at any cell of a map of any width (32-bit cell numbers), any "
@@ -148,4 +148,15 @@ def update_keeps_a_neighbour_below_the_floor_at_every_other_cell(D):
     the invariant at n, c, their neighbours and the goal; n != c  ==>  after the update, the
     invariant at n and pot[g] = 0
     """
-    return invariant_step(D, "other", FloorMap)
+    return invariant_condition(D, "update", "update", FloorMap, "other")
+
+
+@obligation(FallbackPath, scope="the steps of the spec's propNavFn* that write no potential, on a map of any size, "
+            "any goal", expect=FLOOR["expect"], arrays=True)
+def the_steps_around_the_updates_keep_a_neighbour_below_the_floor(D):
+    """A cycle's start, the loop clearing the flags, its end and the swap write no potential: each
+    keeps the strengthened invariant.
+
+    the invariant at q  ==>  the invariant at q after the step
+    """
+    return frame_condition(D, FloorMap)

@@ -22,13 +22,13 @@ chain is the data of :data:`navfn_smt.proofs.FrontierInductive`.
 
 import z3
 
+from navfn_smt.spec import kernels as K
+
 from navfn_smt.proofs import FrontierInductive
-from navfn_smt.proofs.buffers import (STATED, Buffers, Map, after_init_cost, at_cell, at_slot, cell_sort, fills,
-                                      potentials, push, swapped)
+from navfn_smt.proofs.buffers import STATED, Buffers, Map, at_cell, buffer_invariant, fills, potentials
+from navfn_smt.smt.program import SEGMENTS, condition, segments
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of
-from navfn_smt.spec import kernels as K
-from navfn_smt.spec.constants import POT_HIGH, PRIORITYBUFSIZE
 from navfn_smt.proofs.fix import KEY_BOUND  # a push key: a potential below POT_BOUND plus A*'s heuristic
 from navfn_smt.spec.fix import POT_BOUND
 
@@ -53,96 +53,91 @@ def frontier(D, m, s, pot, dropped, p, c, k=None):
     return z3.Implies(lhs, z3.Or(rhs))
 
 
-@obligation(FrontierInductive, **STATED, scope="setupNavFn and initCost at any goal of a map of any size")
+def frontier_condition(D, source: str, target: str, astar: bool):
+    """The condition of the spec's segment from ``source`` to ``target`` (A*'s run or Dijkstra's)
+    for F at any cell p and each of its four neighbours: (pre, claim).  Assumed where the segment
+    reads, at p and at p's neighbours: the buffer invariant (BuffersInductive), valid potentials
+    (PositionSafeAndProgressInductive), passable costs in [50, 253] (what setCostmap makes); at an
+    update, A*'s heuristic not negative and a changed cell's key below 2**31 (run-time
+    conditions)."""
+    m = Map(D)
+    p = D.int32("p")
+
+    def at(loop, s, k, bound):
+        k = {"cycle": None, "clear": 0}.get(loop, k)  # while the flags are cleared every cell of cur waits
+        return (z3.BoolVal(True),
+                lambda x: z3.And([frontier(D, m, s, s.potential, s.dropped, x, c, k) for c in m.neighbours(x)]),
+                lambda b, j: z3.BoolVal(True))
+
+    def facts(loop, s, k, bound):
+        return (z3.BoolVal(True), lambda x: z3.And(ValidPotential(D, s.potential[x]),
+                                                  z3.Implies(m.passable(x), TranslatedCost(D, m.cost_int(x)))),
+                lambda b, j: z3.BoolVal(True))
+
+    seg = segments(D, m, astar)[(source, target)]
+    given = []
+    if source == "update":
+        n = seg.before.slots["cur"][seg.k]
+        old, new = seg.before.potential[n], seg.after.potential[n]
+        key = new
+        for h in seg.heuristics:
+            key = D.add(new, h)
+            given.append(D.ge(h, D.f32const(0.0)))
+        given.append(z3.Implies(D.lt(new, old), D.lt(key, D.f32const(KEY_BOUND))))
+    return condition(D, m, seg, at, p, D.int32("i"), given=given, near=m.neighbours(p),
+                     assumed=(buffer_invariant(D, m), facts))
+
+
+def frontier_holds(D, pairs):
+    """The conditions of ``pairs`` of segments, in both modes, as one: (True, their implications)."""
+    parts = [frontier_condition(D, s, t, astar) for s, t in pairs for astar in (False, True)]
+    return z3.BoolVal(True), z3.And([z3.Implies(pre, claim) for pre, claim in parts])
+
+
+@obligation(FrontierInductive, expect=STATED["expect"], scope="A*'s heuristic between any two cells")
+def astar_heuristic_is_not_negative(D):
+    """The heuristic ``hypot(dx, dy) * COST_NEUTRAL`` of kernels.astar_heuristic is not negative,
+    for any int offsets (what the update's condition assumes of it).
+
+    any ints dx, dy  ==>  astar_heuristic(dx, dy) >= 0
+    """
+    return z3.BoolVal(True), D.ge(K.astar_heuristic(D, D.int32("dx"), D.int32("dy")), D.f32const(0.0))
+
+
+@obligation(FrontierInductive, **STATED, scope="the spec's setupNavFn and initCost at any goal of a map of any size")
 def setup_leaves_no_unreached_neighbour_unbuffered(D):
     """After setupNavFn and initCost (the goal alone reached, its four neighbours pushed) F holds.
 
-    ==>  F at any cell p and its neighbour in any direction e
+    ==>  F at any cell p and each of its neighbours
     """
-    m = Map(D)
-    p, e = D.int32("p"), D.int32("e")
-    c = m.neighbour(p, e)
-    s, zeros = after_init_cost(D, m)
-    pot = z3.Store(z3.K(cell_sort(D), D.f32const(POT_HIGH)), m.g, D.f32const(0.0))
-    pre = all_of(D, m.well_formed(), m.on_map(m.g), *zeros)
-    return pre, frontier(D, m, s, pot, False, p, c)
+    return frontier_holds(D, [("setup", "cycle")])
 
 
-@obligation(FrontierInductive, **STATED, scope="one iteration of the loop clearing the current buffer's flags, "
-            "on a map of any size")
-def clearing_a_flag_keeps_the_frontier(D):
-    """One iteration ``pending[curP[j]] = false`` keeps F with every cell of the current buffer
-    waiting (k = 0): the cleared cell is in the current buffer.
+@obligation(FrontierInductive, **STATED, scope="the steps of the spec's propNavFn* but the updates (a cycle's "
+            "start, the clearing loop, its end, the swap), on a map of any size")
+def the_steps_around_the_updates_keep_the_frontier(D):
+    """A cycle starts with every cell of cur waiting (k = 0); clearing a flag leaves its cell
+    waiting in cur; the updates start at k = 0; after the last (k = fill of cur) the swap changes
+    no flag, potential or ``dropped``.
 
-    F(k = 0) at (p, c), slot j of cur filled  ==>  F(k = 0) at (p, c) after
+    F at (p, c), the buffer invariant  ==>  F at (p, c) after the step
     """
-    m, p, c, s, pot, dropped, j = pair_state(D, "j")
-    x = s.slots["cur"][j]
-    after = s.copy(pending=z3.Store(s.pending, x, False))
-    pre = all_of(D, m.well_formed(), D.ge(j, 0), D.lt(j, s.fill["cur"]), at_slot(D, s, "cur", j),
-                 frontier(D, m, s, pot, dropped, p, c, 0))
-    return pre, frontier(D, m, after, pot, dropped, p, c, 0)
+    return frontier_holds(D, [(s, t) for s, t in SEGMENTS if s not in ("setup", "update")])
 
 
-@obligation(FrontierInductive, **STATED, scope="the start of a cycle's updates and the end of the cycle (kernels."
-            "end_of_cycle), on a map of any size")
-def frontier_holds_as_the_updates_start_and_after_the_swap(D):
-    """F between cycles gives F with k = 0; F with k = fill of cur (every update done) gives F
-    after the swap, which changes no flag, potential or ``dropped``.
-
-    P at c  ==>  (F at (p, c) ==> F(0) at (p, c)) and (F(fill of cur) at (p, c) ==> F after the swap)
-    """
-    m = Map(D)
-    p, e = D.int32("p"), D.int32("e")
-    c = m.neighbour(p, e)
-    s = Buffers(D)
-    pot = potentials(D)
-    dropped = z3.Bool("dropped")
-    after = swapped(D, m, s)
-    pre = all_of(D, m.well_formed(), fills(D, s, True), at_cell(D, m, s, c, True))
-    claim = z3.And(z3.Implies(frontier(D, m, s, pot, dropped, p, c), frontier(D, m, s, pot, dropped, p, c, 0)),
-                   z3.Implies(frontier(D, m, s, pot, dropped, p, c, s.fill["cur"]),
-                              frontier(D, m, after, pot, dropped, p, c)))
-    return pre, claim
-
-
-@obligation(FrontierInductive, **STATED, slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"),  # float32: 20-40 s
-            scope="one updateCell or updateCellAstar of any slot of the current buffer "
-            "with its four pushes, on a map of any size")
+@obligation(FrontierInductive, **STATED, slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"),
+            scope="one iteration of the spec's update loop (updateCell or updateCellAstar on slot k of the current "
+                  "buffer, with its four pushes), on a map of any size")
 def update_and_its_pushes_keep_the_frontier(D):
-    """updateCell on slot k of the current buffer, then its four pushes (in the update's
-    `if (pot < potarr[n])` block: only when it changed its cell), takes F from k to k + 1.
+    """updateCell on slot k of the current buffer, then its four pushes (only when it changed its
+    cell), takes F from k to k + 1.
 
-    P at c, p, the updated cell n and its neighbours; valid potentials there; passable costs in
-    [50, 253] at n and c (what setCostmap makes); a changed cell's key (its potential, plus A*'s
-    heuristic) below 2**31; F(k) at (p, c) and at each neighbour of n with n
-    ==>  F(k + 1) at (p, c) after the write and the pushes (``dropped`` set by a push refused
-    for want of room)
+    P, valid potentials, passable costs in [50, 253] at p, its neighbours and the cells the update
+    touches; a changed cell's key (its potential, plus A*'s heuristic, not negative) below 2**31;
+    F(k) there  ==>  F(k + 1) at (p, c) after the write and the pushes (``dropped`` set by a push
+    refused for want of room)
     """
-    m, p, c, s, pot, dropped, k = pair_state(D, "k")
-    n = s.slots["cur"][k]
-    nb = m.updated(n)
-    new, changed = K.cell_update(D, pot[n], *(pot[j] for j in nb), m.cost_int(n), D.cost_as_f32(m.cost[n]))
-    pot2 = z3.Store(pot, n, new)
-    key = D.f32("key")  # new, or new plus A*'s heuristic
-    low = K.to_low_buffer(D, key, D.f32("curT"))
-    t = s
-    drop = dropped
-    for j in nb:
-        wanted = D.and_(changed, K.push_wanted(D, pot[j], key, K.edge_weight(D, D.cost_as_f32(m.cost[j]))))
-        fill_t = D.ite(low, t.fill["nxt"], t.fill["over"])
-        _, lost, _ = K.push(D, j, m.ns, t.pending[j], m.cost_int(j), fill_t, PRIORITYBUFSIZE)
-        drop = z3.Or(drop, D.and_(wanted, lost))
-        t, _ = push(D, m, t, (low, "nxt", "over"), j, wanted)
-    cells = [c, n, p, *nb]
-    pre = all_of(D, m.well_formed(), fills(D, s, True), D.ge(k, 0), D.lt(k, s.fill["cur"]), at_slot(D, s, "cur", k),
-                 *(at_cell(D, m, s, x, True) for x in cells), *(ValidPotential(D, pot[x]) for x in [n, *nb, p, c]),
-                 z3.Implies(m.passable(n), TranslatedCost(D, m.cost_int(n))),
-                 z3.Implies(m.passable(c), TranslatedCost(D, m.cost_int(c))),
-                 z3.Implies(changed, z3.And(D.ge(key, new), D.lt(key, D.f32const(KEY_BOUND)))),
-                 frontier(D, m, s, pot, dropped, p, c, k),
-                 *(frontier(D, m, s, pot, dropped, x, n, k) for x in nb))
-    return pre, frontier(D, m, t, pot2, drop, p, c, D.add_int(k, 1))
+    return frontier_holds(D, [("update", "update")])
 
 
 @obligation(FrontierInductive, **STATED, scope="the loop's exit with both buffers empty, on a map of any size")

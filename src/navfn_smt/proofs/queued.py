@@ -14,7 +14,8 @@ The bounded checks rely on it (:func:`navfn_smt.check.bounded.flippable`): explo
 import z3
 
 from navfn_smt.proofs import QueuedStartReached
-from navfn_smt.proofs.buffers import Buffers, Map, at_cell, at_slot, potentials
+from navfn_smt.proofs.buffers import Map, buffer_invariant
+from navfn_smt.smt.program import both_modes, condition
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of, any_of
 from navfn_smt.spec import kernels as K
@@ -41,77 +42,82 @@ def queued_cell_gets_reached(D):
 
 
 # ------------------------------------------------------------------------------------------
-# The loop over the current buffer (issue #39): a cycle updates the cells of its current
-# buffer's slots 0, 1, ..., curPe - 1 in turn, and its updates write the potentials (only the
-# updated cell's) while their pushes write flags and the next and overflow buffers, never the
-# current one (proofs/buffers.py: push).  The start waits in the current buffer at a ghost slot
-# j (slots[j] = start); the loop invariant Q(k), k the next slot to update:
+# The spec's update loop over the current buffer (smt/program.py), cut at its invariant.  The start
+# waits in the current buffer at a ghost slot j (slots[j] = start); the invariant Q(k), k the next
+# slot to update:
 #     k > j  ==>  the start is reached;   and the start is reached or a 4-neighbour of it is
 #     below the bound.
 # Q(0) holds as the updates start (a buffered cell has a reached 4-neighbour:
 # ReachedAndBufferedInductive; below the bound: the run-time condition), every update keeps it
-# from k to k + 1, and Q(curPe) with j < curPe is the start reached.
+# from k to k + 1, and Q(curPe) with j < curPe is the start reached after the swap.
 # ------------------------------------------------------------------------------------------
-def _waiting_start(D):
-    """The map, the buffers, the potentials, the start's ghost slot ``j`` in the current buffer
-    and the start (``slots[j]``)."""
-    m, s = Map(D), Buffers(D)
-    j = D.int32("j")
-    return m, s, potentials(D), j, s.slots["cur"][j]
-
-
-def _loop_invariant(D, m, s, pot, j, start, k):
+def _loop_invariant(D, m, pot, j, start, k):
     """Q(k): past its slot, the start is reached; else it is reached or beside a cell below the bound."""
     beside = any_of(D, *(D.lt(pot[q], D.f32const(POT_BOUND)) for q in m.neighbours(start)))
     return all_of(D, any_of(D, D.le(k, j), Reached(D, pot[start])), any_of(D, Reached(D, pot[start]), beside))
 
 
+def queued_condition(D, source: str, target: str):
+    """The condition of the spec's segment from ``source`` to ``target`` (Dijkstra's run and A*'s)
+    for a start waiting at slot j of the current buffer: as the updates start, beside a reached
+    cell below the bound; Q(k) through the updates; reached after the swap.  Assumed: the buffer
+    invariant at the start and where the segment reads, valid potentials there and beside the
+    start, passable costs in [50, 253] there: (pre, claim)."""
+    m = Map(D)
+    j, start = D.int32("j"), D.int32("start")
+    ring = m.neighbours(start)
+
+    def at(loop, s, k, bound):
+        pot = s.potential
+        waits = all_of(D, s.slots["cur"][j] == start, D.ge(j, 0), D.lt(j, s.fill["cur"]))
+        if loop == "clear":  # queued: beside a reached cell (R2), reached cells below the bound
+            whole = all_of(D, waits, any_of(D, *(Reached(D, pot[q]) for q in ring)),
+                           *(any_of(D, D.not_(Reached(D, pot[q])), D.lt(pot[q], D.f32const(POT_BOUND)))
+                             for q in ring))
+        elif loop == "update":
+            whole = all_of(D, waits, D.eq(s.fill["cur"], bound), _loop_invariant(D, m, pot, j, start, k))
+        else:
+            whole = Reached(D, pot[start])
+        return whole, (lambda c: z3.BoolVal(True)), (lambda b, i: z3.BoolVal(True))
+
+    def facts(loop, s, k, bound):
+        return (z3.BoolVal(True), lambda c: z3.And(ValidPotential(D, s.potential[c]),
+                                                  z3.Implies(m.passable(c), TranslatedCost(D, m.cost_int(c)))),
+                lambda b, i: z3.BoolVal(True))
+
+    return both_modes(D, m, lambda segs: condition(D, m, segs[(source, target)], at, start, j,
+                                                   near=(start, *ring), assumed=(buffer_invariant(D, m), facts)))
+
+
 @obligation(QueuedStartReached, expect={"real": "proved", "fp32": "proved",
                                         "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"}, arrays=True,
-            scope="the start of a cycle's updates and their end (k = 0 and k = curPe), any fill and any slot of "
-                  "the start: every map size")
+            scope="the start of the spec's update loop and its end with the swap, any fill and any slot of the "
+                  "start: every map size")
 def queued_start_is_beside_a_reached_cell_as_the_updates_start_and_reached_when_they_end(D):
     """As a cycle's updates start (k = 0), a start waiting in the current buffer is beside a reached
     cell, which is below the bound: Q(0); when they end (k = curPe, past the start's slot), Q gives
-    the start reached.
+    the start reached, which the swap keeps.
 
     the start at slot j < curPe of cur, a reached 4-neighbour of it (R2), reached cells below the bound
-    ==>  Q(0), and (Q(curPe)  ==>  the start reached)
+    ==>  Q(0);   Q(curPe)  ==>  the start reached after the swap
     """
-    m, s, pot, j, start = _waiting_start(D)
-    fill = s.fill["cur"]
-    ring = m.neighbours(start)
-    pre = all_of(D, m.well_formed(), D.ge(j, 0), D.lt(j, fill), at_slot(D, s, "cur", j),
-                 any_of(D, *(Reached(D, pot[q]) for q in ring)),
-                 *(any_of(D, D.not_(Reached(D, pot[q])), D.lt(pot[q], D.f32const(POT_BOUND))) for q in ring))
-    ends = any_of(D, D.not_(_loop_invariant(D, m, s, pot, j, start, fill)), Reached(D, pot[start]))
-    return pre, all_of(D, _loop_invariant(D, m, s, pot, j, start, 0), ends)
+    parts = [queued_condition(D, s, t) for s, t in (("clear exit", "update"), ("update exit", "cycle"))]
+    return z3.BoolVal(True), z3.And([claim for _, claim in parts])
 
 
 @obligation(QueuedStartReached, expect={"real": "proved", "fp32": "proved",
                                         "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"}, arrays=True,
-            scope="updateCell or updateCellAstar at any slot k of the current buffer, any slot of the start, any "
-                  "neighbours: every map size")
+            slow=("fp32", "fp32@x86-64-v3", "fp32@aarch64"),
+            scope="one iteration of the spec's update loop (updateCell or updateCellAstar at any slot k of the "
+                  "current buffer, with its pushes), any slot of the start: every map size")
 def update_of_any_slot_keeps_a_passed_queued_start_reached(D):
-    """updateCell at slot k of the current buffer takes Q from k to k + 1: at the start's own slot
+    """The update of slot k of the current buffer takes Q from k to k + 1: at the start's own slot
     the start, passable (the buffer invariant) and beside a cell below the bound, gets reached
     (queued_cell_gets_reached); at any other slot the write lowers one potential at most
     (Monotone), so a reached start stays reached and a neighbour below the bound stays below.
 
-    Q(k), 0 <= k < curPe, the start at slot j of cur, P at the start and the updated cell, valid
-    potentials at them and their neighbours, passable costs in [50, 253]
-    ==>  Q(k + 1) after pot[n] := updateCell(n), n the cell of slot k
+    Q(k), 0 <= k < curPe, the start at slot j of cur, P at the start and the cells the update reads,
+    valid potentials there and beside the start, passable costs in [50, 253]
+    ==>  Q(k + 1) after the update
     """
-    m, s, pot, j, start = _waiting_start(D)
-    k = D.int32("k")
-    n = s.slots["cur"][k]
-    new, _ = K.cell_update(D, pot[n], *(pot[q] for q in m.updated(n)), m.cost_int(n), D.cost_as_f32(m.cost[n]))
-    after = z3.Store(pot, n, new)
-    cells = [start, n]
-    read = [*cells, *m.neighbours(start), *m.neighbours(n)]
-    pre = all_of(D, m.well_formed(), D.ge(k, 0), D.lt(k, s.fill["cur"]), D.ge(j, 0), D.lt(j, s.fill["cur"]),
-                 at_slot(D, s, "cur", j), at_slot(D, s, "cur", k), *(at_cell(D, m, s, q, True) for q in cells),
-                 *(ValidPotential(D, pot[q]) for q in read),
-                 *(any_of(D, D.not_(m.passable(q)), TranslatedCost(D, m.cost_int(q))) for q in cells),
-                 _loop_invariant(D, m, s, pot, j, start, k))
-    return pre, _loop_invariant(D, m, s, after, j, start, D.add_int(k, 1))
+    return queued_condition(D, "update", "update")

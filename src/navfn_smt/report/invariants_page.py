@@ -75,6 +75,8 @@ KERNEL_CODE = {
                  "build may fuse",
     # the loops' steps the spec and the JIT run, by module
     "propagation.cycle_runs": "`NavFn::propNavFnDijkstra` / `propNavFnAstar`: the loop's test at a cycle's top",
+    "propagation.propagate": "`NavFn::setupNavFn`, `initCost` and `propNavFnDijkstra` / `propNavFnAstar`: the run "
+                             "over arrays, its loops cut at their invariants (smt/program.py)",
     "propagation.call_ends_at_the_start": "`NavFn::propNavFnDijkstra` / `propNavFnAstar`: the start test at a "
                                           "cycle's end",
     "extraction.iteration_test": "`NavFn::calcPath`: the tests at an iteration's top (the near-goal probe, the "
@@ -246,6 +248,9 @@ def statement_parts(doc: str) -> tuple[str, list[str], list[str]]:
     return english, notes, [ln.rstrip() for ln in paras[-1].splitlines()]
 
 
+RUN = "propagation.propagate"
+
+
 def kernels_used(build) -> list[str]:
     """The spec functions an obligation's ``build`` calls, in order of first use: the kernels
     (``K.name``, named bare) and the loops' steps (``P.``, ``E.``, ``F.``: ``propagation.name``,
@@ -274,6 +279,8 @@ def kernels_used(build) -> list[str]:
                 helper = scope.get(node.func.id)
                 if inspect.isfunction(helper) and Path(helper.__code__.co_filename).parent == proofs:
                     visit(helper)
+                elif getattr(helper, "__module__", None) == "navfn_smt.smt.program" and RUN not in found:
+                    found.append(RUN)  # a segment of the spec's run over arrays
 
     visit(build)
     return found

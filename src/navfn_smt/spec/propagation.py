@@ -1,12 +1,18 @@
-"""Potential propagation: ``setupNavFn``, ``propNavFnDijkstra`` and ``propNavFnAstar``.
+"""Potential propagation: ``setupNavFn``, ``initCost``, ``propNavFnDijkstra`` and ``propNavFnAstar``.
 
-The reference implementation: plain Python loops around the kernels of
-:mod:`.kernels`, evaluated in the concrete domain.  State is kept in flat lists indexed
-by ``n = y * nx + x`` like the C++ arrays.
+Stated once, as steps over a state: :func:`init_cost`, :func:`push`, :func:`update_cell`,
+:func:`run_cycle` (the clearing loop, the update loop, :func:`end_of_cycle`) and the loop of
+:func:`propagate`.  The state's few operations are its array model's: arrays filled with one
+value, a buffer's conditional append, a choice between two buffers, the loops.  Here the model
+is concrete (:class:`PropagationState`: flat lists indexed by ``n = y * nx + x`` like the C++
+arrays); the proofs over arrays run the same functions on a state of SMT arrays
+(``smt/program.py``), which turns each loop into the conditions of its invariant.  So no
+condition depends on the data through Python's ``if``: the steps compute with the domain's
+``ite``, ``and_`` and ``not_``.
 
-Priority buffers are three bounded FIFO lists (capacity PRIORITYBUFSIZE, or the
-``capacity`` a caller gives ``setup``); a push to a full buffer is silently dropped, as in
-the C++ macros.  ``curT`` is a float.
+Priority buffers are three bounded FIFO buffers (capacity PRIORITYBUFSIZE, or the ``capacity``
+a caller gives ``setup``); a push to a full buffer is silently dropped, as in the C++ macros.
+``curT`` is a float.
 """
 
 from __future__ import annotations
@@ -17,14 +23,13 @@ from typing import Callable, Optional
 from ..errors import NavfnInputError
 from . import kernels as K
 from .constants import COST_OBS, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
-from .numeric import CONCRETE as D
+from .numeric import CONCRETE
 
 TraceHook = Callable[[int, list], None]
 
 # Tables built by the kernels themselves (same code, evaluated once per cost value).
-_HF = [D.int_to_f32(c) for c in range(256)]
-_EDGE = [K.edge_weight(D, _HF[c]) for c in range(256)]
-_POT_HIGH = D.f32const(POT_HIGH)
+_HF = [CONCRETE.int_to_f32(c) for c in range(256)]
+_EDGE = [K.edge_weight(CONCRETE, _HF[c]) for c in range(256)]
 
 
 def cycle_limit(nx: int, ny: int) -> int:
@@ -38,29 +43,117 @@ def unbounded_capacity(nx: int, ny: int) -> int:
     return nx * ny
 
 
+class Buffer:
+    """One priority buffer (``curP``, ``nextP`` or ``overP`` with its fill): its cells in slot order."""
+
+    __slots__ = ("cells",)
+
+    def __init__(self, cells=None):
+        self.cells = [] if cells is None else cells
+
+    @property
+    def fill(self) -> int:
+        return len(self.cells)
+
+    def cell(self, k: int) -> int:
+        return self.cells[k]
+
+    def append_if(self, admitted: bool, n: int) -> None:
+        """A push's write: ``n`` into slot ``fill``, the fill one up, when ``admitted``."""
+        if admitted:
+            self.cells.append(n)
+
+    def with_fill(self, fill: int) -> "Buffer":
+        return Buffer(self.cells[:fill])
+
+    def emptied(self) -> "Buffer":
+        return Buffer()
+
+    def __len__(self) -> int:
+        return len(self.cells)
+
+    def __iter__(self):
+        return iter(self.cells)
+
+
 @dataclass
 class PropagationState:
-    """The arrays and counters of one propagation; what the trace and hashes are read from."""
+    """The arrays and counters of one propagation, in the concrete array model; what the trace
+    and hashes are read from."""
 
     nx: int
     ny: int
     costs: list  # ints 0..255, border already lethal
-    potential: list  # float32 values
-    pending: list
-    cur_t: float
-    cur: list = field(default_factory=list)
-    nxt: list = field(default_factory=list)
-    over: list = field(default_factory=list)
+    potential: list = field(default_factory=list)  # float32 values
+    pending: list = field(default_factory=list)
+    cur_t: float = 0.0
+    cur: Buffer = field(default_factory=Buffer)
+    nxt: Buffer = field(default_factory=Buffer)
+    over: Buffer = field(default_factory=Buffer)
     cycles: int = 0  # cycles that processed at least one cell
     updates: int = 0
     dropped: int = 0  # pushes rejected because the buffer was full
     trace: list = field(default_factory=list)  # [n0, c, c, ..., n1, c, ...]
     capacity: int = PRIORITYBUFSIZE  # of each buffer; C++ fixes it at PRIORITYBUFSIZE
-    domain: object = D  # the concrete domain in the build's arithmetic (updateCell's multiply-adds)
+    domain: object = CONCRETE  # the concrete domain in the build's arithmetic (updateCell's multiply-adds)
+    D = CONCRETE  # the domain of every other step
 
     @property
     def ns(self) -> int:
         return self.nx * self.ny
+
+    # the concrete array model ------------------------------------------------------------
+    def filled(self, value) -> list:
+        return [value] * self.ns
+
+    def index(self, n: int) -> int:
+        """A read inside the arrays: the push's guard itself tests ``n`` against the map."""
+        return min(max(n, 0), self.ns - 1)
+
+    def cost_f32(self, n: int) -> float:
+        return _HF[self.costs[n]]
+
+    def edge(self, n: int) -> float:
+        return _EDGE[self.costs[n]]
+
+    def heuristic(self, n: int, start: tuple[int, int]) -> float:
+        """A*'s heuristic from cell ``n`` to the start (:func:`kernels.astar_heuristic`)."""
+        return _heuristic(n % self.nx - start[0], n // self.nx - start[1])
+
+    @staticmethod
+    def pick(cond: bool, a: Buffer, b: Buffer) -> Buffer:
+        return a if cond else b
+
+    def note_drop(self, dropped: bool) -> None:
+        self.dropped += bool(dropped)
+
+    @staticmethod
+    def loop(name: str, bound: int):
+        return range(bound)
+
+    @staticmethod
+    def cycle_loop(runs: Callable[[], bool]):
+        while runs():
+            yield
+
+    def record_cycle(self, cycle: int, trace_hook: Optional[TraceHook], record_trace: bool) -> None:
+        cells = self.cur.cells
+        self.cycles += 1
+        if record_trace:
+            self.trace.append(len(cells))
+            self.trace.extend(cells)
+        if trace_hook is not None:
+            trace_hook(cycle, list(cells))
+
+
+_HEURISTIC_CACHE: dict = {}
+
+
+def _heuristic(ddx: int, ddy: int) -> float:
+    h = _HEURISTIC_CACHE.get((ddx, ddy))
+    if h is None:
+        h = _HEURISTIC_CACHE[(ddx, ddy)] = K.astar_heuristic(CONCRETE, ddx, ddy)
+    return h
 
 
 def check_capacity(capacity) -> int:
@@ -71,86 +164,93 @@ def check_capacity(capacity) -> int:
     return c
 
 
-def _push(st: PropagationState, buf: list, n: int) -> None:
-    """The ``push_cur/push_next/push_over`` macros: the kernel :func:`kernels.push` (capacity
-    PRIORITYBUFSIZE unless the caller chose another) decides the push and the pending flag; a
-    push refused only for want of room is counted as dropped (C++ drops it silently)."""
-    ns = st.nx * st.ny
-    j = min(max(n, 0), ns - 1)  # a read inside the arrays: the guard itself tests n against the map
-    admitted, dropped, st.pending[j] = K.push(D, n, ns, st.pending[j], st.costs[j], len(buf), st.capacity)
-    if admitted:
-        buf.append(n)
-    elif dropped:  # admitted but for the full buffer (PRIORITYBUFSIZE)
-        st.dropped += 1
-
-
+# ------------------------------------------------------------------------------ the steps
 def setup(costs_with_border: list, nx: int, ny: int, goal: tuple[int, int],
           capacity: Optional[int] = None, arith=None) -> PropagationState:
-    """``setupNavFn(true)``: potentials to POT_HIGH, buffers empty, ``curT = COST_OBS``,
-    then ``initCost(goal, 0)``: the goal gets potential 0 and its four neighbours are
-    pushed onto the current buffer (right, left, up, down).
+    """``setupNavFn(true)`` and ``initCost(goal, 0)`` on a concrete state (:func:`init_cost`).
 
     ``capacity`` bounds each buffer (default PRIORITYBUFSIZE, as in C++; see
     :func:`unbounded_capacity` for one that never drops); ``arith``: the build's
     :class:`~.arithmetic.Arithmetic` (default x86-64's)."""
-    ns = nx * ny
-    st = PropagationState(
-        nx=nx,
-        ny=ny,
-        costs=costs_with_border,
-        potential=[_POT_HIGH] * ns,
-        pending=[False] * ns,
-        cur_t=D.f32const(COST_OBS),
-        capacity=PRIORITYBUFSIZE if capacity is None else check_capacity(capacity),
-        domain=D if arith is None else D.with_arithmetic(arith),
-    )
-    k = goal[0] + goal[1] * nx
-    st.potential[k] = D.f32const(0.0)
-    for n in (k + 1, k - 1, k - nx, k + nx):
-        _push(st, st.cur, n)
+    st = PropagationState(nx=nx, ny=ny, costs=costs_with_border,
+                          capacity=PRIORITYBUFSIZE if capacity is None else check_capacity(capacity),
+                          domain=CONCRETE if arith is None else CONCRETE.with_arithmetic(arith))
+    init_cost(st, goal[0] + goal[1] * nx)
     return st
+
+
+def init_cost(st, k) -> None:
+    """``setupNavFn(true)``: potentials to POT_HIGH, no cell pending, buffers empty,
+    ``curT = COST_OBS``; then ``initCost(k, 0)``: the goal cell ``k`` gets potential 0 and its
+    four neighbours are pushed onto the current buffer (right, left, up, down)."""
+    D = st.D
+    st.potential, st.pending = st.filled(D.f32const(POT_HIGH)), st.filled(False)
+    st.cur, st.nxt, st.over = st.cur.emptied(), st.nxt.emptied(), st.over.emptied()
+    st.cur_t = D.f32const(COST_OBS)
+    st.potential[k] = D.f32const(0.0)
+    for n in (k + 1, k - 1, k - st.nx, k + st.nx):
+        push(st, n, True)
+
+
+def push(st, n, wanted, low=None) -> None:
+    """The ``push_cur`` macro (``low`` None) or, when an update ``wanted`` the push,
+    ``push_next`` where ``low`` holds and ``push_over`` where not: the kernel
+    :func:`kernels.push` decides the push and the pending flag (capacity PRIORITYBUFSIZE unless
+    the caller chose another); a push refused only for want of room is counted as dropped (C++
+    drops it silently)."""
+    D = st.D
+    into = ((st.cur, True),) if low is None else ((st.nxt, low), (st.over, D.not_(low)))
+    fill = st.cur.fill if low is None else D.ite(low, st.nxt.fill, st.over.fill)
+    j = st.index(n)
+    admitted, dropped, pending = K.push(D, n, st.ns, st.pending[j], st.costs[j], fill, st.capacity)
+    st.pending[j] = D.ite(wanted, pending, st.pending[j])
+    for buf, chosen in into:
+        buf.append_if(D.and_(D.and_(wanted, admitted), chosen), n)
+    st.note_drop(D.and_(wanted, dropped))
 
 
 def update_neighbours(n, nx):
     """``updateCell(n)``'s four neighbours in the order it reads them (``l, r, u, d``) and pushes
-    them: ``n-1, n+1, n-nx, n+nx`` (ints, or a domain's int terms: the proofs over arrays take
-    them from here too)."""
+    them: ``n-1, n+1, n-nx, n+nx`` (ints, or a domain's int terms)."""
     return n - 1, n + 1, n - nx, n + nx
 
 
-def _update_cell(st: PropagationState, n: int, astar_start: Optional[tuple[int, int]]) -> None:
-    """``updateCell(n)`` (Dijkstra) or ``updateCellAstar(n)`` when ``astar_start`` is given."""
+def update_cell(st, n, astar_start: Optional[tuple] = None) -> None:
+    """``updateCell(n)`` (Dijkstra) or ``updateCellAstar(n)`` when ``astar_start`` is given: the
+    kernel :func:`kernels.cell_update` (``if (pot < potarr[n])``; an obstacle keeps its
+    potential), then, when it changed the cell, the pushes of its neighbours the potential
+    wants, into the buffer ``kernels.to_low_buffer`` picks by the key (the potential, plus A*'s
+    heuristic)."""
+    D = st.D
     st.updates += 1
-    nx = st.nx
-    pot = st.potential
-    cost = st.costs[n]
-    if not K.is_passable(D, cost):  # skip the arithmetic on obstacles (cell_update keeps them)
-        return
-    around = update_neighbours(n, nx)
-    l, r, u, d = (pot[m] for m in around)
-    new, changed = K.cell_update(st.domain, pot[n], l, r, u, d, cost, _HF[cost])
-    pot[n] = new  # the old potential unless changed: cell_update is the `if (pot < potarr[n])`
-    if not changed:
-        return
-    key = new
-    if astar_start is not None:
-        x, y = n % nx, n // nx
-        key = D.add(new, _heuristic(x - astar_start[0], y - astar_start[1]))
-    buf = st.nxt if K.to_low_buffer(D, key, st.cur_t) else st.over
-    costs = st.costs
+    around = update_neighbours(n, st.nx)
+    l, r, u, d = (st.potential[m] for m in around)
+    new, changed = K.cell_update(st.domain, st.potential[n], l, r, u, d, st.costs[n], st.cost_f32(n))
+    st.potential[n] = new  # the old potential unless changed
+    key = new if astar_start is None else D.add(new, st.heuristic(n, astar_start))
+    low = K.to_low_buffer(D, key, st.cur_t)
     for m, pm in zip(around, (l, r, u, d)):
-        if K.push_wanted(D, pm, key, _EDGE[costs[m]]):
-            _push(st, buf, m)
+        push(st, m, D.and_(changed, K.push_wanted(D, pm, key, st.edge(m))), low)
 
 
-_HEURISTIC_CACHE: dict = {}
+def end_of_cycle(st, inc) -> None:
+    """The swap at a cycle's end (:func:`kernels.end_of_cycle`): the next buffer becomes current,
+    or, when it is empty, the overflow buffer does (and ``curT += priInc``); the old current
+    buffer's slots become the next buffer's, empty."""
+    D = st.D
+    drained, fill_cur, fill_over, st.cur_t = K.end_of_cycle(D, st.nxt.fill, st.over.fill, st.cur_t, inc)
+    cur, over = st.pick(drained, st.over, st.nxt), st.pick(drained, st.nxt, st.over)
+    st.cur, st.nxt, st.over = cur.with_fill(fill_cur), st.cur.emptied(), over.with_fill(fill_over)
 
 
-def _heuristic(ddx: int, ddy: int) -> float:
-    h = _HEURISTIC_CACHE.get((ddx, ddy))
-    if h is None:
-        h = _HEURISTIC_CACHE[(ddx, ddy)] = K.astar_heuristic(D, ddx, ddy)
-    return h
+def run_cycle(st, astar_start, inc) -> None:
+    """One cycle of ``propNavFn*``: clear the pending flags of the current buffer's cells, update
+    each of them in slot order, then :func:`end_of_cycle`."""
+    for k in st.loop("clear", st.cur.fill):
+        st.pending[st.cur.cell(k)] = False
+    for k in st.loop("update", st.cur.fill):
+        update_cell(st, st.cur.cell(k), astar_start)
+    end_of_cycle(st, inc)
 
 
 def buffers_hold_cells(D, fill_cur, fill_next):
@@ -172,16 +272,16 @@ def call_ends_at_the_start(D, start_pot):
 
 
 def propagate(
-    st: PropagationState,
-    start: tuple[int, int],
-    goal: tuple[int, int],
+    st,
+    start: tuple,
+    goal: tuple,
     astar: bool,
     cycles: int,
     at_start: bool = True,
     pri_inc: int = PRI_INC,
     trace_hook: Optional[TraceHook] = None,
     record_trace: bool = True,
-) -> bool:
+):
     """Run ``propNavFnAstar(cycles)`` or ``propNavFnDijkstra(cycles, atStart)``.
 
     Returns what the C++ returns: for A*, whether the start cell got a finite
@@ -189,35 +289,19 @@ def propagate(
     ``trace_hook(cycle, cells)`` is called with the current buffer's contents, in
     processing order, for every cycle that processes cells.
     """
-    nx = st.nx
-    start_cell = start[1] * nx + start[0]
+    D = st.D
+    start_cell = start[1] * st.nx + start[0]
     astar_start = start if astar else None
     if astar:
-        st.cur_t = D.add(_heuristic(goal[0] - start[0], goal[1] - start[1]), st.cur_t)
+        st.cur_t = D.add(st.heuristic(goal[1] * st.nx + goal[0], start), st.cur_t)
     inc = D.int_to_f32(pri_inc)
     check_start = astar or at_start
-    cycle = 0
-    while cycle_runs(D, cycle, cycles, len(st.cur), len(st.nxt)):
-        cells = st.cur
-        st.cycles += 1
-        if record_trace:
-            st.trace.append(len(cells))
-            st.trace.extend(cells)
-        if trace_hook is not None:
-            trace_hook(cycle, list(cells))
-        pending = st.pending
-        for c in cells:
-            pending[c] = False
-        for c in cells:
-            _update_cell(st, c, astar_start)
-        # swap: the next buffer becomes current; an empty one pulls in the overflow (the
-        # kernel gives the fills, a buffer's cells are its first `fill` slots)
-        drained, fill_cur, fill_over, st.cur_t = K.end_of_cycle(D, len(st.nxt), len(st.over), st.cur_t, inc)
-        cur, over = (st.over, st.nxt) if drained else (st.nxt, st.over)
-        st.cur, st.nxt, st.over = cur[:fill_cur], [], over[:fill_over]
-        if check_start and call_ends_at_the_start(D, st.potential[start_cell]):
-            break
-        cycle += 1
+    cycle, ended = 0, False
+    for _ in st.cycle_loop(lambda: D.and_(D.not_(ended), cycle_runs(D, cycle, cycles, st.cur.fill, st.nxt.fill))):
+        st.record_cycle(cycle, trace_hook, record_trace)
+        run_cycle(st, astar_start, inc)
+        ended = check_start and call_ends_at_the_start(D, st.potential[start_cell])
+        cycle = cycle + D.ite(ended, 0, 1)  # the `break` leaves the counter where it was
     if astar:
-        return D.lt(st.potential[start_cell], _POT_HIGH)
-    return cycle < cycles
+        return call_ends_at_the_start(D, st.potential[start_cell])
+    return D.lt(cycle, cycles)
