@@ -133,3 +133,45 @@ def test_free_floats_leave_every_float_result_open():
     s.add(x == D.f32const(1.0), y == D.f32const(2.0), z3.Not(F.add(x, y) == D.add(x, y)))
     assert s.check() == z3.sat  # the sum is free: a run in F covers every rounding
     assert F.add_int(D.int32("a"), 1).sort() == D.int32("a").sort()  # ints are computed as in D
+
+
+def test_the_two_array_models_agree_on_concrete_values():
+    """The operations the spec's steps use mean the same in the concrete model (lists) and in the
+    proofs' (SMT arrays): filled arrays, writes, a buffer's conditional append, the choice between
+    two buffers, a new fill, emptying; compared value by value (fills, filled slots, flags; the
+    ghosts are the invariants' business) after a random sequence."""
+    import random
+
+    D = real()
+    m = Map(D)
+    run = program.Program(D, m, astar=False)
+    rng = random.Random(7)
+    for trial in range(20):
+        conc = P.PropagationState(nx=3, ny=3, costs=[50] * 9)
+        conc.pending, conc.cur, conc.nxt = conc.filled(False), P.Buffer(), P.Buffer()
+        sym = program.ArrayState(run)
+        sym.pending = sym.filled(False)
+        empty = program.Slots(run, z3.K(program.cell_sort(D), program.int_const(D, 0)), program.int_const(D, 0),
+                              z3.K(program.cell_sort(D), False), z3.K(program.cell_sort(D), program.int_const(D, 0)))
+        sym.cur, sym.nxt = empty, empty.emptied()
+        for _ in range(12):
+            op, n, flag = rng.choice("awpfe"), rng.randrange(9), rng.random() < 0.6
+            if op == "a":
+                conc.cur.append_if(flag, n)
+                sym.cur.append_if(z3.BoolVal(flag), program.int_const(D, n))
+            elif op == "w":
+                conc.pending[n] = flag
+                sym.pending[program.int_const(D, n)] = z3.BoolVal(flag)
+            elif op == "p":
+                conc.cur, conc.nxt = conc.pick(flag, conc.nxt, conc.cur), conc.pick(flag, conc.cur, conc.nxt)
+                sym.cur, sym.nxt = sym.pick(z3.BoolVal(flag), sym.nxt, sym.cur), sym.pick(z3.BoolVal(flag), sym.cur, sym.nxt)
+            elif op == "f":
+                f = rng.randrange(conc.cur.fill + 1)
+                conc.cur, sym.cur = conc.cur.with_fill(f), sym.cur.with_fill(program.int_const(D, f))
+            else:
+                conc.cur, sym.cur = conc.cur.emptied(), sym.cur.emptied()
+        value = lambda t: z3.simplify(t)  # noqa: E731
+        for c, s in ((conc.cur, sym.cur), (conc.nxt, sym.nxt)):
+            assert value(s.fill).as_long() == c.fill
+            assert [value(s.slots[program.int_const(D, k)]).as_long() for k in range(c.fill)] == c.cells
+        assert [z3.is_true(value(sym.pending[program.int_const(D, q)])) for q in range(9)] == conc.pending
