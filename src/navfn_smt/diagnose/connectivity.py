@@ -14,7 +14,6 @@ from __future__ import annotations
 
 from collections import deque
 from dataclasses import dataclass, field
-from typing import Optional
 
 import numpy as np
 
@@ -94,8 +93,3 @@ def _cut(framed: np.ndarray, labels: np.ndarray, robot_label: int, goal: tuple[i
     return cells[::-1]
 
 
-def region_mask(costs: np.ndarray, cell: tuple[int, int]) -> Optional[np.ndarray]:
-    """The 4-connected passable region of ``cell`` (None when the cell is an obstacle)."""
-    labels = regions(add_border(costs))
-    lab = labels[cell[1], cell[0]]
-    return None if lab == 0 else labels == lab

@@ -129,22 +129,6 @@ def world_plan_doc(wp, mode: str, backend: str, start, goal) -> dict:
     }
 
 
-def world_plan(wp, mode: str, backend: str, start, goal, as_json: bool) -> None:
-    """Print a plan between world positions: its JSON object, or the cells, the NavFn call and the poses."""
-    if as_json:
-        print(json.dumps(world_plan_doc(wp, mode, backend, start, goal)))
-        return
-    res = wp.result
-    print(f"map {wp.map.path} ({wp.map.width}x{wp.map.height} cells of {wp.map.resolution} m)")
-    print(f"robot {tuple(start)} -> cell {wp.start_cell}; goal {tuple(goal)} -> cell {wp.goal_cell}")
-    if res is None:
-        print("start and goal poses are equal: Nav2 returns the pose without planning")
-    else:
-        print(f"NavFn runs from the goal cell back to the robot's (Nav2 swaps them); start reached: "
-              f"{res.start_reached}; cycles: {res.cycles}")
-    print_path(_points(wp.path_world), "poses (world coordinates)", res)
-
-
 def _pose(p) -> dict:
     """A ``geometry_msgs/Pose`` as Nav2 publishes it (doubles printed to round-trip exactly)."""
     return {"position": {"x": p.x, "y": p.y, "z": 0.0},

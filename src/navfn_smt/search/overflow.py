@@ -481,38 +481,3 @@ JSON_NAME = "counterexample.json"
 PICTURE_NAME = "picture.png"
 
 
-def save_overflow(out_dir, found: OverflowCounterexample, name: Optional[str] = None):
-    """Write ``out_dir/overflow-<mode>-<W>x<H>`` (or ``name``): ``map.bin`` and ``test.txt``
-    with the one case, golden files of both modes recorded from the reference spec (C++
-    capacity), ``picture.png`` (the path with 10,000-cell buffers; the unbounded planner's
-    path highlighted) and ``counterexample.json``.  Returns the directory."""
-    import json
-    from pathlib import Path
-
-    from ..backends import get_backend
-    from ..difftest.record import golden_fields, write_golden
-    from ..maps.pictures import render_case
-    from ..maps.suite import load_map, write_map_dir
-
-    costs = np.ascontiguousarray(found.costs, np.uint8)
-    h, w = costs.shape
-    d = Path(out_dir) / (name or f"overflow-{found.mode}-{w}x{h}")
-    d.mkdir(parents=True, exist_ok=True)
-    write_map_dir(d, costs, [(*found.start, *found.goal)], comment=f"overflow counterexample ({found.mode})")
-    smap = load_map(d)
-    ref = get_backend("reference").prepare(costs)
-    for m in MODES:
-        write_golden(smap.golden_path(m), golden_fields(smap, ref, m == "astar"))
-    astar = found.mode == "astar"
-    bounded = ref.run(found.start, found.goal, astar, trace=False)
-    unbounded = get_backend("reference").prepare(costs, unbounded_capacity(w, h)).run(
-        found.start, found.goal, astar, trace=False)
-    render_case(costs, bounded, found.start, found.goal, str(d / PICTURE_NAME),
-                title=f"overflow ({'A*' if astar else 'Dijkstra'}) {w}x{h}: {bounded.dropped} pushes dropped; "
-                      f"path {len(bounded.path)} pts vs {len(unbounded.path)} unbounded (highlighted)",
-                highlight=[tuple(p) for p in unbounded.path.tolist()])
-    doc = {"kind": "overflow", "mode": found.mode, "size": [w, h], "start": list(found.start),
-           "goal": list(found.goal), "detail": found.detail, "seconds": found.seconds, "seed": found.seed,
-           "evaluations": found.evaluations, "plans": found.plans}
-    (d / JSON_NAME).write_text(json.dumps(doc, indent=2, default=lambda v: v.item()) + "\n", encoding="utf-8")
-    return d

@@ -142,6 +142,10 @@ class ArrayState:
         return Slots(self.run, z3.If(cond, a.slots, b.slots), D.ite(cond, a.fill, b.fill),
                      z3.If(cond, a.inside, b.inside), z3.If(cond, a.slot_of, b.slot_of))
 
+    @staticmethod
+    def may(cond) -> bool:
+        return True  # every step runs, guarded by its own condition
+
     def note_drop(self, dropped) -> None:
         self.dropped = z3.Or(self.dropped, dropped)
 

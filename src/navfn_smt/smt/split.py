@@ -96,10 +96,6 @@ def f32_interval(var: str, lo: float, hi: float) -> Interval:
     return Interval(var, ordinal(lo), ordinal(hi))
 
 
-def int_interval(var: str, lo: int, hi: int) -> Interval:
-    return Interval(var, lo, hi, "int")
-
-
 Box = tuple  # of Interval, at most one per variable
 
 

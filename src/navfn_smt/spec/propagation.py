@@ -8,7 +8,8 @@ is concrete (:class:`PropagationState`: flat lists indexed by ``n = y * nx + x``
 arrays); the proofs over arrays run the same functions on a state of SMT arrays
 (``smt/program.py``), which turns each loop into the conditions of its invariant.  So no
 condition depends on the data through Python's ``if``: the steps compute with the domain's
-``ite``, ``and_`` and ``not_``.
+``ite``, ``and_`` and ``not_``; the one ``if`` on data, ``st.may``, skips steps that are no-ops
+where its condition is false (the model may always answer yes: the proofs' does).
 
 Priority buffers are three bounded FIFO buffers (capacity PRIORITYBUFSIZE, or the ``capacity``
 a caller gives ``setup``); a push to a full buffer is silently dropped, as in the C++ macros.
@@ -124,6 +125,11 @@ class PropagationState:
     def pick(cond: bool, a: Buffer, b: Buffer) -> Buffer:
         return a if cond else b
 
+    @staticmethod
+    def may(cond: bool) -> bool:
+        """Whether steps guarded by ``cond`` can act: here, ``cond`` itself (they are skipped)."""
+        return cond
+
     def note_drop(self, dropped: bool) -> None:
         self.dropped += bool(dropped)
 
@@ -199,6 +205,8 @@ def push(st, n, wanted, low=None) -> None:
     the caller chose another); a push refused only for want of room is counted as dropped (C++
     drops it silently)."""
     D = st.D
+    if not st.may(wanted):  # every write below wants `wanted`
+        return
     into = ((st.cur, True),) if low is None else ((st.nxt, low), (st.over, D.not_(low)))
     fill = st.cur.fill if low is None else D.ite(low, st.nxt.fill, st.over.fill)
     j = st.index(n)
@@ -227,10 +235,11 @@ def update_cell(st, n, astar_start: Optional[tuple] = None) -> None:
     l, r, u, d = (st.potential[m] for m in around)
     new, changed = K.cell_update(st.domain, st.potential[n], l, r, u, d, st.costs[n], st.cost_f32(n))
     st.potential[n] = new  # the old potential unless changed
-    key = new if astar_start is None else D.add(new, st.heuristic(n, astar_start))
-    low = K.to_low_buffer(D, key, st.cur_t)
-    for m, pm in zip(around, (l, r, u, d)):
-        push(st, m, D.and_(changed, K.push_wanted(D, pm, key, st.edge(m))), low)
+    if st.may(changed):  # the pushes want `changed`: where it is false they are no-ops
+        key = new if astar_start is None else D.add(new, st.heuristic(n, astar_start))
+        low = K.to_low_buffer(D, key, st.cur_t)
+        for m, pm in zip(around, (l, r, u, d)):
+            push(st, m, D.and_(changed, K.push_wanted(D, pm, key, st.edge(m))), low)
 
 
 def end_of_cycle(st, inc) -> None:
