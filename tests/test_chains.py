@@ -51,7 +51,9 @@ def test_the_paper_predicates_are_there_by_name():
 
 def test_shipped_chains_agree_with_the_obligations(obligations):
     assert check_chains(PREDICATES, obligations) == []
-    assert {o.predicate for o in obligations} == {p.name for p in PREDICATES}
+    borrowed = {p.name for p in PREDICATES if all("." in link for link in p.links)}  # a chain of another's
+    assert {o.predicate for o in obligations} | borrowed == {p.name for p in PREDICATES}
+    assert borrowed == {"PendingMatchesBuffers"}
 
 
 def test_statuses_derived_from_the_expected_verdicts(obligations):

@@ -64,16 +64,14 @@ PendingMatchesBuffers = Predicate(
     statement="A cell's pending flag is set exactly when the cell is in the buffers, and then once: between "
               "cycles (B) once in current + overflow with next empty, during a cycle (P) once in next + "
               "overflow. So no cell is twice in the buffers, which never hold more cells than the map.",
-    applies="propagation: the pending array and the buffers, by induction over cycles, for every map size "
-            "and buffer capacity (one arbitrary cell q stands for every cell)",
-    base=("pending_matches_buffers_after_setup",),
-    lemmas=("pending_matches_buffers_at_cycle_start", "pending_matches_buffers_after_push",
-            "pending_matches_buffers_at_cycle_end"),
-    # that setup, a cycle's start, the pushes and the swap are all the changes propagation makes to
-    # the flags and buffers is stated once, in BuffersInductive, which machine-checks the same
-    # invariants over arrays (with slots); tests/test_invariants_runtime.py checks B at every
-    # cycle boundary of the spec's own loops
-    rests_on=("BuffersInductive",),
+    applies="propagation: the pending array and the buffers, for every map size and buffer capacity: "
+            "BuffersInductive's invariant (on the spec's own run over arrays) read at one cell",
+    base=("BuffersInductive.setup_puts_each_pending_cell_in_one_slot",),
+    lemmas=("BuffersInductive.a_cycle_starts_with_every_flag_to_clear",
+            "BuffersInductive.clearing_a_flag_keeps_the_clearing_invariant",
+            "BuffersInductive.cleared_flags_give_the_cycle_invariant",
+            "BuffersInductive.update_keeps_each_pending_cell_in_one_slot",
+            "BuffersInductive.swap_keeps_each_pending_cell_in_one_slot"),
 )
 
 NoPathWithoutFinitePotential = Predicate(

@@ -39,7 +39,6 @@ from navfn_smt.proofs import BuffersInductive, ReachedAndBufferedInductive
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
-from navfn_smt.spec.constants import PRIORITYBUFSIZE
 from navfn_smt.spec.propagation import update_neighbours
 from navfn_smt.smt.program import SEGMENTS, both_modes, cell_sort, condition
 
@@ -69,11 +68,13 @@ class Buffers:
 
 
 class Map:
-    """The costs, the map's size, the goal and the component: shared by every state."""
+    """The costs, the map's size, the goal, the component and the buffers' capacity (any: the C++'s
+    PRIORITYBUFSIZE, or the spec's unbounded one): shared by every state."""
 
     def __init__(self, D):
         self.D = D
         self.ns, self.nx, self.g = D.int32("ns"), D.int32("nx"), D.int32("goal")
+        self.capacity = D.int32("capacity")
         self.cost = z3.Array("cost", cell_sort(D), D.cost("cost_sort").sort())
         self.comp = z3.Array("component", cell_sort(D), z3.BoolSort())
 
@@ -110,7 +111,7 @@ class Map:
 
     def well_formed(self):
         D = self.D
-        return all_of(D, D.ge(self.nx, 1), D.ge(self.ns, self.nx), D.le(self.ns, 2 ** 30))
+        return all_of(D, D.ge(self.nx, 1), D.ge(self.ns, self.nx), D.le(self.ns, 2 ** 30), D.ge(self.capacity, 0))
 
 
 def at_cell(D, m: Map, s: Buffers, q, during, clearing=None):
@@ -136,9 +137,9 @@ def at_slot(D, s: Buffers, b: str, i):
     return z3.Implies(z3.And(D.ge(i, 0), D.lt(i, s.fill[b])), z3.And(s.inside[b][c], s.slot_of[b][c] == i))
 
 
-def fills(D, s: Buffers, during: bool):
-    """Each fill within the capacity; between cycles the next buffer is empty."""
-    parts = [z3.And(D.ge(s.fill[b], 0), D.le(s.fill[b], PRIORITYBUFSIZE)) for b in BUFFERS]
+def fills(D, m: "Map", s: Buffers, during: bool):
+    """Each fill within the buffers' capacity; between cycles the next buffer is empty."""
+    parts = [z3.And(D.ge(s.fill[b], 0), D.le(s.fill[b], m.capacity)) for b in BUFFERS]
     if not during:
         parts.append(D.eq(s.fill["nxt"], 0))
     return z3.And(parts)
@@ -150,7 +151,7 @@ def buffer_invariant(D, m: Map):
     current buffer's fill, which neither loop changes): ``(whole, at_cell, at_slot)``."""
     def at(loop, s, k, bound):
         during = loop == "update"
-        whole = [fills(D, s, during)]
+        whole = [fills(D, m, s, during)]
         if loop != "cycle":
             whole += [D.eq(s.fill["cur"], bound), D.ge(k, 0), D.le(k, bound)]
         clearing = k if loop == "clear" else None

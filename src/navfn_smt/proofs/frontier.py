@@ -154,7 +154,7 @@ def empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one(D
     c = m.neighbour(p, e)
     s = Buffers(D)
     pot = potentials(D)
-    pre = all_of(D, m.well_formed(), fills(D, s, False), D.eq(s.fill["cur"], 0), D.eq(s.fill["over"], 0),
+    pre = all_of(D, m.well_formed(), fills(D, m, s, False), D.eq(s.fill["cur"], 0), D.eq(s.fill["over"], 0),
                  at_cell(D, m, s, c, False), frontier(D, m, s, pot, False, p, c))
     near = z3.And(Reached(D, pot[p]), D.lt(pot[p], D.f32const(POT_BOUND)), m.on_map(c), m.passable(c))
     return pre, z3.Implies(near, Reached(D, pot[c]))

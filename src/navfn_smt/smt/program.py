@@ -40,7 +40,6 @@ import z3
 
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec import propagation as P
-from navfn_smt.spec.constants import PRIORITYBUFSIZE
 
 LOOPS = ("cycle", "clear", "update")
 # (source, target) of the segments a run of propagate yields
@@ -110,7 +109,7 @@ class ArrayState:
     def __init__(self, run: "Program"):
         D, m = run.D, run.m
         self.run, self.D, self.domain = run, D, D
-        self.nx, self.ns, self.capacity = m.nx, m.ns, PRIORITYBUFSIZE
+        self.nx, self.ns, self.capacity = m.nx, m.ns, m.capacity
         self.costs = Cells(m.cost, run.cell_seen, D.cost_int)
         self.cycles = self.updates = 0
         self.dropped = z3.BoolVal(False)
