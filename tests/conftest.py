@@ -19,6 +19,8 @@ from pathlib import Path
 
 import pytest
 
+from navfn_smt.nav2.distro import CHECKED
+
 # the tests read reports as a pipe or a file gets them (a table row per line, as wide as it
 # needs): a COLUMNS in the test processes' environment would fit them to its width
 for _size in ("COLUMNS", "LINES"):
@@ -66,7 +68,7 @@ def nav2_src() -> Path:
     return NAV2_SRC
 
 
-DISTROS = ("humble", "jazzy", "kilted", "lyrical", "rolling")
+DISTROS = CHECKED  # every distribution whose sources are at hand
 
 
 def _session_root(tmp_path_factory) -> Path:

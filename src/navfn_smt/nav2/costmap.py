@@ -61,6 +61,7 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..spec.constants import FREE_SPACE, NO_INFORMATION
+from .distro import distro as distro_record
 from .mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
 from .footprint import robot_footprint
 from .params import load_params_yaml
@@ -72,13 +73,12 @@ LEGACY_INFLATION = "nav2_costmap_2d::LegacyInflationLayer"
 SENSOR_LAYERS = ("nav2_costmap_2d::ObstacleLayer", "nav2_costmap_2d::VoxelLayer", "nav2_costmap_2d::RangeSensorLayer")
 UNMODELLED = ("nav2_costmap_2d::DenoiseLayer", "nav2_costmap_2d::PluginContainerLayer",
               "nav2_costmap_2d::AsymmetricInflationLayer")
-NEW_LAYER_DISTROS = ("lyrical", "rolling")  # Nav2 >= 1.5.0: InflationLayer is the distance-transform layer
 DEFAULT_PLUGINS = (("static_layer", STATIC), ("obstacle_layer", SENSOR_LAYERS[0]), ("inflation_layer", INFLATION))
 
 
 def inflation_types(distro: str) -> dict[str, str]:
     """Plugin type -> the inflation code it runs in ``distro`` ("current" or "legacy")."""
-    if distro in NEW_LAYER_DISTROS:
+    if distro_record(distro).distance_transform_inflation:
         return {INFLATION: "current", LEGACY_INFLATION: "legacy"}
     return {INFLATION: "legacy"}
 
@@ -204,7 +204,7 @@ def _layer_specs(params: Mapping, where: str, distro: str) -> tuple[tuple[LayerS
         enabled = _get(sect, where, "enabled", bool, True, f"{name}.")
         infl = _inflation_params(sect, name, where) if ptype in inflation_types(distro) else None
         if infl is not None and infl.custom_inscribed_radius >= 0.0 and not (
-                ptype == INFLATION and distro in NEW_LAYER_DISTROS):
+                ptype == INFLATION and distro_record(distro).distance_transform_inflation):
             notes.append(f"{name}: custom_inscribed_radius is not a parameter of this layer in {distro}; ignored")
             infl = InflationParams(**{**infl.__dict__, "custom_inscribed_radius": -1.0})
         static_keys = [k for k in ("track_unknown_space", "lethal_cost_threshold", "trinary_costmap",
@@ -271,15 +271,15 @@ def bringup_params(distro: str = DEFAULT_DISTRO) -> CostmapParams:
     inflation layers as they are there (robot_radius 0.22, resolution 0.05, track_unknown_space
     true, cost_scaling_factor 3.0, inflation_radius 0.55 in Humble and Iron, else 0.7; the
     keepout and speed filters from Kilted on, which are not modelled)."""
-    _check_distro(distro)
-    radius = 0.55 if distro in ("humble", "iron") else 0.7
+    record = distro_record(distro)
+    radius = record.bringup_inflation_radius
     return costmap_params({
         "robot_radius": 0.22, "resolution": 0.05, "track_unknown_space": True,
         "plugins": ["static_layer", "obstacle_layer", "inflation_layer"],
         "static_layer": {"plugin": STATIC, "map_subscribe_transient_local": True},
         "obstacle_layer": {"plugin": SENSOR_LAYERS[0]},
         "inflation_layer": {"plugin": INFLATION, "cost_scaling_factor": 3.0, "inflation_radius": radius},
-        **({"filters": ["keepout_filter", "speed_filter"]} if distro in ("kilted", "lyrical", "rolling") else {}),
+        **({"filters": ["keepout_filter", "speed_filter"]} if record.bringup_filters else {}),
     }, distro, where=f"nav2_bringup ({distro})")
 
 
@@ -300,8 +300,7 @@ class GlobalCostmap:
 
 
 def _check_distro(distro: str) -> None:
-    if distro not in DISTROS:
-        raise NavfnInputError(f"unknown Nav2 distro {distro!r} (choose from {', '.join(DISTROS)})")
+    distro_record(distro)
 
 
 def as_int(v: int) -> int:
@@ -319,7 +318,7 @@ def _static_costs(source, params: CostmapParams, distro: str) -> np.ndarray:
     (``lethal_cost_threshold`` read into an int, then clamped; ``unknown_cost_value`` and
     ``inscribed_obstacle_cost_value`` into unsigned chars), then ``interpretValue`` per cell."""
     if isinstance(source, MapServerMap):
-        inscribed = as_unsigned_char(params.inscribed_obstacle_cost_value) if DISTROS[distro][1] is not None else None
+        inscribed = as_unsigned_char(params.inscribed_obstacle_cost_value) if distro_record(distro).inscribed_cost is not None else None
         return static_layer_costs(source.occupancy, track_unknown_space=params.track_unknown_space,
                                   lethal_threshold=as_int(params.lethal_cost_threshold),
                                   trinary_costmap=params.trinary_costmap,

@@ -78,19 +78,14 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.constants import FREE_SPACE, INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION
 from ..spec.costs import set_costmap
+from .distro import DEFAULT
+from .distro import DISTROS as DISTRO_RECORDS
+from .distro import distro as distro_record
 
 MODES = ("trinary", "scale", "raw")
 MAP_IO = ("current", "legacy")
-# distro -> (map_io generation, StaticLayer's inscribed_obstacle_cost_value or None)
-DISTROS = {
-    "humble": ("legacy", None),
-    "iron": ("legacy", None),
-    "jazzy": ("current", None),  # Jazzy 1.3.7 (May 2025) on; earlier Jazzy releases were "legacy"
-    "kilted": ("current", None),
-    "lyrical": ("current", 99),
-    "rolling": ("current", 99),
-}
-DEFAULT_DISTRO = "rolling"
+DISTROS = tuple(DISTRO_RECORDS)  # the distributions modelled (nav2/distro.py holds what differs)
+DEFAULT_DISTRO = DEFAULT
 _FROM_DISTRO = "distro"  # default of inscribed_cost_value: whatever the distro does
 REQUIRED_KEYS = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
 
@@ -476,9 +471,8 @@ def load_map_yaml(
     the NavFn planner's ``allow_unknown`` (default true).  ``allow_outside`` permits an
     image path that resolves (through symlinks and ``..``) outside the YAML's folder.
     """
-    if distro not in DISTROS:
-        raise NavfnInputError(f"unknown Nav2 distro {distro!r} (choose from {', '.join(DISTROS)})")
-    map_io, inscribed = DISTROS[distro]
+    record = distro_record(distro)
+    map_io, inscribed = record.map_io, record.inscribed_cost
     if inscribed_cost_value != _FROM_DISTRO:
         inscribed = inscribed_cost_value
     y = read_map_yaml(path, allow_outside)

@@ -2,7 +2,7 @@
 
 ``createPlan`` (``navfn_planner.cpp``) as Jazzy, Kilted and Rolling run it, step by step, every
 number as the C++ computes it (all plugin arithmetic is double; NavFn's is the spec's); what
-Humble does differently follows the list (:data:`FLAVOURS`):
+Humble does differently follows the list (:mod:`.distro`):
 
 1. ``Costmap2D::worldToMap`` (truncating) on both poses: off the map ->
    ``StartOutsideMapBounds`` / ``GoalOutsideMapBounds``; ``tolerance == 0`` and the goal's
@@ -25,7 +25,7 @@ Humble does differently follows the list (:data:`FLAVOURS`):
 6. ``smoothApproachToGoal`` and ``use_final_approach_orientation``; no path ->
    ``NoValidPathCouldBeFound``.
 
-Humble (:class:`Flavour` ``throws=False``) throws nothing: there is no ``Costmap2D::worldToMap``
+Humble (``Distro.throws`` false) throws nothing: there is no ``Costmap2D::worldToMap``
 check in ``createPlan``; ``makePlan`` returns false with a WARN when its own ``worldToMap`` fails
 for the robot or the goal; the equal-positions case first looks up the start's cost (WARN and an
 empty path when lethal); a failed plan is a WARN and an empty path (``error == "EmptyPath"``).
@@ -54,6 +54,7 @@ from ..spec.costs import add_border, set_costmap
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour
 from ..spec.numeric import c_fma
 from ..under_test import PlannerUnderTest
+from .distro import Distro, distro
 from .params import PlannerParams
 
 LEGAL_BUT_NO_PLAN = ("Failed to create a plan from potential when a legal potential was found. "
@@ -67,37 +68,13 @@ GOAL_OFF_MAP = "The goal sent to the planner is off the global costmap. Planning
 UNIQUE_POSE_LETHAL = "Failed to create a unique pose path because of obstacles"
 
 
-@dataclass(frozen=True)
-class Flavour:
-    """What ``navfn_planner.cpp`` does differently from one distribution to another."""
-
-    throws: bool  # createPlan checks both poses with Costmap2D::worldToMap and throws (Jazzy on)
-    same_position_smoothing: bool  # smoothApproachToGoal's second branch (Jazzy on)
-    cycles_factor: bool  # the max_cycles_factor parameter (Rolling); else 4
-    exhausted_warning: bool  # navfn.cpp's calcPath warns when it runs out of cycles (Rolling)
-
-
-# checked against each distribution's sources by the live plugin difftest (docs/oracle.md);
-# iron is not among the checked sources: it takes its neighbours' code
-FLAVOURS = {
-    "humble": Flavour(throws=False, same_position_smoothing=False, cycles_factor=False, exhausted_warning=False),
-    "iron": Flavour(throws=True, same_position_smoothing=False, cycles_factor=False, exhausted_warning=False),
-    "jazzy": Flavour(throws=True, same_position_smoothing=True, cycles_factor=False, exhausted_warning=False),
-    "kilted": Flavour(throws=True, same_position_smoothing=True, cycles_factor=False, exhausted_warning=False),
-    "lyrical": Flavour(throws=True, same_position_smoothing=True, cycles_factor=True, exhausted_warning=True),
-    "rolling": Flavour(throws=True, same_position_smoothing=True, cycles_factor=True, exhausted_warning=True),
-}
-UNCHECKED_FLAVOURS = ("iron",)
-
-
 # the patched calcPath's one WARN (patches/navfn-fix/): neither calcPathGradient nor the descent found a path
 FIXED_NO_PATH_WARNING = "[PathCalc] No path: neither the gradient nor the descent reached the goal"
 
 
-def flavour_of(distro: str) -> Flavour:
-    if distro not in FLAVOURS:
-        raise NavfnInputError(f"no planner plugin model for distribution {distro!r} (known: {', '.join(FLAVOURS)})")
-    return FLAVOURS[distro]
+def flavour_of(name: str) -> Distro:
+    """What ``navfn_planner.cpp`` does in the distribution ``name`` (its :class:`~.distro.Distro`)."""
+    return distro(name)
 
 
 @dataclass(frozen=True)

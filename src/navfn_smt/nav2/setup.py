@@ -22,7 +22,6 @@ from .plugin import Costmap, costmap_from_map
 
 # The plugin is Rolling's navfn_planner.cpp; its max_cycles_factor parameter exists there and in
 # Lyrical, released from it (earlier distributions give calcPath 4 * max(size_x, size_y) cycles, the factor's default).
-CYCLES_FACTOR_DISTROS = ("lyrical", "rolling")
 
 
 @dataclass
@@ -119,14 +118,14 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
     params = planner_params(params_file) if params_file else PlannerParams()
     if overrides:
         params = replace(params, **{k: v for k, v in overrides.items() if v is not None})
-    from .plugin import UNCHECKED_FLAVOURS, flavour_of
+    from .distro import distro as distro_record
 
-    flavour_of(distro)
+    record = distro_record(distro)
     params = replace(params, distro=distro)
-    notes = [] if distro not in UNCHECKED_FLAVOURS else [
+    notes = [] if record.checked else [
         f"{distro}'s navfn_planner.cpp is not among the sources this model was checked against: the plugin "
-        f"is modelled as its neighbours' (nav2.plugin.FLAVOURS)"]
-    if distro not in CYCLES_FACTOR_DISTROS and params.max_cycles_factor != 4:
+        f"is modelled as its neighbours' (nav2/distro.py)"]
+    if not record.cycles_factor and params.max_cycles_factor != 4:
         notes.append(f"max_cycles_factor {params.max_cycles_factor} ignored: {distro} has no such parameter "
                      f"(Nav2 PR #6308, August 2026); calcPath gets 4 * max(size_x, size_y) cycles")
         params = replace(params, max_cycles_factor=4)

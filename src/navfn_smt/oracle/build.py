@@ -59,6 +59,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Optional
 
+from ..nav2.distro import DISTROS
 from ..errors import NavfnInputError
 from ..fileio import atomic_folder
 from ..spec import fixes
@@ -102,7 +103,7 @@ BUFFER_DEFINE = "#define PRIORITYBUFSIZE"  # once in navfn.hpp; the unbounded bu
 # package.xml's major.minor version -> the distribution it is released in.  The newest one
 # shares its minor version with Rolling (the main branch) until main moves on: main carries
 # x.y.0, the distribution's branch releases x.y.1 and later (Lyrical 1.5.1 beside Rolling's 1.5.0)
-DISTRIBUTIONS = {(1, 1): "humble", (1, 2): "iron", (1, 3): "jazzy", (1, 4): "kilted", (1, 5): "lyrical"}
+DISTRIBUTIONS = {d.version: name for name, d in DISTROS.items() if d.version is not None}
 SHARED_WITH_MAIN = (1, 5)
 NEWEST = "rolling"
 
