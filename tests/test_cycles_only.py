@@ -37,13 +37,13 @@ LIMIT = "std::max(nx * ny / 20, nx + ny)"
 # --------------------------------------------------------------------------- the registry's programs
 def test_every_patched_fix_gives_three_programs_and_the_fix_of_docs_keeps_its_names():
     from navfn_smt.oracle import build as B
-    from navfn_smt.oracle.client import VARIANTS, navfn_program, plugin_program
+    from navfn_smt.oracle.client import navfn_program, plugin_program
 
     assert B.FIXED_PROGRAMS == ("navfn-fixed", "navfn-plugin-fixed", "navfn-plain-fixed")
     assert B.fix_programs(CYCLES) == ("navfn-cycles-only", "navfn-plugin-cycles-only", "navfn-plain-cycles-only")
     assert {p for f in fixes.PATCHED for p in B.fix_programs(f)} <= set(B.PROGRAMS)
     assert B.PATCHES == PACKAGE / "patches" / "navfn-fix" and B.patches_of(CYCLES) == PATCHES
-    assert (VARIANTS["fixed"], VARIANTS["plain-fixed"]) == ("navfn-fixed", "navfn-plain-fixed")
+    assert (navfn_program("fixed"), navfn_program("fixed", traced=False)) == ("navfn-fixed", "navfn-plain-fixed")
     assert (navfn_program(CYCLES), navfn_program(CYCLES, traced=False), plugin_program(CYCLES)) == (
         "navfn-cycles-only", "navfn-plain-cycles-only", "navfn-plugin-cycles-only")
     assert (navfn_program(fixes.AS_SHIPPED), plugin_program("original")) == ("navfn-traced", "navfn-plugin")
@@ -195,10 +195,8 @@ def test_the_plain_cycles_only_program_plans_as_the_traced_one(builds):
 
     _, folder = builds["rolling"]
     sm = load_map(CX / "start-reached-dijkstra-7x7")
-    with Oracle(folder, fix=CYCLES) as traced, Oracle(folder, traced=False, fix="cycles-only") as plain, \
-            Oracle(folder, variant="plain-cycles-only") as by_variant:
-        assert (plain.program, plain.traced) == ("navfn-plain-cycles-only", False) == (by_variant.program,
-                                                                                       by_variant.traced)
+    with Oracle(folder, fix=CYCLES) as traced, Oracle(folder, traced=False, fix="cycles-only") as plain:
+        assert (plain.program, plain.traced) == ("navfn-plain-cycles-only", False)
         for astar in (True, False):
             for a, b in zip(traced.plan(sm.costs, sm.cases, astar), plain.plan(sm.costs, sm.cases, astar)):
                 assert a.path.tobytes() == b.path.tobytes() and a.potential.tobytes() == b.potential.tobytes()

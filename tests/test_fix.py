@@ -261,12 +261,12 @@ def test_the_patched_cpp_equals_the_fixed_spec_and_the_original_where_it_plans(b
     assert {"navfn-fixed", "navfn-plugin-fixed"} <= set(doc["programs"])
     assert doc["fix_patch"]["file"] == f"{distro}.patch"
     for suite in (EXAMPLE, CX):
-        with Oracle(folder, variant="fixed") as oracle:
+        with Oracle(folder, fix="fixed") as oracle:
             s = run_live(suite, ("astar", "dijkstra"), "jit", oracle, planner=FIXED).as_dict()
         assert s["failed"] == 0 and s["passed"] > 0, s
     # where the original C++ plans, the patched C++ returns the same path, potential and trace
     sm = load_map(CX / "cost-astar-7x7")
-    with Oracle(folder) as original, Oracle(folder, variant="fixed") as fixed:
+    with Oracle(folder) as original, Oracle(folder, fix="fixed") as fixed:
         for astar in (True, False):
             cases = [(s[0], s[1], g[0], g[1]) for s in [(1, 1), (3, 3), (5, 2)] for g in [(2, 5), (4, 4)]]
             for a, b in zip(original.plan(sm.costs, cases, astar), fixed.plan(sm.costs, cases, astar)):

@@ -271,12 +271,12 @@ def test_the_unbounded_build_agrees_with_the_unbounded_spec_where_buffers_overfl
 
     from navfn_smt.maps.suite import load_map
 
-    with Oracle(builds["rolling"][1], variant="unbounded") as oracle:
+    with Oracle(builds["rolling"][1], unbounded=True) as oracle:
         s = run_live(shared_suite_large, MODES, "jit", oracle, unbounded=True).as_dict()
     assert s["failed"] == 0 and s["passed"] == 8
     d = discover(shared_suite_large)[0]
     m = load_map(d, shared_suite_large)
-    with Oracle(builds["rolling"][1], variant="unbounded") as u, Oracle(builds["rolling"][1]) as b:
+    with Oracle(builds["rolling"][1], unbounded=True) as u, Oracle(builds["rolling"][1]) as b:
         differ = [not np.array_equal(x.path, y.path) for x, y in zip(u.plan(m.costs, m.cases, False),
                                                                      b.plan(m.costs, m.cases, False))]
     assert any(differ)
@@ -522,7 +522,7 @@ def test_the_builds_differ_as_their_arithmetic_says(builds, target_builds):
     from navfn_smt.difftest.builds import compare_builds
 
     def compare(a, b):
-        with Oracle(a, variant="plain") as x, Oracle(b, variant="plain") as y:
+        with Oracle(a, traced=False) as x, Oracle(b, traced=False) as y:
             return compare_builds(EXAMPLE, MODES, x, y)
 
     x86, a64 = builds["rolling"][1], target_builds["aarch64"][1]
@@ -779,8 +779,8 @@ def test_a_library_build_links_the_users_binary_and_finds_its_arithmetic_in_its_
     assert "4400 passed, 0 failed" in capsys.readouterr().out
     # the arm64 library's code is the arm64 program's: the same answers bit for bit
     assert library_builds["aarch64"][0]["arithmetic"]["fused_instructions"] == 14
-    with Oracle(library_builds["aarch64"][1], variant="plain") as a, \
-            Oracle(target_builds["aarch64"][1], variant="plain") as b:
+    with Oracle(library_builds["aarch64"][1], traced=False) as a, \
+            Oracle(target_builds["aarch64"][1], traced=False) as b:
         same = compare_builds(EXAMPLE, MODES, a, b)
     assert same["runs"] == 4400 and same["potential"] == same["path"] == 0
 

@@ -187,7 +187,7 @@ def bench_fix(suite: Path, folder, mode: str, repeat: int = 3, fix=THE_FIX) -> l
 
     maps = [load_map(d, suite) for d in discover(suite)]
     rows = []
-    with Oracle(folder, variant="traced") as original, Oracle(folder, fix=fix) as fixed:
+    with Oracle(folder) as original, Oracle(folder, fix=fix) as fixed:
         for md in modes_of(mode):
             astar = md == "astar"
             work = []

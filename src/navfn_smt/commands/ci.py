@@ -59,7 +59,7 @@ def _navfn(args, planner, unbounded: bool):
     from .common import suite_or_example
 
     planner.navfn_arithmetic()  # a clear failure of the step when the spec cannot express it
-    with Oracle(planner.build, **({"variant": "unbounded"} if unbounded else {"fix": planner.fix})) as oracle:
+    with Oracle(planner.build, **({"unbounded": True} if unbounded else {"fix": planner.fix})) as oracle:
         return run_live(suite_or_example(args.suite), MODES, "jit", oracle, unbounded=unbounded,
                         planner=planner).as_dict()
 

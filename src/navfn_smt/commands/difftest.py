@@ -56,10 +56,10 @@ def _live(args, suite, modes, planner) -> int:
 
     total = sum(case_count(d) for d in discover(suite)) * len(modes)  # no golden files needed
     # the C++ of the planner's fix (navfn-traced as shipped, navfn-<fix> patched) or the unbounded one
-    program = {"variant": "unbounded"} if args.unbounded else {"fix": planner.fix}
+    program = {"unbounded": True} if args.unbounded else {"fix": planner.fix}
     library = (planner.doc.get("library") or {}).get("file", "") if planner.fix.shipped and not args.unbounded else ""
     if library:
-        program = {"variant": "plain"}  # a library build: the library's own code, without the white-box trace
+        program = {"traced": False}  # a library build: the library's own code, without the white-box trace
         print(f"{args.oracle} links a NavFn library ({library}): compared without the white-box trace (path, "
               f"potential, start reached)")
     planner.navfn_arithmetic()  # the spec computes in the build's arithmetic, found in the build

@@ -152,32 +152,17 @@ class _Program:
         return self._pending[:n]
 
 
-# the program variants of Oracle: as shipped, and for each patched fix its traced program (by the
-# fix's name: ``fixed`` is navfn-fixed) and its plain one (``plain-fixed`` is navfn-plain-fixed)
-VARIANTS = {"traced": "navfn-traced", "plain": "navfn-plain", "unbounded": "navfn-unbounded",
-            **{v: p for f in fixes.PATCHED for v, p in ((f.name, navfn_program(f)),
-                                                        (f"plain-{f.name}", navfn_program(f, traced=False)))}}
 UNTRACED = frozenset(navfn_program(f, traced=False) for f in fixes.FIXES.values())  # without the trace hook
 
 
 class Oracle(_Program):
-    """A running C++ NavFn of an oracle build folder: ``traced`` (with the white-box trace),
-    ``plain`` (as Nav2 compiles it), ``unbounded`` (traced, buffers that never drop a push), or
-    NavFn with a patched fix: ``fix=`` a :class:`~navfn_smt.spec.planner.Fix` (or its name),
-    traced or not (``traced``), e.g. ``navfn-cycles-only``; :data:`VARIANTS` names the same
-    programs (``variant="fixed"``: traced, with the fix of ``patches/navfn-fix/``;
-    ``"plain-fixed"``: untraced, to time and measure the fix as Nav2 would compile it)."""
+    """A running C++ NavFn of an oracle build folder, planning with ``fix`` (a
+    :class:`~navfn_smt.spec.planner.Fix` or its name; as shipped by default): ``traced`` (with the
+    white-box trace) or not (as Nav2 compiles it, to time and measure); ``unbounded``: as shipped,
+    traced, with buffers that never drop a push (``navfn-unbounded``)."""
 
-    def __init__(self, folder, traced: bool = True, variant: Optional[str] = None, fix=None):
-        if fix is not None:
-            if variant is not None:
-                raise ValueError("Oracle: give variant or fix, not both")
-            self.program = navfn_program(fix, traced)
-        else:
-            variant = variant or ("traced" if traced else "plain")
-            if variant not in VARIANTS:
-                raise NavfnInputError(f"no NavFn program variant {variant!r} (there are: {', '.join(VARIANTS)})")
-            self.program = VARIANTS[variant]
+    def __init__(self, folder, fix=fixes.AS_SHIPPED, traced: bool = True, unbounded: bool = False):
+        self.program = "navfn-unbounded" if unbounded else navfn_program(fix, traced)
         self.traced = self.program not in UNTRACED
         self.planning_seconds = 0.0  # the C++'s own time planning the last request's cases
         super().__init__(folder)
@@ -218,14 +203,14 @@ class PluginAnswer:
 
 class PluginOracle(_Program):
     """A running C++ planner plugin: ``createPlan`` on a costmap, as Nav2's planner server calls
-    it, many pose pairs per configured plugin.  ``variant``: the planner's fix, a
+    it, many pose pairs per configured plugin.  ``fix``: the planner's fix, a
     :class:`~navfn_smt.spec.planner.Fix` or its name (:func:`plugin_program`: ``navfn-plugin``
     as shipped, ``navfn-plugin-fixed`` with the fix of docs/fix.md, ``navfn-plugin-<name>``)."""
 
     END = struct.pack("<3i", 0, 0, 0)
 
-    def __init__(self, folder, variant=fixes.AS_SHIPPED):
-        self.program = plugin_program(variant)
+    def __init__(self, folder, fix=fixes.AS_SHIPPED):
+        self.program = plugin_program(fix)
         self.planning_seconds = 0.0
         super().__init__(folder)
 

@@ -131,6 +131,9 @@ class ArrayState:
     def edge(self, n):
         return K.edge_weight(self.D, self.cost_f32(n))
 
+    def heuristic_between(self, goal, start):
+        return self.heuristic(None, start)
+
     def heuristic(self, n, start):
         h = self.D.f32(f"heuristic~{next(self.run._heuristics)}")  # its own count: A*'s run names the rest as Dijkstra's
         self.run.heuristics_seen.append(h)

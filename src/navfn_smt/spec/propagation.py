@@ -122,6 +122,12 @@ class PropagationState:
         return _heuristic(n % self.nx - start[0], n // self.nx - start[1])
 
     @staticmethod
+    def heuristic_between(goal: tuple[int, int], start: tuple[int, int]) -> float:
+        """A*'s heuristic from the goal's coordinates to the start's, as they are (a cell one past
+        the map's edge included)."""
+        return _heuristic(goal[0] - start[0], goal[1] - start[1])
+
+    @staticmethod
     def pick(cond: bool, a: Buffer, b: Buffer) -> Buffer:
         return a if cond else b
 
@@ -302,7 +308,7 @@ def propagate(
     start_cell = start[1] * st.nx + start[0]
     astar_start = start if astar else None
     if astar:
-        st.cur_t = D.add(st.heuristic(goal[1] * st.nx + goal[0], start), st.cur_t)
+        st.cur_t = D.add(st.heuristic_between(goal, start), st.cur_t)
     inc = D.int_to_f32(pri_inc)
     check_start = astar or at_start
     cycle, ended = 0, False
