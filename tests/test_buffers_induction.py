@@ -62,7 +62,7 @@ def _drops_overflow(D, nxt, over, drained):
 WRONG_STEPS = [
     ("push", _forgets_pending, "update_keeps_each_pending_cell_in_one_slot"),
     ("push", _forgets_pending, "setup_puts_each_pending_cell_in_one_slot"),
-    ("push", _ignores_pending, "update_keeps_each_pending_cell_in_one_slot"),
+    ("push", _ignores_pending, "astar_update_keeps_each_pending_cell_in_one_slot"),
     ("buffer_swap", _drops_overflow, "swap_keeps_each_pending_cell_in_one_slot"),
     ("cell_update", _writes_before_the_test, "update_and_its_pushes_reach_only_cells_of_the_component"),
     ("push", _forgets_pending, "update_and_its_pushes_keep_the_frontier"),

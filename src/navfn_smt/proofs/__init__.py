@@ -71,6 +71,7 @@ PendingMatchesBuffers = Predicate(
             "BuffersInductive.clearing_a_flag_keeps_the_clearing_invariant",
             "BuffersInductive.cleared_flags_give_the_cycle_invariant",
             "BuffersInductive.update_keeps_each_pending_cell_in_one_slot",
+            "BuffersInductive.astar_update_keeps_each_pending_cell_in_one_slot",
             "BuffersInductive.swap_keeps_each_pending_cell_in_one_slot"),
 )
 
@@ -303,7 +304,7 @@ BuffersInductive = Predicate(
     base=("setup_puts_each_pending_cell_in_one_slot",),
     lemmas=("a_cycle_starts_with_every_flag_to_clear", "clearing_a_flag_keeps_the_clearing_invariant",
             "cleared_flags_give_the_cycle_invariant", "update_keeps_each_pending_cell_in_one_slot",
-            "swap_keeps_each_pending_cell_in_one_slot"),
+            "astar_update_keeps_each_pending_cell_in_one_slot", "swap_keeps_each_pending_cell_in_one_slot"),
 )
 
 ReachedAndBufferedInductive = Predicate(

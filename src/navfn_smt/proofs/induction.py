@@ -90,7 +90,7 @@ def invariant_condition(D, source: str, target: str, kind=UnboundedMap, where=No
     """The condition of the spec's segment from ``source`` to ``target`` for the invariant of a
     map of class ``kind``, asked at any cell q (``where``, for an update: "updated", q is the
     updated cell; "other", it is not): (pre, claim).  The invariant is assumed at the cells the
-    segment touches, their neighbours and the goal; in float32 the potential an update writes,
+    segment touches, at q's neighbours and at the goal; in float32 the potential an update writes,
     when reached, below 2**30 (the run-time condition).  Dijkstra's and A*'s runs write the same
     potentials (the key only picks the pushes' buffer): one run, Dijkstra's."""
     m = Map(D)
@@ -108,7 +108,7 @@ def invariant_condition(D, source: str, target: str, kind=UnboundedMap, where=No
         given.append(q == c if where == "updated" else q != c)
         if D.name != "real":
             given.append(z3.Implies(Reached(D, new), D.lt(new, D.f32const(FP32_POTENTIAL_BOUND))))
-    return condition(D, m, seg, at, q, D.int32("i"), cells=lambda c: (*u.neighbours(c), m.g), given=given)
+    return condition(D, m, seg, at, q, D.int32("i"), near=(*u.neighbours(q), m.g), given=given)
 
 
 def frame_condition(D, kind=UnboundedMap):

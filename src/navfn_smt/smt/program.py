@@ -81,12 +81,12 @@ class Slots:
         self.run, self.slots, self.fill, self.inside, self.slot_of = run, slots, fill, inside, slot_of
 
     def cell(self, k):
-        self.run.slot_seen.append(k)
+        self.run.slot_seen.append((self, k))
         return self.slots[k]
 
     def append_if(self, admitted, n):
         D, f = self.run.D, self.fill
-        self.run.slot_seen.append(f)
+        self.run.slot_seen.append((self, f))
         self.run.cell_seen.append(n)
         self.slots = z3.If(admitted, z3.Store(self.slots, f, n), self.slots)
         self.inside = z3.If(admitted, z3.Store(self.inside, n, True), self.inside)
@@ -190,7 +190,7 @@ class Segment:
     bound_after: object
     after: Snapshot
     cells: list
-    slots: list
+    slots: list  # (the buffer's role at the segment's end, the slot)
     heuristics: list  # A*'s heuristic at each use (fresh floats)
 
 
@@ -235,9 +235,10 @@ class Program:
 
     def cut(self, target: str, k, bound) -> None:
         source, k0, bound0, given, before = self._origin
+        roles = {id(getattr(self.state, b)): b for b in BUFFERS}
+        slots = [(roles.get(id(buf)), k) for buf, k in self.slot_seen]  # a buffer's role, None if it has none now
         self.segments[(source, target)] = Segment(source, target, k0, bound0, given, before, k, bound,
-                                                  self.snapshot(), self.cell_seen[:], self.slot_seen[:],
-                                                  self.heuristics_seen[:])
+                                                  self.snapshot(), self.cell_seen[:], slots, self.heuristics_seen[:])
         for seen in (self.cell_seen, self.slot_seen, self.heuristics_seen):
             seen.clear()
 
@@ -315,18 +316,22 @@ def condition(D, m, seg: Segment, invariant, q, i, cells=lambda c: (), given=(),
     at the touched cells; the claim is the target's invariant at ``q`` and ``i``."""
     touched = _unique([q, *near, *seg.cells])
     every = _unique([*touched, *(x for c in touched for x in cells(c))])
-    slots = _unique([i, *seg.slots])
+    slots = [(b, i) for b in BUFFERS]  # the claim's slot in every buffer, and each slot touched in its buffer
+    for b, j in seg.slots:
+        for role in ([b] if b else BUFFERS):
+            if not any(r == role and j.eq(x) for r, x in slots):
+                slots.append((role, j))
     pre = [m.well_formed(), m.on_map(m.g), *(m.closed_at(c) for c in seg.cells), *seg.given, *given]
     held = [*assumed, invariant] if seg.source != "setup" else []
     for inv in held:
         whole, at_cell, at_slot = inv(loop_of(seg.source), seg.before, seg.k, seg.bound)
-        pre += [whole, *(at_cell(c) for c in every), *(at_slot(b, j) for j in slots for b in BUFFERS)]
+        pre += [whole, *(at_cell(c) for c in every), *(at_slot(b, j) for b, j in slots)]
     whole, at_cell, at_slot = invariant(seg.target, seg.after, seg.k_after, seg.bound_after)
     return z3.And(pre), z3.And(whole, at_cell(q), *(at_slot(b, i) for b in BUFFERS))
 
 
-def both_modes(D, m, build, free_floats: bool = False):
-    """``build(segments)`` for Dijkstra's run and A*'s (their keys differ), as one condition: (True,
-    Dijkstra's implication and A*'s)."""
-    parts = [build(segments(D, m, astar, free_floats)) for astar in (False, True)]
+def both_modes(D, m, build, free_floats: bool = False, modes=(False, True)):
+    """``build(segments)`` for Dijkstra's run and A*'s (their keys differ; ``modes``: which), as
+    one condition: (True, Dijkstra's implication and A*'s)."""
+    parts = [build(segments(D, m, astar, free_floats)) for astar in modes]
     return z3.BoolVal(True), z3.And([z3.Implies(pre, claim) for pre, claim in parts])
