@@ -3,7 +3,8 @@
 :mod:`navfn_smt.spec.propagation` states setupNavFn, initCost and propNavFn* once, as steps over
 a state with a few operations of its own (arrays filled with one value, a buffer's conditional
 append, a choice between two buffers, the loops).  :class:`Program` gives it a state of SMT arrays
-(cells and slots the domain's int, the map's size symbolic: every map at once) and runs the
+(cells and slots the domain's int, the map's size and the buffers' capacity symbolic: every map
+at once) and runs the
 spec's :func:`~navfn_smt.spec.propagation.init_cost` and
 :func:`~navfn_smt.spec.propagation.propagate` on it, unchanged: an array write becomes a store,
 a conditional append a guarded store, a choice between buffers an ite.
@@ -28,7 +29,8 @@ machine-checked, with nothing read off the code.
 Ghost state rides along: each buffer keeps ``inside`` (the cells it holds) and ``slot_of`` (at
 which slot), written by its append and carried by the choice between buffers; the state keeps
 ``dropped`` (a push was refused for want of room).  A*'s heuristic is a fresh float at each use
-(any value: the invariants here hold whatever the key).
+(any value; the frontier's condition assumes it is not negative, which an obligation proves of
+kernels.astar_heuristic).
 """
 
 from __future__ import annotations
@@ -41,7 +43,6 @@ import z3
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec import propagation as P
 
-LOOPS = ("cycle", "clear", "update")
 # (source, target) of the segments a run of propagate yields
 SEGMENTS = (("setup", "cycle"), ("cycle", "clear"), ("clear", "clear"), ("clear exit", "update"),
             ("update", "update"), ("update exit", "cycle"))
