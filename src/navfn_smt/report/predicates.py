@@ -31,9 +31,12 @@ def run_semantics(outcomes) -> list:
 
 
 def in_run(outcomes, predicates=None) -> list:
-    """The predicates that have an obligation of their own in the run, in registry order."""
+    """The predicates that have an obligation of their own in the run, or whose chain is made of
+    those of such predicates (``Other.name`` links), in registry order."""
     declared = {o.predicate for o in outcomes}
-    return [p for p in (predicates or registry()) if p.name in declared]
+    borrowed = lambda p: p.links and all(link.split(".")[0] in declared for link in p.links if "." in link) \
+        and all("." in link for link in p.links)  # noqa: E731
+    return [p for p in (predicates or registry()) if p.name in declared or borrowed(p)]
 
 
 def standing_text(o) -> str:
