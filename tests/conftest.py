@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pytest
 
-from navfn_smt.nav2.distro import CHECKED
+from navfn_smt.distros import CHECKED
 
 # the tests read reports as a pipe or a file gets them (a table row per line, as wide as it
 # needs): a COLUMNS in the test processes' environment would fit them to its width

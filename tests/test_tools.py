@@ -126,9 +126,9 @@ def test_coverage_report(tmp_path):
     assert 0 < doc["branches_covered"] < doc["branches"]
     assert {f["file"] for f in doc["files"]} == {"kernels.py", "numeric.py", "propagation.py", "extraction.py",
                                                 "planner.py"}
-    # an open map never fills a buffer: that branch is reported uncovered, with its reason
-    full = [u for u in doc["uncovered"] if "PRIORITYBUFSIZE" in u["source"]]
-    assert full and full[0]["reason"]
+    # from an interior start extraction never leaves the map: that branch is reported uncovered, with its reason
+    out = [u for u in doc["uncovered"] if "_OUT_OF_BOUNDS" in u["source"]]
+    assert out and out[0]["reason"]
     rc, o, e = run("coverage", suite, "--max-cases", 2, "--min-branch", 100)
     assert rc == 1
 

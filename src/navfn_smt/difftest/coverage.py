@@ -58,11 +58,6 @@ REASONS = {
         "from an interior start, extraction moves only to reached cells (grid fallback) or by at most "
         "one cell from a cell whose eight neighbours are reached; the border rows are never reached",
     # propagation.py
-    "if not K.is_passable(D, cost):  # skip the arithmetic on obstacles (cell_update keeps them)":
-        "pushes admit only passable cells, so an updated cell is never an obstacle (obstacle-free queues)",
-    "elif dropped:  # admitted but for the full buffer (PRIORITYBUFSIZE)":
-        "a full buffer needs a wavefront of more than 10,000 cells: reached by navfn-suite-large "
-        "and tests/data/overflow-subset, not by the paper's maps",
     # kernels.py (ite sites, decision coverage)
     "dx1 = D.ite(reached_l, D.add(zero, D.sub(pl, cv)), zero)":
         "the left neighbours of the four interpolation cells lie in the ring of nine reached cells",

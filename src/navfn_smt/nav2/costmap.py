@@ -61,7 +61,7 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..spec.constants import FREE_SPACE, NO_INFORMATION
-from .distro import distro as distro_record
+from ..distros import distro as distro_record
 from .mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
 from .footprint import robot_footprint
 from .params import load_params_yaml

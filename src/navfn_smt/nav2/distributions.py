@@ -4,7 +4,7 @@ with the smallest case that shows it.
 Every row (plugin rows, then the costmap layers' :data:`LAYER_DIFFERENCES`) is checked
 against the C++ of all five distributions (built from their sources by
 ``navfn-smt oracle build``; ``tests/test_oracle.py``) and against the model of each
-(:mod:`~navfn_smt.nav2.distro`); ``docs/distributions.md`` shows the same table.
+(:mod:`~navfn_smt.distros`); ``docs/distributions.md`` shows the same table.
 NavFn itself (``navfn.cpp``'s arithmetic) is the same in all five: the live difftest of the
 shared suite agrees with each distribution's build on every case.
 """
@@ -16,7 +16,7 @@ from typing import Optional
 
 import numpy as np
 
-from .distro import CHECKED
+from ..distros import CHECKED
 from .costmap import INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, InflationParams, LayerSpec
 from .params import PlannerParams
 from .plugin import EMPTY_PATH, Costmap, Pose

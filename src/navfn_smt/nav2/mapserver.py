@@ -78,13 +78,13 @@ import numpy as np
 from ..errors import NavfnInputError
 from ..spec.constants import FREE_SPACE, INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION
 from ..spec.costs import set_costmap
-from .distro import DEFAULT
-from .distro import DISTROS as DISTRO_RECORDS
-from .distro import distro as distro_record
+from ..distros import DEFAULT
+from ..distros import DISTROS as DISTRO_RECORDS
+from ..distros import distro as distro_record
 
 MODES = ("trinary", "scale", "raw")
 MAP_IO = ("current", "legacy")
-DISTROS = tuple(DISTRO_RECORDS)  # the distributions modelled (nav2/distro.py holds what differs)
+DISTROS = tuple(DISTRO_RECORDS)  # the distributions modelled (distros.py holds what differs)
 DEFAULT_DISTRO = DEFAULT
 _FROM_DISTRO = "distro"  # default of inscribed_cost_value: whatever the distro does
 REQUIRED_KEYS = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")

@@ -35,7 +35,7 @@ class PlannerParams:
     max_cycles_factor: int = 4
     use_final_approach_orientation: bool = False
     plugin: str = "GridBased"  # the plugin's name in planner_server (where the values were read)
-    distro: str = "rolling"  # whose navfn_planner.cpp reads them (see nav2/distro.py)
+    distro: str = "rolling"  # whose navfn_planner.cpp reads them (see distros.py)
     fix: Fix = AS_SHIPPED  # NavFn as shipped, or with a fix (navfn_smt.spec.fixes)
 
 

@@ -2,7 +2,7 @@
 
 ``createPlan`` (``navfn_planner.cpp``) as Jazzy, Kilted and Rolling run it, step by step, every
 number as the C++ computes it (all plugin arithmetic is double; NavFn's is the spec's); what
-Humble does differently follows the list (:mod:`.distro`):
+Humble does differently follows the list (:mod:`navfn_smt.distros`):
 
 1. ``Costmap2D::worldToMap`` (truncating) on both poses: off the map ->
    ``StartOutsideMapBounds`` / ``GoalOutsideMapBounds``; ``tolerance == 0`` and the goal's
@@ -54,7 +54,7 @@ from ..spec.costs import add_border, set_costmap
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour
 from ..spec.numeric import c_fma
 from ..under_test import PlannerUnderTest
-from .distro import Distro, distro
+from ..distros import Distro, distro
 from .params import PlannerParams
 
 LEGAL_BUT_NO_PLAN = ("Failed to create a plan from potential when a legal potential was found. "
@@ -73,7 +73,7 @@ FIXED_NO_PATH_WARNING = "[PathCalc] No path: neither the gradient nor the descen
 
 
 def flavour_of(name: str) -> Distro:
-    """What ``navfn_planner.cpp`` does in the distribution ``name`` (its :class:`~.distro.Distro`)."""
+    """What ``navfn_planner.cpp`` does in the distribution ``name`` (its :class:`~navfn_smt.distros.Distro`)."""
     return distro(name)
 
 

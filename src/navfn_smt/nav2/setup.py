@@ -118,13 +118,13 @@ def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_o
     params = planner_params(params_file) if params_file else PlannerParams()
     if overrides:
         params = replace(params, **{k: v for k, v in overrides.items() if v is not None})
-    from .distro import distro as distro_record
+    from ..distros import distro as distro_record
 
     record = distro_record(distro)
     params = replace(params, distro=distro)
     notes = [] if record.checked else [
         f"{distro}'s navfn_planner.cpp is not among the sources this model was checked against: the plugin "
-        f"is modelled as its neighbours' (nav2/distro.py)"]
+        f"is modelled as its neighbours' (distros.py)"]
     if not record.cycles_factor and params.max_cycles_factor != 4:
         notes.append(f"max_cycles_factor {params.max_cycles_factor} ignored: {distro} has no such parameter "
                      f"(Nav2 PR #6308, August 2026); calcPath gets 4 * max(size_x, size_y) cycles")

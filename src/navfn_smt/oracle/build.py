@@ -59,7 +59,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Optional
 
-from ..nav2.distro import DISTROS
+from ..distros import DISTROS
 from ..errors import NavfnInputError
 from ..fileio import atomic_folder
 from ..spec import fixes

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ..errors import NavfnInputError
+from .errors import NavfnInputError
 
 
 @dataclass(frozen=True)
