@@ -107,7 +107,6 @@ def test_a_push_that_forgets_its_flag_breaks_the_buffer_invariant(monkeypatch):
 
 
 def test_a_swap_that_keeps_the_old_next_buffer_breaks_the_buffer_invariant(monkeypatch):
-    monkeypatch.setattr(P.Buffer, "emptied", lambda self: self)  # (the concrete model is not used here)
     monkeypatch.setattr(program.Slots, "emptied", lambda self: self)
     D = real()
     assert holds(D, buffers.buffer_condition(D, "update exit", "cycle")) == "refuted"

@@ -40,7 +40,7 @@ from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, ValidPotential, all_of
 from navfn_smt.spec import kernels as K
 from navfn_smt.spec.propagation import update_neighbours
-from navfn_smt.smt.program import SEGMENTS, both_modes, cell_sort, condition
+from navfn_smt.smt.program import SEGMENTS, as_one, both_modes, cell_sort, condition
 
 BUFFERS = ("cur", "nxt", "over")
 # proved in every semantics; a model of a negation is over arrays, which the concrete spec cannot replay
@@ -319,8 +319,7 @@ def the_steps_around_the_updates_keep_every_buffered_cell_beside_a_reached_one(D
 
     R1 and R2 at q  ==>  R1 and R2 at q after the step
     """
-    parts = [reach_condition(D, s, t) for s, t in SEGMENTS if s not in ("setup", "update")]
-    return z3.BoolVal(True), z3.And([claim for _, claim in parts])
+    return as_one(reach_condition(D, s, t) for s, t in SEGMENTS if s not in ("setup", "update"))
 
 
 @obligation(ReachedAndBufferedInductive, **STATED,

@@ -26,7 +26,7 @@ from navfn_smt.spec import kernels as K
 
 from navfn_smt.proofs import FrontierInductive
 from navfn_smt.proofs.buffers import STATED, Buffers, Map, at_cell, buffer_invariant, fills, potentials
-from navfn_smt.smt.program import SEGMENTS, condition, segments
+from navfn_smt.smt.program import SEGMENTS, as_one, condition, segments
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of
 from navfn_smt.proofs.fix import KEY_BOUND  # a push key: a potential below POT_BOUND plus A*'s heuristic
@@ -90,8 +90,7 @@ def frontier_condition(D, source: str, target: str, astar: bool):
 
 def frontier_holds(D, pairs):
     """The conditions of ``pairs`` of segments, in both modes, as one: (True, their implications)."""
-    parts = [frontier_condition(D, s, t, astar) for s, t in pairs for astar in (False, True)]
-    return z3.BoolVal(True), z3.And([z3.Implies(pre, claim) for pre, claim in parts])
+    return as_one(frontier_condition(D, s, t, astar) for s, t in pairs for astar in (False, True))
 
 
 @obligation(FrontierInductive, expect=STATED["expect"], scope="A*'s heuristic between any two cells")

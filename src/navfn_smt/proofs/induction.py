@@ -33,7 +33,7 @@ from navfn_smt.proofs import PositionSafeAndProgressInductive
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Lethal, Reached, TranslatedCost, ValidPotential
 from navfn_smt.proofs.buffers import Map
-from navfn_smt.smt.program import SEGMENTS, cell_sort, condition, segments
+from navfn_smt.smt.program import SEGMENTS, as_one, cell_sort, condition, segments
 from navfn_smt.spec.propagation import update_neighbours
 
 FP32_POTENTIAL_BOUND = 2.0 ** 30  # Progress's float32 bound (proofs/progress.py), a run-time condition
@@ -114,8 +114,7 @@ def invariant_condition(D, source: str, target: str, kind=UnboundedMap, where=No
 def frame_condition(D, kind=UnboundedMap):
     """The segments of the spec's run that write no potential (a cycle's start, the clearing loop,
     its end, the swap): each keeps the invariant of a map of class ``kind``."""
-    parts = [invariant_condition(D, s, t, kind) for s, t in SEGMENTS if s not in ("setup", "update")]
-    return z3.BoolVal(True), z3.And([z3.Implies(pre, claim) for pre, claim in parts])
+    return as_one(invariant_condition(D, s, t, kind) for s, t in SEGMENTS if s not in ("setup", "update"))
 
 
 STEP = dict(expect={"real": "proved", "fp32": "proved", "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},

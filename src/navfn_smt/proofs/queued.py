@@ -15,7 +15,7 @@ import z3
 
 from navfn_smt.proofs import QueuedStartReached
 from navfn_smt.proofs.buffers import Map, buffer_invariant
-from navfn_smt.smt.program import both_modes, condition
+from navfn_smt.smt.program import as_one, both_modes, condition
 from navfn_smt.smt.obligation import obligation
 from navfn_smt.smt.predicates import Reached, TranslatedCost, ValidPotential, all_of, any_of
 from navfn_smt.spec import kernels as K
@@ -101,8 +101,7 @@ def queued_start_is_beside_a_reached_cell_as_the_updates_start_and_reached_when_
     the start at slot j < curPe of cur, a reached 4-neighbour of it (R2), reached cells below the bound
     ==>  Q(0);   Q(curPe)  ==>  the start reached after the swap
     """
-    parts = [queued_condition(D, s, t) for s, t in (("clear exit", "update"), ("update exit", "cycle"))]
-    return z3.BoolVal(True), z3.And([claim for _, claim in parts])
+    return as_one(queued_condition(D, s, t) for s, t in (("clear exit", "update"), ("update exit", "cycle")))
 
 
 @obligation(QueuedStartReached, expect={"real": "proved", "fp32": "proved",

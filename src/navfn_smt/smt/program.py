@@ -309,14 +309,13 @@ def loop_of(point: str) -> str:
     return point.removesuffix(" exit")
 
 
-def condition(D, m, seg: Segment, invariant, q, i, cells=lambda c: (), given=(), assumed=(), near=()):
+def condition(D, m, seg: Segment, invariant, q, i, given=(), assumed=(), near=()):
     """The condition of ``seg`` for ``invariant(loop, snapshot, k, bound) -> (whole, at_cell,
     at_slot)``: (pre, claim).  The source's invariant (none at setup), and the invariants
     ``assumed`` (proved elsewhere), are assumed at ``q``, ``i`` and at the cells and slots the
-    segment touched (and ``cells(c)`` of each) and at the cells ``near``, the component's closure
-    at the touched cells; the claim is the target's invariant at ``q`` and ``i``."""
+    segment touched and at the cells ``near``, the component's closure at the touched cells; the
+    claim is the target's invariant at ``q`` and ``i``."""
     touched = _unique([q, *near, *seg.cells])
-    every = _unique([*touched, *(x for c in touched for x in cells(c))])
     slots = [(b, i) for b in BUFFERS]  # the claim's slot in every buffer, and each slot touched in its buffer
     for b, j in seg.slots:
         for role in ([b] if b else BUFFERS):
@@ -326,13 +325,17 @@ def condition(D, m, seg: Segment, invariant, q, i, cells=lambda c: (), given=(),
     held = [*assumed, invariant] if seg.source != "setup" else []
     for inv in held:
         whole, at_cell, at_slot = inv(loop_of(seg.source), seg.before, seg.k, seg.bound)
-        pre += [whole, *(at_cell(c) for c in every), *(at_slot(b, j) for b, j in slots)]
+        pre += [whole, *(at_cell(c) for c in touched), *(at_slot(b, j) for b, j in slots)]
     whole, at_cell, at_slot = invariant(seg.target, seg.after, seg.k_after, seg.bound_after)
     return z3.And(pre), z3.And(whole, at_cell(q), *(at_slot(b, i) for b in BUFFERS))
 
 
+def as_one(parts):
+    """Conditions ``(pre, claim)`` as one: (True, each pre implying its claim)."""
+    return z3.BoolVal(True), z3.And([z3.Implies(pre, claim) for pre, claim in parts])
+
+
 def both_modes(D, m, build, free_floats: bool = False, modes=(False, True)):
     """``build(segments)`` for Dijkstra's run and A*'s (their keys differ; ``modes``: which), as
-    one condition: (True, Dijkstra's implication and A*'s)."""
-    parts = [build(segments(D, m, astar, free_floats)) for astar in modes]
-    return z3.BoolVal(True), z3.And([z3.Implies(pre, claim) for pre, claim in parts])
+    one condition (:func:`as_one`)."""
+    return as_one(build(segments(D, m, astar, free_floats)) for astar in modes)
