@@ -72,6 +72,8 @@ WRONG_STEPS = [
 
 @pytest.mark.parametrize("kernel, wrong, name", WRONG_STEPS, ids=[f"{w.__name__}-{n}" for _, w, n in WRONG_STEPS])
 def test_a_wrong_step_gives_a_model_of_the_negation(monkeypatch, kernel, wrong, name):
+    """(in real arithmetic: each seeded bug is in the buffers' bookkeeping, which a float32
+    model finds too, but a float32 query of the frontier's update takes a solver about a minute)"""
     monkeypatch.setattr(K, kernel, wrong)
-    pre, claim = OBLIGATIONS[name].build(DOMAINS["fp32"]())
+    pre, claim = OBLIGATIONS[name].build(DOMAINS["real"]())
     assert _decide(z3.And(pre, z3.Not(claim))) == z3.sat
