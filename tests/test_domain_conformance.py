@@ -1,7 +1,7 @@
 """Every numeric domain against the concrete one: the interface, then every kernel, bit for bit.
 
 The interface is :class:`navfn_smt.spec.domain.NumericDomain`; the kernels, the inputs and
-how each domain takes them in are the conformance harness (:mod:`navfn_smt.testing.conformance`:
+how each domain takes them in are the conformance harness (``tests/domain_harness.py``:
 numba, concolic with its intervals, array, fp32, real where nothing rounds, real against
 exact rationals).  Here every kernel runs in every domain that runs it, and each kind of
 check is shown to fail on a domain with a seeded fault.  The bit-precise fp32 domain runs the
@@ -24,12 +24,12 @@ import navfn_smt.spec.kernels as kernels
 from navfn_smt.backends.numba_domain import OPERATIONS as NUMBA_OPERATIONS
 from navfn_smt.check.concolic import ConcolicDomain
 from navfn_smt.smt.enumerate import ArrayDomain
-from navfn_smt.smt.evaluate import RealEvalDomain
+from domain_harness import RealEvalDomain
 from navfn_smt.spec import conformance as T
 from navfn_smt.spec.arithmetic import KNOWN, Arithmetic
 from navfn_smt.spec.domain import OPERATIONS, NumericDomain
 from navfn_smt.spec.numeric import CONCRETE as C
-from navfn_smt.testing import conformance as H
+import domain_harness as H
 
 
 # ------------------------------------------------------------------------ the interface

@@ -13,9 +13,10 @@ from navfn_smt.errors import NavfnInputError
 from navfn_smt.maps import generators as G
 from navfn_smt.maps.generators import (
     CATEGORIES, CATEGORY_INFO, choose_cases, generate_map, generate_maps, generate_suite,
-    inflate, inflation_cost, passable_cells,
+    inflate, passable_cells,
 )
 from navfn_smt.maps.regions import regions as components
+from navfn_smt.nav2.inflation import compute_cost as inflation_cost
 from navfn_smt.maps.suite import discover, load_map
 
 SMALL = {  # sizes that keep the whole file fast
@@ -281,7 +282,7 @@ def test_maze_is_connected_with_loops_and_one_cell_corridors():
 
 
 # ------------------------------------------------------------------------ inflated
-def test_inflation_cost_is_nav2_compute_cost():
+def test_compute_cost_gives_nav2s_inflation_costs():
     # resolution 0.05, inscribed radius 0.22, cost_scaling_factor 3.0 (Nav2's defaults)
     assert inflation_cost(0, 0.05, 0.22, 3.0) == 254
     assert inflation_cost(4, 0.05, 0.22, 3.0) == 253  # 0.2 m <= 0.22

@@ -320,13 +320,13 @@ def distribution_table() -> dict:
 
 
 def test_each_distribution_difference_shows_on_the_cpp_as_the_table_says(builds):
-    """Every row of nav2/distributions.py (and docs/distributions.md): the C++ of each
+    """Every row of tests/distribution_cases.py (and docs/distributions.md): the C++ of each
     distribution gives the outcome the docs table states, the model of each the same bit for
     bit, and the outcomes differ between distributions (the row shows a difference)."""
     from dataclasses import replace
 
     from navfn_smt.difftest.plugin_live import first_difference
-    from navfn_smt.nav2.distributions import DIFFERENCES, costmap_of, summary_of
+    from distribution_cases import DIFFERENCES, costmap_of, summary_of
     from navfn_smt.nav2.plugin import create_plan
 
     rows = distribution_table()
@@ -409,14 +409,14 @@ def test_the_cli_costmap_level(builds, capsys):
 
 
 def test_each_costmap_difference_shows_on_the_cpp_as_the_table_says(builds):
-    """Every row of nav2/distributions.py's LAYER_DIFFERENCES (and docs/distributions.md): each
+    """Every row of tests/distribution_cases.py's LAYER_DIFFERENCES (and docs/distributions.md): each
     distribution's compiled layers give the costmap the table states, its model the same bytes
     (or, where the version lacks the layer type, an error), and the rows differ between versions."""
     import numpy as np
 
     from navfn_smt.difftest.layers_live import LayersConfig, model_costmap
     from navfn_smt.errors import NavfnInputError
-    from navfn_smt.nav2.distributions import LAYER_DIFFERENCES, layer_params, layer_summary
+    from distribution_cases import LAYER_DIFFERENCES, layer_params, layer_summary
     from navfn_smt.oracle.client import LayersOracle
 
     rows = distribution_table()
@@ -519,7 +519,7 @@ def test_the_builds_differ_as_their_arithmetic_says(builds, target_builds):
     x86 conversions) gives arm64's potentials bit for bit and its paths except where the
     conversion of an unreached potential decides; arm64 without contraction keeps x86-64's
     potentials and differs only there, and there arm64 returns a path where x86-64 returns none."""
-    from navfn_smt.difftest.builds import compare_builds
+    from build_comparison import compare_builds
 
     def compare(a, b):
         with Oracle(a, traced=False) as x, Oracle(b, traced=False) as y:
@@ -769,7 +769,7 @@ def library_builds(nav2_src, target_builds, tmp_path_factory) -> dict:
 
 def test_a_library_build_links_the_users_binary_and_finds_its_arithmetic_in_its_machine_code(library_builds,
                                                                                              target_builds, capsys):
-    from navfn_smt.difftest.builds import compare_builds
+    from build_comparison import compare_builds
 
     for target, (doc, folder) in library_builds.items():
         assert doc["programs"] == ["navfn-plain"] and doc["library"]["target"] == doc["target"] == target

@@ -289,13 +289,6 @@ def _add(total: dict, part: dict) -> None:
             total[k] += v
 
 
-def recheck_case(case: B.Case, names, lo: int, hi: int, log: list, timeout: float, planner,
-                 verdicts: Optional[dict] = None, order: tuple = DEFAULT_SOLVERS, check_intervals: bool = False,
-                 memo: Optional[dict] = None) -> list[str]:
-    """The problems of one case's path log (empty: it re-checks); see :func:`check_case`."""
-    return check_case(case, names, lo, hi, log, timeout, planner, verdicts, order, check_intervals, memo)["problems"]
-
-
 def _log_problem(log, cells: int, properties: int, lo: int, hi: int) -> Optional[str]:
     """What is wrong with the shape of a case's path log, if anything: each path ``[seed, bound,
     marks, flips]`` (a cost in ``lo..hi`` per passable cell, a branch index, a mark per property,

@@ -61,7 +61,7 @@ def cmd_diagnose(args) -> int:
     from ..report import diagnose as report
     from ..diagnose.core import diagnose
     from ..diagnose.inputs import load_inputs, parse_goals, pose_arg
-    from ..nav2.mapserver import DEFAULT_DISTRO
+    from ..distros import DEFAULT
 
     given = [o for o, v in (("--goal", args.goal), ("--goals", args.goals), ("--sweep", args.sweep)) if v]
     if len(given) != 1:
@@ -76,7 +76,7 @@ def cmd_diagnose(args) -> int:
     if args.sweep:
         return _sweep(args, start, planner, arith)
     goals = parse_goals(args.goals) if args.goals else [pose_arg("goal", args.goal)]
-    setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside,
+    setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT, args.allow_outside,
                         args.resolution, tuple(args.origin), planner.fix, layers_arithmetic_of(planner, args.map))
     t0 = time.perf_counter()
     results = []
@@ -106,14 +106,14 @@ def _sweep(args, start, planner, arith) -> int:
     from ..diagnose.inputs import load_inputs
     from ..diagnose.sweep import summary, sweep
 
-    from ..nav2.mapserver import DEFAULT_DISTRO
+    from ..distros import DEFAULT
     from ..spec.arithmetic import PLUGIN_X86_64
 
     if arith not in (None, PLUGIN_X86_64):
         raise NavfnInputError(f"--sweep computes in x86-64's arithmetic only so far (its compiled loops), not as "
                               f"{planner.label} does: diagnose the goals one by one there (--goals FILE)")
     n = None if args.sweep == "all" else _sample_size(args.sweep)
-    setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside,
+    setup = load_inputs(args.map, args.params, planner.distribution or DEFAULT, args.allow_outside,
                         args.resolution, tuple(args.origin), planner.fix, layers_arithmetic_of(planner, args.map))
     cm = setup.costmap
     from ..report.tables import progress_bar
@@ -153,7 +153,7 @@ def _sample_size(v) -> int:
 
 def register(sub) -> None:
     from ..backends import BACKENDS
-    from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
+    from ..distros import DEFAULT, DISTROS
 
     d = sub.add_parser("diagnose", help="explain why a Nav2 NavFn plan fails and what fixes it")
     d.add_argument("map", help="a map_server YAML map, or a costmap file (.npy, .pgm) with --resolution")
@@ -176,7 +176,7 @@ def register(sub) -> None:
                    "costmap's layers (global_costmap); default: Nav2's defaults, static layer only")
     d.add_argument("--distro", default=None,
                    help=f"Nav2 distribution whose map loading and costmap rules apply ({', '.join(DISTROS)}; default "
-                        f"{DEFAULT_DISTRO}, or the --oracle build's)")
+                        f"{DEFAULT}, or the --oracle build's)")
     d.add_argument("--allow-outside", action="store_true",
                    help="let the map YAML name an image outside its own folder")
     add_planner_arguments(d, oracle_help=ORACLE_PLAN_HELP + ": the plugin's, NavFn's and the layers'; every step "

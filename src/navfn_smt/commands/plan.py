@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import NavfnInputError
-from ..nav2.mapserver import DEFAULT_DISTRO
+from ..distros import DEFAULT
 from .common import (BACKEND_HELP, ORACLE_PLAN_HELP, add_planner_arguments, cell, layers_arithmetic_of,
                      planner_of, plugin_arithmetic_of)
 
@@ -26,7 +26,7 @@ def _plan_world(args) -> int:
     planner = planner_of(args)
     arith = plugin_arithmetic_of(planner, "--world")
     overrides = {"use_astar": True if args.astar else False if args.dijkstra else None, "fix": planner.fix}
-    setup = load_setup(args.map, args.params, planner.distribution or DEFAULT_DISTRO, args.allow_outside, overrides,
+    setup = load_setup(args.map, args.params, planner.distribution or DEFAULT, args.allow_outside, overrides,
                        args.resolution, tuple(args.origin), layers_arithmetic_of(planner, args.map))
     run = create_plan(setup.costmap, start, goal, setup.params, args.backend, arith)
     report.plugin_plan(setup, run, start, goal, args.backend, args.json)
@@ -47,7 +47,7 @@ def cmd_plan(args) -> int:
     mode = "dijkstra" if args.dijkstra else "astar"
     start, goal = cell("start", args.start), cell("goal", args.goal)
     planner = planner_of(args)
-    costs = load_costs(args.map, args.size, args.allow_outside, planner.distribution or DEFAULT_DISTRO)
+    costs = load_costs(args.map, args.size, args.allow_outside, planner.distribution or DEFAULT)
     res = planner.backend(args.backend).prepare(costs).run(start, goal, astar=not args.dijkstra, trace=False)
     report.cell_plan(res, mode, args.backend, start, goal, args.json, costs, planner)
     return 0 if len(res.path) else 1
@@ -56,7 +56,7 @@ def cmd_plan(args) -> int:
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..nav2.mapserver import DISTROS
+    from ..distros import DISTROS
 
     pl = sub.add_parser("plan", help="plan on one map and print the path")
     pl.add_argument("map", help="a suite map directory (test.txt gives the size), a map_server YAML, "
@@ -82,7 +82,7 @@ def register(sub) -> None:
     pl.add_argument("--allow-outside", action="store_true",
                     help="let a map_server YAML name an image outside its own folder")
     pl.add_argument("--distro", choices=tuple(DISTROS),
-                    help=f"Nav2 distribution whose map loading and costmap rules apply (default: {DEFAULT_DISTRO}, "
+                    help=f"Nav2 distribution whose map loading and costmap rules apply (default: {DEFAULT}, "
                     "or with --oracle the build's)")
     alg = pl.add_mutually_exclusive_group()
     alg.add_argument("--dijkstra", action="store_true",

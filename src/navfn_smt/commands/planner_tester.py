@@ -143,7 +143,7 @@ def _print(doc, console, duration) -> None:
 
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
-    from ..nav2.distributions import DISTROS
+    from ..distros import CHECKED as DISTROS
     from ..nav2.planner_tester import RANDOM_PAIRS
 
     p = sub.add_parser("planner-tester", help="the NavFn checks of Nav2's planning system tests (test_planner_plugins, "

@@ -72,7 +72,7 @@ def cmd_plugin_check(args) -> int:
 def register(sub) -> None:
     """The command's parser, its options and its handler."""
     from ..backends import BACKENDS
-    from ..nav2.mapserver import DEFAULT_DISTRO, DISTROS
+    from ..distros import DEFAULT, DISTROS
     from ..check.plugin import PLUGIN_PROPERTIES
 
     pc = sub.add_parser("plugin-check", help="judge what a Nav2 user relies on of the planner plugin (a plan when "
@@ -93,7 +93,7 @@ def register(sub) -> None:
                     "docs/fix.md (default)")
     pc.add_argument("--tolerance", nargs="+", type=float, default=(0.0, 1.0), metavar="M",
                     help="the plugin's tolerance values, in cells (resolution 1; default: 0 1)")
-    pc.add_argument("--distro", default=DEFAULT_DISTRO, choices=tuple(DISTROS),
+    pc.add_argument("--distro", default=DEFAULT, choices=tuple(DISTROS),
                     help="whose navfn_planner.cpp (default: %(default)s)")
     pc.add_argument("--backend", choices=BACKENDS, default="jit", help="planner implementation (default: jit)")
     pc.add_argument("--json", metavar="FILE", help="write the counts and each first failing case as JSON")

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..errors import NavfnInputError
-from ..nav2.mapserver import DEFAULT_DISTRO
+from ..distros import DEFAULT
 from ..nav2.plugin import Pose, check_pose
 from ..nav2.setup import Setup, check_params_file, load_setup
 from ..spec.planner import AS_SHIPPED, Fix
@@ -20,7 +20,7 @@ from ..spec.planner import AS_SHIPPED, Fix
 
 
 
-def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
+def load_inputs(map_yaml, params_file=None, distro: str = DEFAULT, allow_outside: bool = False,
                 resolution=None, origin=(0.0, 0.0), fix: Fix = AS_SHIPPED, layers_arith=None) -> Setup:
     """Map (or costmap file) + optional params file -> the costmap and the plugin's parameters
     (:func:`load_setup`), for NavFn as shipped or with a fix (``fix``), the layers computing

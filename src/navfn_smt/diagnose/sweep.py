@@ -58,17 +58,6 @@ OUTCOME_ERROR = {"ok": None, "ok_tolerance": None, "same_pose": None, "no_legal"
                  "legal_no_plan": "NoValidPathCouldBeFound", "goal_occupied": "GoalOccupied",
                  "goal_outside": "GoalOutsideMapBounds", "start_outside": "StartOutsideMapBounds",
                  "undefined_behaviour": "UndefinedBehaviour"}
-OUTCOME_TEXT = {
-    "ok": "plan",
-    "ok_tolerance": "plan after the tolerance search",
-    "same_pose": "goal at the start's position (one-pose plan)",
-    "no_legal": "no path: no legal potential within tolerance",
-    "legal_no_plan": "no path: legal potential, calcPath failed (#4655)",
-    "goal_occupied": "GoalOccupied (lethal goal, tolerance 0)",
-    "goal_outside": "GoalOutsideMapBounds",
-    "start_outside": "StartOutsideMapBounds",
-    "undefined_behaviour": "undefined behaviour in the C++",
-}
 _CODE = {name: i for i, name in enumerate(OUTCOMES)}
 EXIT_NAMES = tuple(e.name for e in EXIT_CODES)  # the sweep's exit ints are the spec's
 FREE_BELOW = INSCRIBED_INFLATED_OBSTACLE  # goals by default: every known cell below it
@@ -124,9 +113,6 @@ class SweepResult:
     def counts(self) -> dict:
         c = np.bincount(self.outcome.astype(np.int64), minlength=len(OUTCOMES))
         return {name: int(c[i]) for i, name in enumerate(OUTCOMES)}
-
-    def goals_per_second(self) -> Optional[float]:
-        return len(self) / self.seconds if self.seconds > 0 else None
 
 
 def goal_pose(cm: Costmap, cell) -> Pose:

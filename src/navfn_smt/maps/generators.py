@@ -60,7 +60,6 @@ CATEGORIES = (
     "circus", "columns", "free", "obstacle", "radial", "random", "spiral", "split", "walls",
     "inflated", "maze",
 )
-PAPER_CATEGORIES = CATEGORIES[:9]
 # Stable stream keys (never hash(): it is salted per process).
 _KEY = {c: i + 1 for i, c in enumerate(CATEGORIES)}
 
@@ -299,14 +298,6 @@ def circus_map(rng: np.random.Generator, width: int, height: int, side: Optional
 
 
 # ---- inflated: Nav2's inflation layer (nav2_costmap_2d InflationLayer::updateCosts / computeCost)
-
-
-def inflation_cost(distance: float, resolution: float, inscribed_radius: float, cost_scaling_factor: float) -> int:
-    """``InflationLayer::computeCost``: the ROS cost at ``distance`` cells from an obstacle cell
-    (:func:`navfn_smt.nav2.inflation.compute_cost`)."""
-    from ..nav2.inflation import compute_cost
-
-    return compute_cost(distance, resolution, inscribed_radius, cost_scaling_factor)
 
 
 def inflate(ros: np.ndarray, resolution: float, inscribed_radius: float, inflation_radius: float,

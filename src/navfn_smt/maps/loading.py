@@ -10,7 +10,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
-from ..nav2.mapserver import DEFAULT_DISTRO
+from ..distros import DEFAULT
 
 
 def is_yaml(path) -> bool:
@@ -19,7 +19,7 @@ def is_yaml(path) -> bool:
 
 
 def load_costs(path, size: Optional[tuple[int, int]] = None, allow_outside: bool = False,
-               distro: str = DEFAULT_DISTRO) -> np.ndarray:
+               distro: str = DEFAULT) -> np.ndarray:
     """The NavFn costs of a map directory, a map_server YAML, or a raw map file of ``size`` (W, H)."""
     from .suite import load_map, read_map_bytes
 

@@ -62,7 +62,8 @@ from ..errors import NavfnInputError
 from ..spec.arithmetic import LAYERS_X86_64, LayersArithmetic
 from ..spec.constants import FREE_SPACE, NO_INFORMATION
 from ..distros import distro as distro_record
-from .mapserver import DEFAULT_DISTRO, DISTROS, MapServerMap, static_layer_costs
+from ..distros import DEFAULT, DISTROS
+from .mapserver import MapServerMap, static_layer_costs
 from .footprint import robot_footprint
 from .params import load_params_yaml
 from .inflation import inflate_current, inflate_legacy
@@ -216,7 +217,7 @@ def _layer_specs(params: Mapping, where: str, distro: str) -> tuple[tuple[LayerS
     return tuple(specs), notes
 
 
-def costmap_params(params: Mapping, distro: str = DEFAULT_DISTRO, where: str = "global_costmap") -> CostmapParams:
+def costmap_params(params: Mapping, distro: str = DEFAULT, where: str = "global_costmap") -> CostmapParams:
     """:class:`CostmapParams` from a ``ros__parameters`` mapping, Nav2's code defaults where absent."""
     _check_distro(distro)
     if not isinstance(params, Mapping):
@@ -259,14 +260,14 @@ def _section(doc: Mapping, node: str, path) -> Mapping:
     raise NavfnInputError(f"{path}: no '{node}: {node}: ros__parameters' section")
 
 
-def load_costmap_params(path, distro: str = DEFAULT_DISTRO, node: str = "global_costmap") -> CostmapParams:
+def load_costmap_params(path, distro: str = DEFAULT, node: str = "global_costmap") -> CostmapParams:
     """Read a Nav2 params YAML's global costmap section; every problem raises NavfnInputError."""
     p = Path(path)
     doc = load_params_yaml(p)
     return costmap_params(_section(doc, node, p), distro, where=f"{p}: {node}")
 
 
-def bringup_params(distro: str = DEFAULT_DISTRO) -> CostmapParams:
+def bringup_params(distro: str = DEFAULT) -> CostmapParams:
     """nav2_bringup's shipped global costmap (``nav2_params.yaml``) for ``distro``, static and
     inflation layers as they are there (robot_radius 0.22, resolution 0.05, track_unknown_space
     true, cost_scaling_factor 3.0, inflation_radius 0.55 in Humble and Iron, else 0.7; the
@@ -360,7 +361,7 @@ def build_global_costmap(
     the distance-transform layer takes its square root (:func:`~.inflation.matrix_sqrt`).
     """
     params = params if params is not None else CostmapParams()
-    distro = distro or (source.distro if isinstance(source, MapServerMap) else DEFAULT_DISTRO)
+    distro = distro or (source.distro if isinstance(source, MapServerMap) else DEFAULT)
     _check_distro(distro)
     static = _static_costs(source, params, distro)
     if isinstance(source, MapServerMap):

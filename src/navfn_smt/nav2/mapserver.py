@@ -2,7 +2,7 @@
 
 The chain from pixels to the costs NavFn plans on, each step as Nav2 implements it.  Nav2's
 distributions differ in step 1 and 2; ``distro`` selects which (default ``"rolling"``, the
-main branch, which the golden suite's NavFn also follows; see :data:`DISTROS`).
+main branch, which the golden suite's NavFn also follows; see :data:`navfn_smt.distros.DISTROS`).
 
 1. ``nav2_map_server/src/map_io.cpp`` (``loadMapYaml``, ``loadMapFromFile``).  The YAML
    gives ``image``, ``resolution``, ``origin`` [x, y, yaw], ``negate``, ``occupied_thresh``,
@@ -79,13 +79,10 @@ from ..errors import NavfnInputError
 from ..spec.constants import FREE_SPACE, INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, NO_INFORMATION
 from ..spec.costs import set_costmap
 from ..distros import DEFAULT
-from ..distros import DISTROS as DISTRO_RECORDS
 from ..distros import distro as distro_record
 
 MODES = ("trinary", "scale", "raw")
 MAP_IO = ("current", "legacy")
-DISTROS = tuple(DISTRO_RECORDS)  # the distributions modelled (distros.py holds what differs)
-DEFAULT_DISTRO = DEFAULT
 _FROM_DISTRO = "distro"  # default of inscribed_cost_value: whatever the distro does
 REQUIRED_KEYS = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
 
@@ -454,7 +451,7 @@ def load_map_yaml(
     path,
     allow_outside: bool = False,
     *,
-    distro: str = DEFAULT_DISTRO,
+    distro: str = DEFAULT,
     track_unknown_space: bool = True,
     lethal_threshold: int = 100,
     trinary_costmap: bool = True,
@@ -464,7 +461,7 @@ def load_map_yaml(
 ) -> MapServerMap:
     """Load a map_server YAML and its image; every problem raises :class:`NavfnInputError`.
 
-    ``distro`` (a key of :data:`DISTROS`) selects the map_io generation and the static
+    ``distro`` (a key of :data:`navfn_smt.distros.DISTROS`) selects the map_io generation and the static
     layer's inscribed-value rule; ``inscribed_cost_value`` (an int or None) overrides the
     latter.  The other keyword arguments are the static layer's parameters (defaults:
     Nav2's, with ``track_unknown_space`` true as nav2_bringup's global costmap sets it) and

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Optional, Sequence
+from typing import Callable, Optional
 
 import numpy as np
 
@@ -215,7 +215,3 @@ def run_random_test(planner: Planner, cm: Costmap, seed: int, pairs: int = RANDO
         if out[-1].passed:
             break
     return out
-
-
-def random_test_passed(results: Sequence[RandomResult]) -> bool:
-    return any(r.passed for r in results)

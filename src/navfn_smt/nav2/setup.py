@@ -15,7 +15,8 @@ from typing import Optional
 import numpy as np
 
 from ..errors import NavfnInputError
-from .mapserver import DEFAULT_DISTRO, MapServerMap, load_map_yaml
+from ..distros import DEFAULT
+from .mapserver import MapServerMap, load_map_yaml
 from .params import PlannerParams, load_params_yaml, planner_params
 from .plugin import Costmap, costmap_from_map
 
@@ -36,7 +37,7 @@ class Setup:
 COSTMAP_FILES = (".npy", ".pgm")
 
 
-def load_costmap_file(path, resolution: Optional[float], origin=(0.0, 0.0), distro: str = DEFAULT_DISTRO) -> MapServerMap:
+def load_costmap_file(path, resolution: Optional[float], origin=(0.0, 0.0), distro: str = DEFAULT) -> MapServerMap:
     """A costmap given directly: a ``.npy`` array of costmap values (uint8, (height, width), row 0
     the grid's bottom row, as ``Costmap2D`` indexes it) or an 8-bit PGM whose pixels are the values
     (image row 0 at the top, as map_server images are).  ``resolution`` (metres per cell) is
@@ -98,7 +99,7 @@ def _read_npy(p: Path) -> np.ndarray:
     return a
 
 
-def load_setup(map_yaml, params_file=None, distro: str = DEFAULT_DISTRO, allow_outside: bool = False,
+def load_setup(map_yaml, params_file=None, distro: str = DEFAULT, allow_outside: bool = False,
                overrides: Optional[dict] = None, resolution: Optional[float] = None, origin=(0.0, 0.0),
                layers_arith=None) -> Setup:
     """Map + params file -> :class:`Setup`; ``overrides`` replace plugin parameters.

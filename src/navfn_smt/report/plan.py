@@ -114,21 +114,6 @@ def cell_plan(res, mode: str, backend: str, start, goal, as_json: bool, costs=No
         print(f"  why: {line}")
 
 
-def world_plan_doc(wp, mode: str, backend: str, start, goal) -> dict:
-    """The JSON object of a plan between two world positions (``res`` None: poses equal, no call)."""
-    res = wp.result
-    return {
-        "mode": mode, "backend": backend, "world": True,
-        "start": list(start), "goal": list(goal),
-        "start_cell": list(wp.start_cell), "goal_cell": list(wp.goal_cell),
-        "start_reached": None if res is None else bool(res.start_reached),
-        "start_potential": None if res is None else float(res.start_potential),
-        "cycles": None if res is None else int(res.cycles),
-        "exit": None if res is None or res.exit is None else res.exit.value,
-        "path": _points(wp.path_world),
-    }
-
-
 def _pose(p) -> dict:
     """A ``geometry_msgs/Pose`` as Nav2 publishes it (doubles printed to round-trip exactly)."""
     return {"position": {"x": p.x, "y": p.y, "z": 0.0},

@@ -16,7 +16,7 @@ import z3
 from ..spec.arithmetic import X86_64
 from ..spec.numeric import c_hypot, c_hypotf
 from .codec import f32_from_bits, f64_from_bits, fp32_val, fp64_val
-from .domains import F32, F64, FPDomain, RealDomain
+from .domains import F32, F64, FPDomain
 
 
 def value(t):
@@ -67,10 +67,6 @@ class FPEvalDomain(FPDomain):
         return all(z3.is_true(z3.simplify(a)) for a in self.assumptions)
 
 
-class RealEvalDomain(RealDomain):
-    """The real domain on constants."""
-
-
 def f32_input(D, x: float):
     return fp32_val(x) if isinstance(D, FPDomain) else D.f32const(x)
 
@@ -111,15 +107,6 @@ def fp32_result(case: T.KernelCase, args: tuple, arithmetic=None):
     except NotConstant as e:  # the inputs do not determine the symbolic result
         return f"not determined: {str(e)[:200]}"
     return got if D.model_admits_libm() else f"the library model refuses libm's {got}"
-
-
-def real_result(case: T.KernelCase, args: tuple, domain=RealEvalDomain):
-    """``case``'s results on one finite input of the table in the real domain (Fractions, ints,
-    bools), or a sentence saying why there are none."""
-    try:
-        return _results(domain(), case, args)
-    except NotConstant as e:
-        return f"not determined: {str(e)[:200]}"
 
 
 def compare_kernel(kernel: str, seed: int, n: int, arithmetic=None, symbolic=None) -> list:

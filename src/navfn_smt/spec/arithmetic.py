@@ -113,7 +113,6 @@ SQUARED_CALLS = {
     "smooth_goal": r"squared_distance\(\s*goal\s*,\s*second_to_last_pose",
     "same_position": r"squared_distance\(\s*last_pose\.pose\s*,\s*goal\s*\)",
 }
-SQUARED_ORDERS = ("dx", "dy")
 
 
 def squared_call_of_line(text: str):

@@ -3,7 +3,7 @@
 Every numeric domain that runs :mod:`.kernels` (concrete, numba, bit-precise, real, concolic
 intervals, numpy arrays) is held equal to the concrete one, bit for bit, on these cases: the
 symbolic equality of ``smt/evaluate.py`` (also the mutation check's domain detector) and the
-harness that runs every domain on them (:mod:`navfn_smt.testing.conformance`) both draw from here.
+harness that runs every domain on them (``tests/domain_harness.py``) both draw from here.
 
 A case names its kernel, the kind of each argument (so a domain knows how to take it in:
 a float32 value, a cost byte as int or as float, a plain int or bool), how inputs are drawn,

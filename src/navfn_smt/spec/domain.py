@@ -6,7 +6,7 @@ bit-precise and real domains build solver terms; the concolic domain carries int
 terms beside the concrete value; the array domain computes on numpy arrays.  Each operation
 below says what it stands for in C++ (``float`` is binary32, ``double`` binary64, every
 operation rounds to nearest-even unless it says otherwise).  The conformance harness
-(:mod:`navfn_smt.testing.conformance`, run by ``tests/test_domain_conformance.py``) holds every domain to this list and to the concrete
+(``tests/domain_harness.py``, run by ``tests/test_domain_conformance.py``) holds every domain to this list and to the concrete
 domain's results, bit for bit, on the inputs of :mod:`.conformance`.
 """
 

@@ -138,14 +138,6 @@ class PlanResult:
     exit: Optional[ExtractionExit] = None
     extra: dict = field(default_factory=dict)
 
-    @property
-    def potential_sha256(self) -> bytes:
-        return sha256_f32(self.potential)
-
-    @property
-    def trace_sha256(self) -> bytes:
-        return sha256_i32(self.trace)
-
 
 def sha256_f32(a: np.ndarray) -> bytes:
     return hashlib.sha256(np.ascontiguousarray(a, dtype="<f4").tobytes()).digest()

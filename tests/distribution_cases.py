@@ -1,5 +1,6 @@
-"""What the planner plugin does differently in Humble, Jazzy, Kilted, Lyrical and Rolling, each difference
-with the smallest case that shows it.
+"""The table of docs/distributions.md, kept with the tests that check it: what the planner
+plugin does differently in Humble, Jazzy, Kilted, Lyrical and Rolling, each difference with
+the smallest case that shows it.
 
 Every row (plugin rows, then the costmap layers' :data:`LAYER_DIFFERENCES`) is checked
 against the C++ of all five distributions (built from their sources by
@@ -16,10 +17,10 @@ from typing import Optional
 
 import numpy as np
 
-from ..distros import CHECKED
-from .costmap import INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, InflationParams, LayerSpec
-from .params import PlannerParams
-from .plugin import EMPTY_PATH, Costmap, Pose
+from navfn_smt.distros import CHECKED
+from navfn_smt.nav2.costmap import INFLATION, LEGACY_INFLATION, STATIC, CostmapParams, InflationParams, LayerSpec
+from navfn_smt.nav2.params import PlannerParams
+from navfn_smt.nav2.plugin import EMPTY_PATH, Costmap, Pose
 
 DISTROS = CHECKED  # the five whose sources are at hand
 

@@ -34,18 +34,22 @@ from typing import Callable
 import numpy as np
 from numba import njit
 
-from ..backends.numba_domain import JIT_OPTIONS, numba_domain
-from ..check.concolic import ConcolicDomain, V, concrete
-from ..smt.domains import FPDomain, RealDomain
-from ..smt.enumerate import ArrayDomain
-from ..smt.errmodel import ErrorModelDomain
-from ..smt.evaluate import FPEvalDomain, RealEvalDomain, fp32_result, real_result
-from ..smt.replay import ExactReplayDomain, ReplayDomain
-from ..spec import conformance as T
-from ..spec.domain import OPERATIONS
-from ..spec.arithmetic import KNOWN
-from ..spec.numeric import CONCRETE as C
-from ..spec.numeric import ConcreteDomain
+from navfn_smt.backends.numba_domain import JIT_OPTIONS, numba_domain
+from navfn_smt.check.concolic import ConcolicDomain, V, concrete
+from navfn_smt.smt.domains import FPDomain, RealDomain
+from navfn_smt.smt.enumerate import ArrayDomain
+from navfn_smt.smt.errmodel import ErrorModelDomain
+from navfn_smt.smt.evaluate import FPEvalDomain, NotConstant, fp32_result, lift, value
+from navfn_smt.smt.replay import ExactReplayDomain, ReplayDomain
+from navfn_smt.spec import conformance as T
+from navfn_smt.spec.domain import OPERATIONS
+from navfn_smt.spec.arithmetic import KNOWN
+from navfn_smt.spec.numeric import CONCRETE as C
+from navfn_smt.spec.numeric import ConcreteDomain
+
+class RealEvalDomain(RealDomain):
+    """The real domain on constants."""
+
 
 # every class that runs the kernels (the numba domain's operations: its OPERATIONS table)
 DOMAIN_CLASSES = (ConcreteDomain, ReplayDomain, ExactReplayDomain, ArrayDomain, FPDomain, FPEvalDomain,
@@ -168,6 +172,16 @@ def array_results(case: T.KernelCase, rows: list, domain=ArrayDomain) -> list:
 def fp32_results(case: T.KernelCase, rows: list) -> list:
     """``case`` in the bit-precise domain on each row (:func:`navfn_smt.smt.evaluate.fp32_result`)."""
     return [fp32_result(case, args) for args in rows]
+
+
+def real_result(case: T.KernelCase, args: tuple, domain=RealEvalDomain):
+    """``case``'s results on one finite input of the table in the real domain (Fractions, ints,
+    bools), or a sentence saying why there are none."""
+    D = domain()
+    try:
+        return tuple(value(v) for v in case.call(D, *(lift(D, k, v) for k, v in zip(case.kinds, args))))
+    except NotConstant as e:
+        return f"not determined: {str(e)[:200]}"
 
 
 def real_results(case: T.KernelCase, rows: list, domain=RealEvalDomain) -> list:

@@ -14,7 +14,7 @@ from typing import Iterable
 
 import numpy as np
 
-from ..maps.suite import discover, load_map
+from navfn_smt.maps.suite import discover, load_map
 
 
 def compare_builds(root, modes: Iterable[str], a, b, examples: int = 3) -> dict:

@@ -1,2 +1,0 @@
-"""What the tests share that needs the whole package: the conformance harness
-(:mod:`.conformance`), which runs every numeric domain on the kernels' table."""
