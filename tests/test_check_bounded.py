@@ -19,7 +19,7 @@ from navfn_smt.check import properties as P
 from navfn_smt.check.bounded import CHECKABLE, Case, _symbolic_run, cases, explore
 from navfn_smt.check.concolic import V, concrete
 from navfn_smt.check.encoding import _interior
-from navfn_smt.check.runner import check_one_size
+from navfn_smt.check.runner import CheckRequest, check_one_size
 from navfn_smt.smt.domains import FPDomain
 from navfn_smt.smt.evaluate import value
 from navfn_smt.under_test import ORIGINAL
@@ -42,7 +42,7 @@ def _exhaustive(nx, ny, lo, hi, modes):
 def test_verdicts_match_exhaustive_runs(nx, ny, lo, hi):
     modes = (True, False)
     broken = _exhaustive(nx, ny, lo, hi, modes)
-    got = check_one_size(CHECKABLE, nx, ny, modes, lo, hi, timeout=60)
+    got = check_one_size(CheckRequest(CHECKABLE, modes, lo, hi, timeout=60), nx, ny)
     for n in CHECKABLE:
         r = got[n]
         assert r.cases_unknown == 0

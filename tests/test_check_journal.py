@@ -23,7 +23,8 @@ def _run(journal, monkeypatch=None, explored=None, lo=50):
 
         monkeypatch.setattr(R, "explore", counting)
     entries = []
-    got = R.check_one_size(["start-reached"], *SIZE, (True, False), lo, 253, certificate=entries, journal=journal)
+    got = R.check_one_size(R.CheckRequest(("start-reached",), (True, False), lo, 253), *SIZE, certificate=entries,
+                           journal=journal)
     return got["start-reached"], entries
 
 

@@ -92,12 +92,12 @@ def test_a_worker_without_the_proof_file_loads_it_from_its_contents(proof_file, 
 
 
 def test_check_same_on_a_cluster(cluster):
-    from navfn_smt.check.runner import check_one_size
+    from navfn_smt.check.runner import CheckRequest, check_one_size
 
-    args = (("valid-path",), 3, 4, (True, False), 50, 90)
-    here = check_one_size(*args, timeout=LIMIT, jobs=Engine(1))
+    request = CheckRequest(("valid-path",), (True, False), 50, 90, timeout=LIMIT)
+    here = check_one_size(request, 3, 4, jobs=Engine(1))
     assert here["valid-path"].status == "refuted" and here["valid-path"].cases == 32
-    there = check_one_size(*args, timeout=LIMIT, jobs=Engine(scheduler=cluster.scheduler_address))
+    there = check_one_size(request, 3, 4, jobs=Engine(scheduler=cluster.scheduler_address))
     assert _size_results(there) == _size_results(here)
 
 

@@ -24,16 +24,14 @@ from .certificate import case_key, case_of, code_hash
 FORMAT = "navfn-smt check journal 1"
 
 
-def header(names, nx: int, ny: int, modes, lo: int, hi: int, planner, ends: str, start, goal,
-           timeout: float, exhaustive_limit: int) -> dict:
-    """What a journal's cases depend on (``planner``: the
-    :class:`~navfn_smt.under_test.PlannerUnderTest` explored): a rerun must give the same header
-    to reuse them."""
+def header(request, names, nx: int, ny: int) -> dict:
+    """What a journal's cases depend on (``request``: the
+    :class:`~navfn_smt.check.runner.CheckRequest` of the check, exploring ``names``): a rerun
+    must give the same header to reuse them."""
+    r = request
     return {"format": FORMAT, "code_hash": code_hash(names), "size": [nx, ny], "properties": list(names),
-            "costs": [lo, hi], "modes": ["astar" if m else "dijkstra" for m in modes], "variant": planner.variant,
-            "semantics": planner.fp32_semantics(),
-            "ends": ends, "start": list(start) if start else None, "goal": list(goal) if goal else None,
-            "timeout": timeout, "exhaustive": int(exhaustive_limit)}
+            **r.header(), "semantics": r.planner.fp32_semantics(), "start": list(r.start) if r.start else None,
+            "goal": list(r.goal) if r.goal else None, "timeout": r.timeout, "exhaustive": r.exhaustive_limit}
 
 
 def _encode(cr: CaseResult) -> dict:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Optional
 
 from ..engine import Engine, as_engine, in_order, stream  # noqa: F401  (Engine: named in docstrings)
@@ -91,41 +91,79 @@ def check_size(nx: int, ny: int) -> None:
                               f"2**cells layouts and cells**2 start/goal pairs (at most {MAX_CELLS} cells)")
 
 
+@dataclass(frozen=True)
+class CheckRequest:
+    """What one bounded check asks, made once (by the command line, or a test) and carried to
+    every size, every task of a worker and a journal's header: the properties ``names``, the
+    ``modes`` (True: A*), the cost box ``lo..hi``, the planner under test, the limit of one query
+    (``timeout``, seconds), the ``start`` and ``goal`` cells (None: every interior cell), which
+    cells ``ends`` may be (any, or passable only) and the most points a box is evaluated at
+    (``exhaustive_limit``)."""
+
+    names: tuple
+    modes: tuple = (True, False)
+    lo: int = 50
+    hi: int = 253
+    planner: PlannerUnderTest = ORIGINAL
+    timeout: float = 60.0
+    start: Optional[tuple] = None
+    goal: Optional[tuple] = None
+    ends: str = "any"
+    exhaustive_limit: int = 10_000_000
+
+    def __post_init__(self):  # tuples and an int, whatever the caller gave
+        for name, v in (("names", tuple(self.names)), ("modes", tuple(self.modes)),
+                        ("exhaustive_limit", int(self.exhaustive_limit))):
+            object.__setattr__(self, name, v)
+
+    def header(self) -> dict:
+        """What a certificate's and a journal's header say of the request."""
+        return {"costs": [self.lo, self.hi], "modes": ["astar" if m else "dijkstra" for m in self.modes],
+                "variant": self.planner.variant, "ends": self.ends}
+
+    def check(self, nx: int, ny: int) -> None:
+        """Refuse, naming the problem, what no run of the size could do."""
+        check_size(nx, ny)
+        symbolic_domain(self.planner.fp32_semantics())
+        if not (self.timeout > 0 and math.isfinite(self.timeout)):
+            raise NavfnInputError(f"--timeout {self.timeout!r}: must be a positive number of seconds")
+        if not self.exhaustive_limit >= 0:
+            raise NavfnInputError(f"--exhaustive {self.exhaustive_limit!r}: must be a non-negative number of points")
+        for what, cell in (("start", self.start), ("goal", self.goal)):
+            if cell is not None and not (1 <= cell[0] <= nx - 2 and 1 <= cell[1] <= ny - 2):
+                raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
+                                      f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
+        check_cost_box(self.lo, self.hi)
+
+    def explore(self, case: Case, names) -> object:
+        """One case explored for the properties ``names`` (a task's work, here or on a worker)."""
+        return explore(case, names, self.lo, self.hi, symbolic_domain(self.planner.fp32_semantics()),
+                       timeout=self.timeout, exhaustive_limit=self.exhaustive_limit, fix=self.planner.fix)
+
+
 def _explore_job(args):
     """The exploration of each case of a batch (a task: run by a worker, or in this process)."""
-    batch, names, lo, hi, planner, timeout, limit = args
-    return [explore(case, names, lo, hi, symbolic_domain(planner.fp32_semantics()), timeout=timeout,
-                    exhaustive_limit=limit, fix=planner.fix) for case in batch]
+    batch, names, request = args
+    return [request.explore(case, names) for case in batch]
 
 
-def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: str = "fp32",
-                   timeout: float = 60.0, jobs=1, start=None, goal=None, ends: str = "any",
-                   exhaustive_limit: int = 10_000_000, progress: Optional[Callable[[int, int, object], None]] = None,
-                   planner: PlannerUnderTest = ORIGINAL, certificate: Optional[list] = None, journal=None) -> dict:
-    """Every case of the size as ``planner`` plans (its variant, in its arithmetic: ``semantics``
-    ``fp32`` is float32 in the planner's); returns ``{property: SizeResult}``, the same wherever the cases
-    run.  ``jobs``: an :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number
-    of cases), or a number of local workers.  One representative per layout of the goal's
-    component is explored, and a start outside it decided without exploring
-    (:func:`~.bounded.reduce_cases`, by ReachedWithinComponent).
+def check_one_size(request: CheckRequest, nx: int, ny: int, jobs=1,
+                   progress: Optional[Callable[[int, int, object], None]] = None,
+                   certificate: Optional[list] = None, journal=None) -> dict:
+    """Every case of the size as ``request.planner`` plans (its fix, in its arithmetic); returns
+    ``{property: SizeResult}``, the same wherever the cases run.  ``jobs``: an
+    :class:`~navfn_smt.engine.Engine` (``auto`` resolved here by the number of cases), or a
+    number of local workers.  One representative per layout of the goal's component is
+    explored, and a start outside it decided without exploring (:func:`~.bounded.reduce_cases`,
+    by ReachedWithinComponent).
     ``certificate``: a list that gets ``[case key, weight, path log]`` of every explored case,
     in order (:mod:`.certificate`).  ``journal``: a file (:mod:`.journal`) that records each
     explored case as it is decided; the cases it already holds are not explored again."""
-    check_size(nx, ny)
-    symbolic_domain(semantics)
-    symbolic_domain(planner.fp32_semantics())
-    if not (timeout > 0 and math.isfinite(timeout)):
-        raise NavfnInputError(f"--timeout {timeout!r}: must be a positive number of seconds")
-    if not exhaustive_limit >= 0:
-        raise NavfnInputError(f"--exhaustive {exhaustive_limit!r}: must be a non-negative number of points")
-    for what, cell in (("start", start), ("goal", goal)):
-        if cell is not None and not (1 <= cell[0] <= nx - 2 and 1 <= cell[1] <= ny - 2):
-            raise NavfnInputError(f"--{what} {cell[0]} {cell[1]}: not an interior cell of the {nx}x{ny} map "
-                                  f"(x in 1..{nx - 2}, y in 1..{ny - 2}; the border is lethal)")
-    check_cost_box(lo, hi)
+    request.check(nx, ny)
+    names, planner = request.names, request.planner
     decide_outside = outside_decided(planner)
-    red = reduce_cases(cases(nx, ny, modes, start, goal, ends), decide_outside)
-    carried = carried_at(nx, ny, planner, lo, hi)
+    red = reduce_cases(cases(nx, ny, request.modes, request.start, request.goal, request.ends), decide_outside)
+    carried = carried_at(nx, ny, planner, request.lo, request.hi)
     t0 = time.perf_counter()
     out = {}
     for n in names:  # decided by an induction: not explored
@@ -135,23 +173,19 @@ def check_one_size(names, nx: int, ny: int, modes, lo: int, hi: int, semantics: 
                                 cases_holding=red.total if status == "proved" else 0,
                                 cases_unknown=0 if status == "proved" else red.total, method=why,
                                 seconds=time.perf_counter() - t0)
-    explored = [n for n in names if n not in carried]
+    explored = tuple(n for n in names if n not in carried)
     if explored:  # alone, a property of the propagation ends each control path where propagation does
         todo = list(red.representatives)
         got = {n: SizeResult((nx, ny), n, "proved", cases=red.total, representatives=len(todo), outside=red.outside,
                              cases_holding=red.outside, outside_explored=not decide_outside)
                for n in explored}
         eng = as_engine(jobs)
-        book = None
-        if journal is not None:
-            book = Journal(journal, header(explored, nx, ny, modes, lo, hi, planner, ends, start, goal, timeout,
-                                           exhaustive_limit))
+        book = None if journal is None else Journal(journal, header(request, explored, nx, ny))
         done = {} if book is None else book.known(todo)
         fresh = [c for c in todo if c not in done]
         if done and progress:  # resumed: the journal's cases count as arrived
             progress(len(done), len(todo), None)
-        work = [(tuple(fresh[k:k + BATCH]), tuple(explored), lo, hi, planner, timeout, exhaustive_limit)
-                for k in range(0, len(fresh), BATCH)]
+        work = [(tuple(fresh[k:k + BATCH]), explored, request) for k in range(0, len(fresh), BATCH)]
         try:
             _collect(stream(_explore_job, work, eng.for_work(len(fresh), PARALLEL_FROM)), got, todo, progress,
                      planner, red.representatives, certificate, done, book)
@@ -243,11 +277,9 @@ def sizes_up_to(max_nx: int, max_ny: int, min_nx: int = 3, min_ny: int = 3) -> l
     return sorted(out, key=lambda s: ((s[0] - 2) * (s[1] - 2), -s[0], s[1]))
 
 
-def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: float, jobs, start, goal,
-                ends: str, exhaustive_limit: int, budget: float = 0.0, smallest_only: bool = False,
+def check_sizes(request: CheckRequest, sizes, jobs, budget: float = 0.0, smallest_only: bool = False,
                 progress_of: Callable[[str], Optional[Callable]] = lambda size: None,
-                t0: Optional[float] = None, planner: PlannerUnderTest = ORIGINAL,
-                certify: Optional[Callable] = None, journal=None) -> tuple[list, list]:
+                t0: Optional[float] = None, certify: Optional[Callable] = None, journal=None) -> tuple[list, list]:
     """:func:`check_one_size` for each of ``sizes`` in turn until ``budget`` seconds (0: no
     budget) have passed since ``t0``; the results in size order and the sizes not reached.
     With ``smallest_only`` a property refuted at one size is not checked at larger ones (its
@@ -260,7 +292,7 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
         raise NavfnInputError("--journal: a journal records the cases of one size (use --size, not --max-size)")
     t0 = time.perf_counter() if t0 is None else t0
     results, skipped = [], []
-    open_names = list(names)
+    open_names = list(request.names)
     for nx, ny in sizes:
         if budget and time.perf_counter() - t0 > budget:
             skipped.append([nx, ny])
@@ -268,9 +300,8 @@ def check_sizes(names, sizes, modes, lo: int, hi: int, semantics: str, timeout: 
         if not open_names:
             break
         entries = [] if certify else None
-        got = check_one_size(open_names, nx, ny, modes, lo, hi, semantics, timeout, jobs, start, goal, ends,
-                             int(exhaustive_limit), progress=progress_of(f"{nx}x{ny}"), planner=planner,
-                             certificate=entries, journal=journal)
+        got = check_one_size(replace(request, names=tuple(open_names)), nx, ny, jobs,
+                             progress=progress_of(f"{nx}x{ny}"), certificate=entries, journal=journal)
         if certify and all(r.status in ("proved", "refuted") for r in got.values()) and any(
                 r.status == "proved" for r in got.values()) and any(r.method == "exploration" for r in got.values()):
             certify(nx, ny, got, entries)

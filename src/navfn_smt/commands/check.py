@@ -21,6 +21,7 @@ def cmd_check(args) -> int:
     import time
 
     from ..check import runner as CR
+    from ..check.common import symbolic_domain
     from ..engine import engine
     from ..report import check as report
     from ..maps.suite import modes_of
@@ -38,7 +39,7 @@ def cmd_check(args) -> int:
         raise NavfnInputError(f"check: unknown property {unknown[0]!r} (choose from {', '.join(CR.CHECKABLE)}, all)")
     names = CR.CHECKABLE if "all" in args.property else tuple(dict.fromkeys(args.property))
     planner = planner_of(args)  # NavFn as shipped or fixed, in the arithmetic of --target (x86-64's by default)
-    semantics = planner.fp32_semantics()  # --semantics real is refused by the runner, before any case runs
+    semantics = planner.fp32_semantics()  # float32 in the planner's arithmetic (--semantics real is refused below)
     from ..search.hunt import parse_costs
 
     lo, hi = parse_costs(args.costs)
@@ -64,12 +65,13 @@ def cmd_check(args) -> int:
                  if args.max_cells is None or (w - 2) * (h - 2) <= args.max_cells]
     else:
         sizes = [tuple(args.size or (4, 4))]
+    symbolic_domain(args.semantics)  # --semantics real: offered by the parser, refused here (no bounded check over the reals)
+    request = CR.CheckRequest(names, modes, lo, hi, planner, args.timeout, args.start, args.goal, args.ends,
+                              args.exhaustive)
     t0 = time.perf_counter()
     try:
-        results, skipped = CR.check_sizes(names, sizes, modes, lo, hi, args.semantics, args.timeout, eng, args.start,
-                                          args.goal, args.ends, args.exhaustive, args.budget,
-                                          smallest_only=bool(args.max_size), progress_of=report.progress, t0=t0,
-                                          planner=planner, certify=_certify(args, planner, lo, hi, modes),
+        results, skipped = CR.check_sizes(request, sizes, eng, args.budget, smallest_only=bool(args.max_size),
+                                          progress_of=report.progress, t0=t0, certify=_certify(args, request),
                                           journal=args.journal)
     finally:
         report.stop_progress()
@@ -130,7 +132,7 @@ def _suffix(planner) -> str:
     return ("" if planner.fix.shipped else f"-{planner.variant}") + ("" if arith == "x86-64" else f"-{arith}")
 
 
-def _certify(args, planner, lo: int, hi: int, modes):
+def _certify(args, request):
     """The callback that writes a proved size's certificate under ``--certificates DIR``."""
     if not args.certificates:
         return None
@@ -141,15 +143,14 @@ def _certify(args, planner, lo: int, hi: int, modes):
     def write(nx: int, ny: int, got: dict, entries: list) -> None:
         # the folder is made when the first certificate is written (check_writable_dir said it can be)
         Path(args.certificates).mkdir(parents=True, exist_ok=True)
+        planner = request.planner
         path = Path(args.certificates) / f"check-{nx}x{ny}{_suffix(planner)}.cert.json.gz"
         r = next(iter(got.values()))
         explored = [n for n, g in got.items() if g.method == "exploration"]  # what the path logs judge
         certificate.write(path, {
-            "size": [nx, ny], "properties": explored, "costs": [lo, hi], "modes": ["astar" if m else "dijkstra"
-                                                                                  for m in modes],
-            "variant": planner.variant, **({} if planner.fp32_semantics() == "fp32"
-                                           else {"semantics": planner.fp32_semantics()}),
-            "ends": args.ends, "total": r.cases, "outside": r.outside,
+            "size": [nx, ny], "properties": explored, **request.header(),
+            **({} if planner.fp32_semantics() == "fp32" else {"semantics": planner.fp32_semantics()}),
+            "total": r.cases, "outside": r.outside,
             "verdicts": {n: g.status for n, g in got.items()},
             "witnesses": {n: g.counterexample for n, g in got.items() if g.status == "refuted"},
             "induction": {n: g.method for n, g in got.items() if g.method != "exploration"}}, entries)
