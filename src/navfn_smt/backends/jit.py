@@ -11,6 +11,8 @@ test on generated maps.  Compiled functions are cached on disk, keyed by the sou
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
 from ..spec import extraction as E
@@ -34,9 +36,11 @@ EXIT_EXHAUSTED = exit_code(ExtractionExit.EXHAUSTED)
 EXIT_UB = EXIT_UNDEFINED
 
 
-# the propagation's state between cycles: ``role`` = which of the three priority buffers
-# (rows of ``pb``) is current, next and overflow; ``fill`` = how many cells each holds;
-# ``curt`` = [curT], the threshold between the next and the overflow buffer
+# the propagation's state, one value through the compiled loops: the potentials ``pot``, the
+# ``pending`` flags, the three priority buffers (rows of ``pb``), ``role`` = which of them is
+# current, next and overflow, ``fill`` = how many cells each holds, ``curt`` = [curT], the
+# threshold between the next and the overflow buffer (its arrays change in place)
+Wave = namedtuple("Wave", "pot pending pb fill role curt")
 CUR, NXT, OVER = range(3)
 # ``counters``: C++'s loop variable ``cycle``, the cycles run, cells updated, pushes dropped
 # for want of room, trace entries wanted (more than ``len(trace)`` when it was too short),
@@ -59,13 +63,14 @@ zero_gradient = jit_inline(E.zero_gradient)
 
 
 @jit_inline
-def start_propagation(D, costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt):
+def start_propagation(D, costs, nx, ny, gx, gy, wave):
     """setupNavFn + initCost(goal) + the ``push_cur`` of the goal's four neighbours.
 
     Every potential POT_HIGH, nothing pending, the goal's potential 0, curT = COST_OBS
     (float), the buffers empty and in their first roles.  Returns the pushes the kernel
     ``push`` refused only for want of room (counted as dropped).
     """
+    pot, pending, pb, fill, role, curt = wave
     ns = nx * ny
     high = D.f32const(POT_HIGH)
     for i in range(ns):
@@ -90,8 +95,7 @@ def start_propagation(D, costs, nx, ny, gx, gy, pot, pending, pb, fill, role, cu
 
 
 @jit_inline
-def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, pending, pb, fill, role, curt, trace,
-               counters, memo, watch, newly):
+def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, wave, trace, counters, memo, watch, newly):
     """The loop of ``propNavFnAstar`` / ``propNavFnDijkstra(cycles, atStart)``, resumable.
 
     Runs from cycle ``counters[CYCLE]`` (0 after :func:`start_propagation`): each cycle is
@@ -101,10 +105,10 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
     both buffers empty, or with ``at_start`` the start's potential below POT_HIGH), False
     when it paused: after ``budget`` cycles, or at the end of a cycle that ran with watched
     cells in ``newly[:counters[NEWLY]]`` (a cell ``n`` with ``watch[n] >= 0``, ``watch``
-    empty: none, that leaves POT_HIGH appends ``watch[n]``).  The state is in ``pot,
-    pending, pb, fill, role, curt, counters``.  ``trace`` receives the white-box trace while
-    it has room (empty: none).
+    empty: none, that leaves POT_HIGH appends ``watch[n]``).  The state is in ``wave`` and
+    ``counters``.  ``trace`` receives the white-box trace while it has room (empty: none).
     """
+    pot, pending, pb, fill, role, curt = wave
     ns = nx * ny
     high = D.f32const(POT_HIGH)
     cap = pb.shape[1]
@@ -229,49 +233,44 @@ def run_cycles(D, costs, nx, ny, sx, sy, astar, at_start, cycles, budget, pot, p
 
 
 @jit
-def propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace, counters, memo):
+def propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, wave, trace, counters, memo):
     """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
 
-    ``pb`` is a (3, capacity) int array for the three buffers (its width is the capacity of
-    each: PRIORITYBUFSIZE as in C++, or what the planner was given); ``fill, role, curt`` the
-    loop's state (:func:`start_propagation`); ``trace`` receives the white-box trace (stops
+    ``wave.pb`` is a (3, capacity) int array for the three buffers (its width is the capacity
+    of each: PRIORITYBUFSIZE as in C++, or what the planner was given); ``trace`` receives the white-box trace (stops
     recording when full; ``counters[TRACE_LEN]`` then exceeds ``len(trace)``).  ``counters``
     has NCOUNTERS entries (CYCLE ... NEWLY); returns start_reached.
     """
     for i in range(counters.shape[0]):
         counters[i] = 0
-    counters[DROPPED] = start_propagation(D, costs, nx, ny, gx, gy, pot, pending, pb, fill, role, curt)
+    counters[DROPPED] = start_propagation(D, costs, nx, ny, gx, gy, wave)
     if astar:
-        curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), curt[0])
-    no_watch = pb[0, :0]
-    run_cycles(D, costs, nx, ny, sx, sy, astar, True, cycles, cycles, pot, pending, pb, fill, role, curt, trace, counters,
-               memo, no_watch, no_watch)
+        wave.curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), wave.curt[0])
+    no_watch = wave.pb[0, :0]
+    run_cycles(D, costs, nx, ny, sx, sy, astar, True, cycles, cycles, wave, trace, counters, memo, no_watch, no_watch)
     if astar:
-        return D.lt(pot[sy * nx + sx], D.f32const(POT_HIGH))
+        return D.lt(wave.pot[sy * nx + sx], D.f32const(POT_HIGH))
     return counters[CYCLE] < cycles
 
 
 @jit
-def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, extra, pot, pending, pb, fill, role, curt, trace,
-                 counters, memo):
+def propagate_on(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, extra, wave, trace, counters, memo):
     """:func:`navfn_smt.spec.planner.calc_navfn` with the further call of the fix of docs/fix.md,
     compiled: :func:`propagate`, then, when its test holds (the start unreached and a buffer holding
     cells: ``spec.fix.calls_again``), ``propNavFn*(extra)`` once (A*: ``curT += dist`` at its entry,
     a cycle count from 0).  Returns what the last call returns and the further calls made (0 or
     1); ``tests/test_fix.py`` holds it equal to the spec."""
-    done = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt, trace,
-                     counters, memo)
-    high = D.f32const(POT_HIGH)
+    done = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, wave, trace, counters, memo)
+    pot, fill, role = wave.pot, wave.fill, wave.role
     start_cell = sy * nx + sx
-    no_watch = pb[0, :0]
+    no_watch = wave.pb[0, :0]
     calls = 0
     if calls_again(D, pot[start_cell], fill[role[CUR]], fill[role[NXT]]):
         if astar:
-            curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), curt[0])
+            wave.curt[0] = D.add(K.astar_heuristic(D, gx - sx, gy - sy), wave.curt[0])
         counters[CYCLE] = 0
-        run_cycles(D, costs, nx, ny, sx, sy, astar, True, extra, extra, pot, pending, pb, fill, role, curt, trace,
-                   counters, memo, no_watch, no_watch)
-        done = D.lt(pot[start_cell], high) if astar else counters[CYCLE] < extra
+        run_cycles(D, costs, nx, ny, sx, sy, astar, True, extra, extra, wave, trace, counters, memo, no_watch, no_watch)
+        done = D.lt(pot[start_cell], D.f32const(POT_HIGH)) if astar else counters[CYCLE] < extra
         calls = 1
     return done, calls
 
@@ -364,6 +363,7 @@ class JitPlanner:
         self.fill = np.zeros(3, np.int64)  # the propagation's state between cycles (start_propagation)
         self.role = np.zeros(3, np.int64)
         self.curt = np.zeros(1, np.float32)
+        self.wave = Wave(self.pot, self.pending, self.pb, self.fill, self.role, self.curt)
         self.gradx = np.zeros(ns, np.float32)
         self.grady = np.zeros(ns, np.float32)
         self.trace = np.empty(max(4 * ns, 1 << 12), np.int32)
@@ -374,8 +374,8 @@ class JitPlanner:
         self.path = np.empty((path_cycle_limit(self.nx) + 1, 2), np.float32)
 
     def work_arrays(self) -> tuple:
-        """The arrays :func:`plan_cases_into` works in, in its argument order (pot to grady)."""
-        return (self.pot, self.pending, self.pb, self.fill, self.role, self.curt, self.memo, self.gradx, self.grady)
+        """What :func:`plan_cases_into` works in, in its argument order (wave to grady)."""
+        return (self.wave, self.memo, self.gradx, self.grady)
 
     def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True,
             further: int = 0):
@@ -389,14 +389,12 @@ class JitPlanner:
         while True:
             if further:
                 reached, self.calls = propagate_on(
-                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles, further,
-                    self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
+                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles, further, self.wave,
                     self.trace if record_trace else self.no_trace, self.counters, self.memo,
                 )
             else:
                 reached = propagate(
-                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles,
-                    self.pot, self.pending, self.pb, self.fill, self.role, self.curt,
+                    self.D, self.costs, self.nx, self.ny, sx, sy, gx, gy, astar, cycles, self.wave,
                     self.trace if record_trace else self.no_trace, self.counters, self.memo,
                 )
             if not record_trace or self.counters[TRACE_LEN] <= self.trace.shape[0]:
@@ -411,8 +409,8 @@ class JitPlanner:
 
 
 @jit
-def plan_cases_into(D, costs, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
-               reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
+def plan_cases_into(D, costs, nx, ny, cases, astar, cycles, path_cycles, wave, memo, gradx, grady, reached, start_pot,
+                    ncycles, nupdates, ndropped, exits, path_off, path_pts):
     """Plan every case of one map in one call (no trace); results go to the output arrays.
 
     ``path_pts`` must hold ``len(cases) * (path_cycles + 1)`` points; case ``i``'s path is
@@ -425,13 +423,12 @@ def plan_cases_into(D, costs, nx, ny, cases, astar, cycles, path_cycles, pot, pe
     path_off[0] = 0
     for i in range(cases.shape[0]):
         sx, sy, gx, gy = cases[i, 0], cases[i, 1], cases[i, 2], cases[i, 3]
-        reached[i] = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, pot, pending, pb, fill, role, curt,
-                               no_trace, counters, memo)
-        start_pot[i] = pot[sy * nx + sx]
+        reached[i] = propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, wave, no_trace, counters, memo)
+        start_pot[i] = wave.pot[sy * nx + sx]
         ncycles[i] = counters[CYCLES]
         nupdates[i] = counters[UPDATES]
         ndropped[i] = counters[DROPPED]
-        code, npath = calc_path_zeroed(D, pot, nx, ny, sx, sy, gx, gy, path_cycles, gradx, grady, buf)
+        code, npath = calc_path_zeroed(D, wave.pot, nx, ny, sx, sy, gx, gy, path_cycles, gradx, grady, buf)
         exits[i] = code
         if code == EXIT_NEAR_GOAL:
             for k in range(npath):

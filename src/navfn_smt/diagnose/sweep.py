@@ -260,15 +260,15 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         out_i[:, S.ST] = -1  # not for the compiled loops
         out_i[planned, S.ST] = S.S_PENDING
         wx, wy = np.ascontiguousarray(gxy[:, 0]), np.ascontiguousarray(gxy[:, 1])
+        tables = S.Tolerance(col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
         buf = np.empty((max(n_cycles, 0) + 1, 2), np.float32)
         touched = np.empty(4 * max(n_cycles, 0) + 4, np.int64)
         if params.use_astar:
             for lo in range(0, len(planned), ASTAR_GOALS_PER_CALL):
                 chunk = planned[lo:lo + ASTAR_GOALS_PER_CALL]
-                pts = S.sweep_astar(planner.D, costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.pot, planner.pending,
-                                    planner.pb, planner.fill, planner.role, planner.curt, planner.memo, tcell,
-                                    n_cycles, planner.gradx, planner.grady, buf, touched, out_i, out_f, pts, st,
-                                    keep_paths, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
+                pts = S.sweep_astar(planner.D, costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.wave,
+                                    planner.memo, tcell, n_cycles, planner.gradx, planner.grady, buf, touched, out_i,
+                                    out_f, pts, st, keep_paths, tables)
                 report(done + lo + len(chunk), G)
         else:
             goal_of = np.full(nx * ny, -1, np.int64)
@@ -278,10 +278,8 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
             memo_cell = np.full(nx * ny, -1, np.int64)
             while not st[S.DONE]:
                 pts = S.sweep_dijkstra(planner.D, costs, nx, ny, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL,
-                                       planner.pot, planner.pending, planner.pb, planner.fill, planner.role,
-                                       planner.curt, counters, st, goal_of, newly, tcell, n_cycles, planner.gradx,
-                                       planner.grady, buf, touched, out_i, out_f, pts, keep_paths, col_of, row_of,
-                                       xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell)
+                                       planner.wave, counters, st, goal_of, newly, tcell, n_cycles, planner.gradx,
+                                       planner.grady, buf, touched, out_i, out_f, pts, keep_paths, tables, memo_cell)
                 report(done + int(np.count_nonzero(out_i[planned, S.ST] != S.S_PENDING)), G)
         _refused(out_i, planned, col_of, row_of, xerr, yerr)
         p = planned

@@ -629,8 +629,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
         planner = J.JitPlanner(add_border(run.costs), arith=run.arith.navfn)
         no_memo = np.empty(0, np.float32)
         run.reached = bool(J.propagate(planner.D, planner.costs, nx, ny, navfn_start[0], navfn_start[1], navfn_goal[0],
-                                       navfn_goal[1], astar, run.cycle_limit, planner.pot, planner.pending,
-                                       planner.pb, planner.fill, planner.role, planner.curt, planner.no_trace,
+                                       navfn_goal[1], astar, run.cycle_limit, planner.wave, planner.no_trace,
                                        planner.counters, no_memo))
         run.potential = planner.pot.reshape(ny, nx).copy()
         run.cycles, run.dropped = int(planner.counters[J.CYCLES]), int(planner.counters[J.DROPPED])

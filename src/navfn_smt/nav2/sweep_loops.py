@@ -30,6 +30,8 @@ the plugin's own choice (:func:`.plugin.tolerance_prefers`).
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
 from ..backends import jit as J
@@ -55,12 +57,16 @@ S_PENDING, S_PATH, S_NO_LEGAL, S_NO_PLAN, S_UB = range(5)
 # points kept so far
 STARTED, DONE, NPTS = range(3)
 NSTATE = 3
+# the goals' tolerance tables (built by diagnose/sweep.py): goal g's world point (wx[g], wy[g]), the
+# columns of its tolerance search (xs, xcells: xlen[col_of[g]] of them) and its rows likewise
+Tolerance = namedtuple("Tolerance", "col_of row_of xs xcells xlen ys ycells ylen wx wy")
 
 
 @jit
-def _legal_cell(D, pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy):
+def _legal_cell(D, pot, nx, g, tables):
     """The tolerance search of ``_legal_pose`` for goal ``g`` by the plugin's rule
     (:func:`.plugin.tolerance_prefers`): the cell of the point it chooses, or (-1, -1)."""
+    col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy = tables
     a = col_of[g]
     b = row_of[g]
     best = DBL_MAX
@@ -85,7 +91,7 @@ def _legal_cell(D, pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycel
 
 @jit
 def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts, st,
-                 keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
+                 keep, tables, memo_cell):
     """``_legal_pose`` + ``getPlanFromPotential`` for goal ``g`` (NavFn start ``(tx, ty)``) on
     ``pot`` as it is now; results into row ``g``.  ``memo_cell`` (length ns, or empty) maps a
     start cell to the goal whose extraction from it on this same potential is reused.
@@ -97,7 +103,7 @@ def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, tou
         by = ty
     else:
         out_i[g, USED_TOL] = 1
-        bx, by = _legal_cell(D, pot, nx, g, out_i, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
+        bx, by = _legal_cell(D, pot, nx, g, tables)
         if bx < 0:
             out_i[g, ST] = S_NO_LEGAL
             out_i[g, EXIT] = -1
@@ -147,12 +153,11 @@ def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, tou
 
 
 @jit
-def sweep_dijkstra(D, costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, fill, role, curt, counters, st, goal_of,
-                   newly, tcell, nmax, gradx, grady, buf, touched, out_i, out_f, pts, keep,
-                   col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, memo_cell):
+def sweep_dijkstra(D, costs, nx, ny, rx, ry, cycles, budget, wave, counters, st, goal_of, newly, tcell, nmax, gradx,
+                   grady, buf, touched, out_i, out_f, pts, keep, tables, memo_cell):
     """Up to ``budget`` cycles of ``propNavFnDijkstra(cycles, atStart=false)`` from the robot
-    cell, by :func:`~navfn_smt.backends.jit.run_cycles` (its state in ``pot, pending, pb, fill,
-    role, curt, counters``; before the first call, ``st[STARTED]`` 0, it runs
+    cell, by :func:`~navfn_smt.backends.jit.run_cycles` (its state in ``wave`` and ``counters``;
+    before the first call, ``st[STARTED]`` 0, it runs
     :func:`~navfn_smt.backends.jit.start_propagation`).
     At the end of each cycle every goal whose NavFn start became finite in it is finished on
     the potential as it is then; when the loop is over (``st[DONE]``), every goal still
@@ -161,8 +166,9 @@ def sweep_dijkstra(D, costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, f
     no_trace = np.empty(0, np.int32)
     no_memo = np.empty(0, np.float32)
     no_memo_cell = np.empty(0, np.int64)
+    pot = wave.pot
     if not st[STARTED]:
-        start_propagation(D, costs, nx, ny, rx, ry, pot, pending, pb, fill, role, curt)
+        start_propagation(D, costs, nx, ny, rx, ry, wave)
         st[STARTED] = 1
         k = rx + ry * nx
         if goal_of[k] >= 0:  # the robot's own cell: finite before the first cycle
@@ -170,8 +176,8 @@ def sweep_dijkstra(D, costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, f
             counters[J.NEWLY] = 1
     stop = counters[J.CYCLE] + budget
     while counters[J.CYCLE] < stop:
-        if run_cycles(D, costs, nx, ny, rx, ry, False, False, cycles, stop - counters[J.CYCLE], pot, pending, pb, fill,
-                      role, curt, no_trace, counters, no_memo, goal_of, newly):
+        if run_cycles(D, costs, nx, ny, rx, ry, False, False, cycles, stop - counters[J.CYCLE], wave, no_trace, counters,
+                      no_memo, goal_of, newly):
             st[DONE] = 1
             break
         # the end of a cycle: here a single-goal run of each newly reached goal stops
@@ -179,35 +185,32 @@ def sweep_dijkstra(D, costs, nx, ny, rx, ry, cycles, budget, pot, pending, pb, f
             g = newly[i]
             out_i[g, CYCLE] = counters[J.CYCLE]
             pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf, touched,
-                               out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen,
-                               wx, wy, no_memo_cell)
+                               out_i, out_f, pts, st, keep, tables, no_memo_cell)
         counters[J.NEWLY] = 0
     if st[DONE]:
         for g in range(out_i.shape[0]):
             if out_i[g, ST] == S_PENDING and goal_of[tcell[g, 1] * nx + tcell[g, 0]] == g:
                 out_i[g, CYCLE] = counters[J.CYCLE]
                 pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf,
-                                   touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys,
-                                   ycells, ylen, wx, wy, memo_cell)
+                                   touched, out_i, out_f, pts, st, keep, tables, memo_cell)
     return pts
 
 
 @jit
-def sweep_astar(D, costs, nx, ny, rx, ry, cycles, goals, pot, pending, pb, fill, role, curt, memo, tcell, nmax, gradx,
-                grady, buf, touched, out_i, out_f, pts, st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen,
-                wx, wy):
+def sweep_astar(D, costs, nx, ny, rx, ry, cycles, goals, wave, memo, tcell, nmax, gradx, grady, buf, touched, out_i,
+                out_f, pts, st, keep, tables):
     """``calcNavFnAstar`` + ``_legal_pose`` + ``getPlanFromPotential`` for each goal in ``goals``
     alone (NavFn start its cell, NavFn goal the robot's).  Returns ``pts``."""
     no_trace = np.empty(0, np.int32)
     counters = np.zeros(NCOUNTERS, np.int64)
     no_memo = np.empty(0, np.int64)
+    pot = wave.pot
     for i in range(goals.shape[0]):
         g = goals[i]
         tx = tcell[g, 0]
         ty = tcell[g, 1]
-        propagate(D, costs, nx, ny, tx, ty, rx, ry, True, cycles, pot, pending, pb, fill, role, curt, no_trace, counters,
-                  memo)
+        propagate(D, costs, nx, ny, tx, ty, rx, ry, True, cycles, wave, no_trace, counters, memo)
         out_i[g, CYCLE] = counters[J.CYCLES]
         pts = _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts,
-                           st, keep, col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy, no_memo)
+                           st, keep, tables, no_memo)
     return pts

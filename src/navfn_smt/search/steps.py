@@ -83,14 +83,14 @@ def mutate(rng, c, lo, hi, maximise):
 
 
 @njit(cache=True)
-def _best_gap(D, cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx, grady,
-              reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
+def _best_gap(D, cand, cases, astar, cycles, path_cycles, wave, memo, gradx, grady, reached, start_pot, ncycles,
+              nupdates, ndropped, exits, path_off, path_pts):
     """The cost screen of ``cand`` on ``cases``: the largest gap (0 when none is positive) and
     the first case that has it, as ``np.argmax`` of ``kinds._screen_cost`` picks it."""
     ny, nx = cand.shape
     flat = cand.ravel()
-    plan_cases_into(D, flat, nx, ny, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
-               grady, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts)
+    plan_cases_into(D, flat, nx, ny, cases, astar, cycles, path_cycles, wave, memo, gradx, grady, reached, start_pot,
+                    ncycles, nupdates, ndropped, exits, path_off, path_pts)
     n = cases.shape[0]
     g, _ = gaps(flat, nx, ny, path_pts[: path_off[n]], path_off[: n + 1])
     best, at = 0, 0
@@ -102,15 +102,14 @@ def _best_gap(D, cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill
 
 @njit(cache=True)
 def _focus_steps(D, rng, cur, cur_score, cand, lo, hi, cases, astar, cycles, path_cycles, stale, patience, steps,
-                 pot, pending, pb, fill, role, curt, memo, gradx, grady,
-                 reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
+                 wave, memo, gradx, grady, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     for k in range(steps):
         if stale > patience:
             return k, stale, -1.0, -1
         cand[:, :] = cur
         mutate(rng, cand, lo, hi, True)
-        sc, at = _best_gap(D, cand, cases, astar, cycles, path_cycles, pot, pending, pb, fill, role, curt, memo, gradx,
-                           grady, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts)
+        sc, at = _best_gap(D, cand, cases, astar, cycles, path_cycles, wave, memo, gradx, grady, reached, start_pot,
+                           ncycles, nupdates, ndropped, exits, path_off, path_pts)
         if sc > cur_score:
             return k + 1, stale, sc, at
         if sc == cur_score:
