@@ -217,9 +217,9 @@ def test_split_command_with_the_default_jobs_writes_its_report(tmp_path):
 
 @pytest.mark.fast
 def test_ci_runs_every_shipped_split_once():
-    """.ci/run names the splits on its two lanes (the solver-decided ones beside the slow proof
-    run, the enumerated one after it): together they are every shipped split, each once, and
-    the enumerated lane holds only splits without a time limit."""
+    """.ci/run names the splits in two runs (the solver-decided ones, then the enumerated one, on
+    the lane beside the slow proof run): together they are every shipped split, each once, and
+    the enumerated run holds only splits without a time limit."""
     import re
     import shlex
     from pathlib import Path
