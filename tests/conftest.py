@@ -130,3 +130,30 @@ def shared_suite_large() -> Path:
     if not (SUITE_LARGE / "README.md").exists():
         pytest.skip(f"large shared suite not found at {SUITE_LARGE}")
     return SUITE_LARGE
+
+
+def compare_golden_files(ours, theirs) -> list[str]:
+    """Fields in which two golden files differ (dtype, shape or bytes); empty when identical."""
+    import numpy as np
+
+    from navfn_smt.maps.suite import GOLDEN_FIELDS
+
+    diffs = []
+    with np.load(ours, allow_pickle=False) as a, np.load(theirs, allow_pickle=False) as b:
+        if list(a.files) != list(b.files):
+            diffs.append(f"fields {a.files} vs {b.files}")
+        for f in GOLDEN_FIELDS:
+            if f not in a.files or f not in b.files:
+                continue
+            x, y = a[f], b[f]
+            if x.dtype != y.dtype or x.shape != y.shape or x.tobytes() != y.tobytes():
+                diffs.append(f"{f}: {x.dtype}{x.shape} vs {y.dtype}{y.shape}")
+    return diffs
+
+
+def discover_counterexamples(root) -> list[Path]:
+    """Every directory holding a ``counterexample.json`` under ``root`` (sorted)."""
+    from navfn_smt.search.counterexamples import JSON_NAME
+
+    r = Path(root)
+    return sorted(p.parent for p in r.rglob(JSON_NAME)) if r.is_dir() else []

@@ -12,7 +12,8 @@ report the violation on the spec.
 import pytest
 
 from conftest import DATA
-from navfn_smt.search.counterexamples import discover_counterexamples, read_counterexample, replay
+from conftest import discover_counterexamples
+from navfn_smt.search.counterexamples import read_counterexample, replay
 from navfn_smt.spec.arithmetic import KNOWN
 
 DIRS = discover_counterexamples(DATA / "counterexamples")

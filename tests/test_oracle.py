@@ -11,7 +11,7 @@ import pytest
 
 from navfn_smt.cli import main
 from navfn_smt.difftest.live import run_live
-from navfn_smt.difftest.record import compare_golden_files
+from conftest import compare_golden_files
 from navfn_smt.maps.suite import MODES, discover
 from navfn_smt.oracle.build import ANCHOR, build, distribution
 from navfn_smt.oracle.client import Oracle, PluginOracle
@@ -818,7 +818,7 @@ def test_golden_files_recorded_from_arm64_replay_on_the_spec_in_its_arithmetic(t
     assert main(["difftest", str(suite), "--target", "sparc", "--quiet"]) == 2
     assert "no such arithmetic" in capsys.readouterr().err
     # the spec in arm64's arithmetic records the arm64 build's golden files byte for byte
-    from navfn_smt.difftest.record import compare_golden_files
+    from conftest import compare_golden_files
 
     ours = tmp_path / "spec"
     shutil.copytree(EXAMPLE, ours)

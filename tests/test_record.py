@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from navfn_smt.difftest import record as R
-from navfn_smt.difftest.record import compare_golden_files, record_suite
+from conftest import compare_golden_files
+from navfn_smt.difftest.record import record_suite
 from navfn_smt.difftest.runner import run_suite, summarize
 from navfn_smt.errors import NavfnInputError
 from navfn_smt.maps.generators import generate_suite

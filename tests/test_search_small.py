@@ -208,7 +208,8 @@ def test_a_search_in_arm64_arithmetic_saves_what_it_found_in_that_arithmetic(tmp
     saved golden files are all in arm64's arithmetic, which counterexample.json names; the
     saved directory replays in it.  --summary (which counts on NavFn as shipped) refuses the
     option in one line."""
-    from navfn_smt.search.counterexamples import discover_counterexamples, read_counterexample, replay
+    from conftest import discover_counterexamples
+    from navfn_smt.search.counterexamples import read_counterexample, replay
 
     out = tmp_path / "out"
     assert main(["search", "int-conversion", "--target", "aarch64", "--mode", "astar", "--timeout", "3",

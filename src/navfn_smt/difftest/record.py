@@ -187,18 +187,3 @@ def record_suite(
             if progress:
                 progress(r)
     return done
-
-
-def compare_golden_files(ours, theirs) -> list[str]:
-    """Fields in which two golden files differ (dtype, shape or bytes); empty when identical."""
-    diffs = []
-    with np.load(ours, allow_pickle=False) as a, np.load(theirs, allow_pickle=False) as b:
-        if list(a.files) != list(b.files):
-            diffs.append(f"fields {a.files} vs {b.files}")
-        for f in GOLDEN_FIELDS:
-            if f not in a.files or f not in b.files:
-                continue
-            x, y = a[f], b[f]
-            if x.dtype != y.dtype or x.shape != y.shape or x.tobytes() != y.tobytes():
-                diffs.append(f"{f}: {x.dtype}{x.shape} vs {y.dtype}{y.shape}")
-    return diffs

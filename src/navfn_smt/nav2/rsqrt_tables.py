@@ -23,17 +23,13 @@ from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).parent / "rsqrt"
-# each table is a little-endian float32 .npy file of 8192 entries beside this module
-TABLES = ("amd-zen", "intel-xeon-6-167")
+HERE = Path(__file__).parent / "rsqrt"  # the tables: NAME.npy, 8192 little-endian float32 each
 
 
 @lru_cache(maxsize=None)
 def rsqrt_table(name: str = "amd-zen") -> np.ndarray:
-    """The measured ``rsqrtps`` table ``name`` (one of :data:`TABLES`) as a read-only float32
-    array of 8192 entries."""
-    if name not in TABLES:
-        raise KeyError(name)
+    """The measured ``rsqrtps`` table ``name`` (``amd-zen``, ``intel-xeon-6-167``: ``HERE/NAME.npy``)
+    as a read-only float32 array of 8192 entries."""
     t = np.load(HERE / f"{name}.npy", allow_pickle=False).astype(np.float32)
     if t.shape != (8192,):
         raise ValueError(f"{HERE / name}.npy: {t.shape} entries, expected 8192")

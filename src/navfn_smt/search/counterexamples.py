@@ -228,9 +228,3 @@ def replay(directory) -> dict:
         "detail": judged[planner.arithmetic.name],
         "is_one_in": {name: detail is not None for name, detail in judged.items()},
     }
-
-
-def discover_counterexamples(root) -> list[Path]:
-    """Every directory holding a ``counterexample.json`` under ``root`` (sorted)."""
-    r = Path(root)
-    return sorted(p.parent for p in r.rglob(JSON_NAME)) if r.is_dir() else []
