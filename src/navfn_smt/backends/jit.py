@@ -237,8 +237,8 @@ def propagate(D, costs, nx, ny, sx, sy, gx, gy, astar, cycles, wave, trace, coun
     """setupNavFn + propNavFn{Astar,Dijkstra}(cycles, atStart=true).
 
     ``wave.pb`` is a (3, capacity) int array for the three buffers (its width is the capacity
-    of each: PRIORITYBUFSIZE as in C++, or what the planner was given); ``trace`` receives the white-box trace (stops
-    recording when full; ``counters[TRACE_LEN]`` then exceeds ``len(trace)``).  ``counters``
+    of each: PRIORITYBUFSIZE as in C++, or what the planner was given); ``trace`` receives the
+    white-box trace (stops recording when full; ``counters[TRACE_LEN]`` then exceeds ``len(trace)``).  ``counters``
     has NCOUNTERS entries (CYCLE ... NEWLY); returns start_reached.
     """
     for i in range(counters.shape[0]):
@@ -354,16 +354,12 @@ class JitPlanner:
         self.ny, self.nx = c.shape
         self.costs = c.ravel()
         ns = self.nx * self.ny
-        self.pot = np.empty(ns, np.float32)
-        self.pending = np.zeros(ns, np.bool_)
         self.capacity = int(capacity)
-        # a buffer never holds more than ns cells (pending flags), so a width of ns drops
-        # exactly what any larger capacity drops: nothing
-        self.pb = np.zeros((3, min(self.capacity, ns)), np.int64)
-        self.fill = np.zeros(3, np.int64)  # the propagation's state between cycles (start_propagation)
-        self.role = np.zeros(3, np.int64)
-        self.curt = np.zeros(1, np.float32)
-        self.wave = Wave(self.pot, self.pending, self.pb, self.fill, self.role, self.curt)
+        # the propagation's state (start_propagation); a buffer never holds more than ns cells
+        # (pending flags), so a width of ns drops exactly what any larger capacity drops: nothing
+        self.wave = Wave(np.empty(ns, np.float32), np.zeros(ns, np.bool_), np.zeros((3, min(self.capacity, ns)), np.int64),
+                         np.zeros(3, np.int64), np.zeros(3, np.int64), np.zeros(1, np.float32))
+        self.pot = self.wave.pot  # the potentials, as callers read them after a run
         self.gradx = np.zeros(ns, np.float32)
         self.grady = np.zeros(ns, np.float32)
         self.trace = np.empty(max(4 * ns, 1 << 12), np.int32)
