@@ -18,7 +18,7 @@ import z3
 from navfn_smt.check import properties as P
 from navfn_smt.check.bounded import CHECKABLE, Case, _symbolic_run, cases, explore
 from navfn_smt.check.concolic import V, concrete
-from navfn_smt.check.encoding import _interior
+from navfn_smt.check.encoding import interior
 from navfn_smt.check.runner import CheckRequest, check_one_size
 from navfn_smt.smt.domains import FPDomain
 from navfn_smt.smt.evaluate import value
@@ -29,7 +29,7 @@ def _exhaustive(nx, ny, lo, hi, modes):
     """Per property, the set of cases (layout, start, goal, mode) some map of the range breaks."""
     broken = {n: set() for n in CHECKABLE}
     for case in cases(nx, ny, modes):
-        free = [k for k in _interior(nx, ny) if k not in case.lethal]
+        free = [k for k in interior(nx, ny) if k not in case.lethal]
         for values in itertools.product(range(lo, hi + 1), repeat=len(free)):
             r = P.run(case.costs_array(dict(zip(free, values))), case.start, case.goal, case.astar)
             for n in CHECKABLE:
@@ -59,7 +59,7 @@ def test_4x4_cases_match_exhaustive_runs():
     lo, hi = 100, 103
     for case in [Case(4, 4, frozenset({5}), (2, 2), (1, 2), True), Case(4, 4, frozenset({10}), (1, 1), (2, 1), False),
                  Case(4, 4, frozenset({6}), (1, 2), (2, 2), True), Case(4, 4, frozenset({9}), (2, 1), (1, 1), False)]:
-        free = [k for k in _interior(4, 4) if k not in case.lethal]
+        free = [k for k in interior(4, 4) if k not in case.lethal]
         broken = set()
         for values in itertools.product(range(lo, hi + 1), repeat=len(free)):
             r = P.run(case.costs_array(dict(zip(free, values))), case.start, case.goal, case.astar)
@@ -75,7 +75,7 @@ def test_intervals_hold_every_value_of_the_box(seed):
     path-wise term, evaluated at other maps of the cost box, stays inside the interval."""
     rng = np.random.default_rng(seed)
     nx, ny = 4, 4
-    inner = _interior(nx, ny)
+    inner = interior(nx, ny)
     lo, hi = sorted(int(v) for v in rng.integers(50, 254, 2))
     case = Case(nx, ny, frozenset(), (1 + seed % 2, 2), (2, 1), bool(seed % 2))
     conc = {k: int(rng.integers(lo, hi + 1)) for k in inner}
@@ -183,7 +183,7 @@ def test_the_propagation_run_is_the_whole_runs_propagation():
     rng = np.random.default_rng(3)
     for case in [Case(4, 5, frozenset(), (1, 1), (2, 3), False), Case(5, 4, frozenset({11}), (3, 2), (1, 1), True),
                  Case(4, 4, frozenset(), (2, 2), (1, 1), True), Case(3, 6, frozenset({10}), (1, 1), (1, 4), False)]:
-        free = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
+        free = [k for k in interior(case.nx, case.ny) if k not in case.lethal]
         for _ in range(5):
             conc = {k: int(rng.integers(50, 254)) for k in free}
             Dp, costs_p, sp_p, ex_p = _propagation_run(case, conc, 50, 253, FPDomain)
@@ -215,9 +215,9 @@ def _case_of_map(name: str, mode: str):
     smap = load_map(DATA / "counterexamples" / name)
     sx, sy, gx, gy = (int(v) for v in smap.cases[0])
     ny, nx = smap.costs.shape
-    lethal = frozenset(k for k in _interior(nx, ny) if smap.costs.flat[k] >= COST_OBS)
+    lethal = frozenset(k for k in interior(nx, ny) if smap.costs.flat[k] >= COST_OBS)
     return Case(nx, ny, lethal, (sx, sy), (gx, gy), mode == "astar"), \
-        {k: int(smap.costs.flat[k]) for k in _interior(nx, ny) if k not in lethal}
+        {k: int(smap.costs.flat[k]) for k in interior(nx, ny) if k not in lethal}
 
 
 UNREACHED_MAPS = [("unreached-astar-5x7", "astar"), ("unreached-astar-7x8", "astar"),
@@ -249,7 +249,7 @@ def test_a_start_queued_for_certain_is_reached(nx, ny):
     from navfn_smt.spec.constants import POT_HIGH
 
     rng = np.random.default_rng(nx * 100 + ny)
-    inner = _interior(nx, ny)
+    inner = interior(nx, ny)
     marked = 0
     for i in range(60):
         lethal = frozenset(k for k in inner if rng.random() < 0.2)

@@ -61,7 +61,7 @@ def test_start_reached_alone_records_flips_up_to_the_queued_start(cert):
     cut = 0
     for key, _, log in doc["cases"]:
         case = C.case_of(key)
-        inner = [k for k in B._interior(case.nx, case.ny) if k not in case.lethal]
+        inner = [k for k in B.interior(case.nx, case.ny) if k not in case.lethal]
         for seed, bound, _, flips in log:
             D, _, sp, _ = B.run_of(doc["properties"])(case, dict(zip(inner, seed)), lo, hi, FPDomain)
             last = B.flippable(doc["properties"], D.branches, sp, lo)
@@ -366,7 +366,7 @@ def _harmless(doc, original, where) -> bool:
     _, ci, pi = where
     key, _, log = doc["cases"][ci]
     case = C.case_of(key)
-    inner = [k for k in B._interior(case.nx, case.ny) if k not in case.lethal]
+    inner = [k for k in B.interior(case.nx, case.ny) if k not in case.lethal]
     lo, hi = doc["costs"]
     run, names = B.run_of(doc["properties"]), doc["properties"]
 

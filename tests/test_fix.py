@@ -155,7 +155,7 @@ def test_the_symbolic_encoding_with_the_fix_equals_the_spec():
     failing counterexamples."""
     from navfn_smt.check.bounded import Case, _symbolic_run
     from navfn_smt.check.concolic import concrete
-    from navfn_smt.check.encoding import _interior
+    from navfn_smt.check.encoding import interior
     from navfn_smt.smt.domains import FPDomain
     from navfn_smt.spec.extraction import exit_code
 
@@ -166,7 +166,7 @@ def test_the_symbolic_encoding_with_the_fix_equals_the_spec():
         arr = add_border(sm.costs)
         ny, nx = arr.shape
         sx, sy, gx, gy = (int(v) for v in sm.cases[0])
-        inner = _interior(nx, ny)
+        inner = interior(nx, ny)
         lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
         case = Case(nx, ny, lethal, (sx, sy), (gx, gy), doc["mode"] == "astar")
         conc = {k: int(arr.flat[k]) for k in inner if k not in lethal}
@@ -174,10 +174,8 @@ def test_the_symbolic_encoding_with_the_fix_equals_the_spec():
             _, _, sp, ex = _symbolic_run(case, conc, 50, 253, FPDomain, fix)
             r = P.run(sm.costs, (sx, sy), (gx, gy), case.astar, fix=fix)
             assert concrete(ex.exit) == exit_code(ExtractionExit(r.exit)), (name, fix.name)
-            pts = [(float(concrete(x)), float(concrete(y))) for x, y, w in ex.points if concrete(w)]
-            if r.exit == "near_goal":
-                pts.append(tuple(float(concrete(v)) for v in ex.goal_point))
-                assert pts == [tuple(p) for p in r.path.tolist()], (name, fix.name)
+            pts = [(float(concrete(x)), float(concrete(y))) for x, y in ex.path]
+            assert pts == [tuple(p) for p in r.path.tolist()], (name, fix.name)
             assert [float(concrete(p)) for p in sp.potential] == [float(v) for v in r.potential.ravel()], (name, fix.name)
 
 

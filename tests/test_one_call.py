@@ -42,7 +42,7 @@ def _spy_fix(calls: Counter, test=True) -> Fix:
                           _spy(calls, "further cycles", F.extra_cycles))
     return Fix("spy", "the fix of docs/fix.md, its hooks counted", patches="navfn-fix",
                cycles=_spy(calls, "cycles", F.FIX.cycles), further=further,
-               fallback=Fallback(_spy(calls, "walk", F.descend), _spy(calls, "iteration", F.descent_iteration)))
+               fallback=Fallback(_spy(calls, "walk", F.descend)))
 
 
 def _case(name: str):
@@ -100,24 +100,30 @@ def test_the_jit_runs_the_fixs_hooks_and_compiles_the_specs_tests(name):
 
 
 @pytest.mark.parametrize("name", [UNREACHED, TRAPPED])
-def test_the_checks_encoding_runs_the_fixs_hooks(name):
+def test_the_checks_encoding_runs_the_fixs_hooks(name, monkeypatch):
     from navfn_smt.check.bounded import Case, _symbolic_run
     from navfn_smt.check.concolic import concrete
-    from navfn_smt.check.encoding import _interior
+    from navfn_smt.check.encoding import interior
     from navfn_smt.smt.domains import FPDomain
     from navfn_smt.spec.constants import COST_OBS
+
+    from navfn_smt.spec import planner as PL
 
     costs, s, g, astar = _case(name)
     arr = add_border(costs)
     ny, nx = arr.shape
-    inner = _interior(nx, ny)
+    inner = interior(nx, ny)
     lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
     conc = {k: int(arr.flat[k]) for k in inner if k not in lethal}
     calls = Counter()
+    # the spec's steps themselves, counted where the spec calls them
+    for module, step in ((PR, "update_cell"), (PR, "push"), (PR, "end_of_cycle"), (PL, "calc_path")):
+        monkeypatch.setattr(module, step, _spy(calls, step, getattr(module, step)))
     _, _, sp, ex = _symbolic_run(Case(nx, ny, lethal, s, g, astar), conc, 50, 253, FPDomain, _spy_fix(calls))
     want = plan(costs, s, g, astar, fix=F.FIX)
     assert calls["cycles"] > 0 and calls["test"] > 0
-    assert (calls["iteration"] > 0) == (name == TRAPPED) and calls["walk"] == 0  # the iteration, on terms
+    assert (calls["walk"] > 0) == (name == TRAPPED)  # the spec's walk, on terms
+    assert all(calls[step] > 0 for step in ("update_cell", "push", "end_of_cycle", "calc_path")), calls
     assert [float(concrete(p)) for p in sp.potential] == [float(v) for v in want.potential.ravel()]
     assert concrete(ex.exit) == E.exit_code(want.exit)
 
@@ -140,6 +146,26 @@ def test_the_plugin_model_runs_the_fixs_hooks(name):
             assert calls["cycles"] > 0  # the plugin's calcNavFn* runs the fix's cycles hook
     assert _same(runs["spy"].potential, runs["fixed"].potential)
     assert runs["spy"].error == runs["fixed"].error
+
+
+@pytest.mark.fast
+def test_the_checks_encoding_states_no_step_of_the_planner():
+    """check/encoding.py is an array model: it calls the spec's initCost, planning call and
+    extraction, and names no kernel or test of the steps (updateCell, the pushes, the loop's
+    tests, calcPath's tests and steps, the descent), so it cannot restate one."""
+    import ast
+    import inspect
+
+    tree = ast.parse((SRC / "check" / "encoding.py").read_text(encoding="utf-8"))
+    names = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name)}
+    names |= {n.attr for n in ast.walk(tree) if isinstance(n, ast.Attribute)}
+    assert {"init_cost", "calc_navfn", "extract_path"} <= names
+    steps = {name for module in (PR, E, F) for name, f in vars(module).items()
+             if inspect.isfunction(f) and f.__module__ == module.__name__}
+    steps |= {"cell_update", "push_admitted", "push_wanted", "to_low_buffer", "end_of_cycle", "grad_cell",
+              "lowest_of_eight", "lowest_neighbour", "nearest_cell", "step_offsets", "interpolate_gradient"}
+    used = (names & steps) - {"init_cost", "propagate", "exit_code"}  # the encoding's own propagate; an exit as an int
+    assert used == set(), used
 
 
 NAME_TEST = re.compile(r"""(==|!=)\s*["'](original|fixed|cycles-only)["']|["'](original|fixed|cycles-only)["']\s*(==|!=)"""

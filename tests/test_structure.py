@@ -94,21 +94,6 @@ def test_no_part_imports_another_round_a_loop():
 MODULES = {tuple(_module_name(p)): p for p in PACKAGE.rglob("*.py")}
 # the command layer may import every part, lazily: its imports are not edges of the file graph
 COMMAND_LAYER = ("commands/", "cli.py")
-# Private names still read across files, each where a file to change is held still for now: the
-# committed certificates hash check/encoding.py (renaming its _interior changes their code hash),
-# check/bounded.py is being reworked, and so is oracle/.  An entry goes when its file is mended
-# (the test below says so).
-KNOWN_PRIVATE = {
-    ("check/bounded.py", "check.encoding", "_interior"),
-    ("check/bounded.py", "smt.solvers", "_strip_bars"),
-    ("check/certificate.py", "check.bounded", "_interior"),
-    ("check/certificate.py", "check.bounded", "_takes_flip"),
-    ("oracle/nav2_tests.py", "oracle.build", "_compile_all"),
-    ("oracle/nav2_tests.py", "oracle.build", "_jobs"),
-    ("oracle/nav2_tests.py", "oracle.build", "_sha256"),
-}
-
-
 def _rel(parts: tuple) -> str:
     return str(MODULES[parts].relative_to(PACKAGE))
 
@@ -265,10 +250,8 @@ def test_no_file_imports_another_round_a_loop():
 
 def test_no_file_imports_a_private_name_of_another():
     """A name two files share is public in its home module (``from .runner import _domain``,
-    ``B._interior`` are not), but for :data:`KNOWN_PRIVATE`."""
-    found = _private_imports()
-    assert [u for u in found if u not in KNOWN_PRIVATE] == []
-    assert sorted(KNOWN_PRIVATE - set(found)) == [], "mended: take these out of KNOWN_PRIVATE"
+    ``B._interior`` are not)."""
+    assert _private_imports() == []
 
 
 REPORT = PACKAGE / "report"

@@ -37,8 +37,8 @@ from ..spec.planner import AS_SHIPPED, Fix, path_cycle_limit
 from . import properties as P
 from . import exhaustive
 from .concolic import ConcolicDomain, V, concrete, term  # noqa: F401  (V: named in docstrings)
-from ..spec.extraction import EXIT_UNDEFINED, exit_code
-from .encoding import RUNNING, SymbolicExtraction, _interior, descend, extract, propagate
+from ..spec.extraction import exit_code
+from .encoding import RUNNING, SymbolicExtraction, extract, interior, propagate
 
 NEAR_GOAL = exit_code(P.ExtractionExit.NEAR_GOAL)
 CHECKABLE = tuple(P.PROPERTIES)
@@ -62,7 +62,7 @@ class Case:
     def costs_array(self, costs: dict) -> np.ndarray:
         """The (ny, nx) map with the given costs of the passable interior cells."""
         a = np.full((self.ny, self.nx), COST_OBS, np.uint8)
-        for k in _interior(self.nx, self.ny):
+        for k in interior(self.nx, self.ny):
             if k not in self.lethal:
                 a.flat[k] = costs[k]
         return a
@@ -71,7 +71,7 @@ class Case:
 def cases(nx: int, ny: int, modes, start=None, goal=None, ends: str = "any"):
     """Every layout of the interior (each cell lethal or passable), every start and goal
     (``ends="passable"``: only passable start and goal cells)."""
-    inner = _interior(nx, ny)
+    inner = interior(nx, ny)
     cells = [(k % nx, k // nx) for k in inner]
     for astar in modes:
         for bits in itertools.product((False, True), repeat=len(inner)):
@@ -93,7 +93,7 @@ def component(nx: int, ny: int, lethal: frozenset, goal) -> frozenset:
     cost is read but as the guard of a push that fails (a passable cell next to the component
     would be in it)."""
     arr = np.full((ny, nx), COST_OBS, np.uint8)
-    inner = _interior(nx, ny)
+    inner = interior(nx, ny)
     for k in inner:
         if k not in lethal:
             arr.flat[k] = COST_NEUTRAL
@@ -106,7 +106,7 @@ def representative(case: Case, comp: Optional[frozenset] = None) -> Case:
     ReachedWithinComponent it runs exactly as ``case`` does, for a start in the component."""
     nx, ny = case.nx, case.ny
     comp = component(nx, ny, case.lethal, case.goal) if comp is None else comp
-    return Case(nx, ny, frozenset(k for k in _interior(nx, ny) if k not in comp or k in case.lethal),
+    return Case(nx, ny, frozenset(k for k in interior(nx, ny) if k not in comp or k in case.lethal),
                 case.start, case.goal, case.astar)
 
 
@@ -165,16 +165,14 @@ def property_value(name: str, D, case: Case, costs: dict, sp, ex):
         return D.or_(not P.connected(arr, case.start, case.goal), start_finite)
     if name == "queues-obstacle-free":
         ok = True
-        for buf in sp.buffers:
-            for s in buf.slots[: concrete(buf.fill)]:
-                ok = D.and_(ok, D.lt(D.cost_int(costs.get(concrete(s), COST_OBS)), COST_OBS))
+        for c in sp.queued:
+            ok = D.and_(ok, D.lt(D.cost_int(costs.get(c, COST_OBS)), COST_OBS))
         return ok
     if name == "valid-path":
         if not returned:
             return True
         ok = True
-        pts = [(x, y) for x, y, w in ex.points if concrete(w)] + [ex.goal_point]
-        for x, y in pts:
+        for x, y in ex.path:
             near_any = False
             for c in range(nx * case.ny):
                 cx, cy = c % nx, c // nx
@@ -260,7 +258,7 @@ class PathSolver:
         parser = bw.Parser(self.tm, opts)
         parser.parse(q.smt2, True, False)
         self.solver = parser.bitwuzla()
-        funs = {solvers._strip_bars(f.symbol() or ""): f for f in parser.get_declared_funs()}
+        funs = {solvers.strip_bars(f.symbol() or ""): f for f in parser.get_declared_funs()}
         self.flags = [funs[str(n)] for n in names]
         self.costs = {k: funs.get(str(v)) for k, v in variables.items()}
 
@@ -416,10 +414,7 @@ def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callabl
     """The case's run as terms in the concolic domain (``D, costs, propagation, extraction``):
     propagation, then calcPath and the fix's fallback where it returns no path."""
     D, costs, sp, _ = _propagation_run(case, conc, lo, hi, make_domain, fix)
-    n = path_cycle_limit(case.nx)
-    ex = extract(D, sp.potential, case.nx, case.ny, case.start, case.goal, n)
-    if fix.fallback is not None and concrete(ex.exit) != NEAR_GOAL and concrete(ex.exit) != EXIT_UNDEFINED:
-        ex = descend(D, sp.potential, case.nx, case.ny, case.start, case.goal, n, fix)
+    ex = extract(D, sp.potential, case.nx, case.ny, case.start, case.goal, path_cycle_limit(case.nx), fix)
     return D, costs, sp, ex
 
 
@@ -427,7 +422,7 @@ def _symbolic_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Callabl
 # looks at calcPath's exit or points for them): explored alone, a case's control paths end
 # where propagation does, and calcPath's branches (the hardest queries) are never flipped
 PROPAGATION_ONLY = frozenset({"start-reached", "queues-obstacle-free"})
-NOT_EXTRACTED = SymbolicExtraction(RUNNING, [], None)  # calcPath not run: no exit, no points
+NOT_EXTRACTED = SymbolicExtraction(RUNNING, [])  # calcPath not run: no exit, no path
 
 
 def reads_path(names) -> bool:
@@ -439,7 +434,7 @@ def _propagation_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Call
     """:func:`_symbolic_run` without calcPath (the same propagation, the same domains): for the
     properties of :data:`PROPAGATION_ONLY`, which judge the potentials and the buffers alone."""
     D = ConcolicDomain(make_domain())
-    inner = _interior(case.nx, case.ny)
+    inner = interior(case.nx, case.ny)
     costs = {k: (COST_OBS if k in case.lethal else D.cost(conc[k], lo, hi, f"c{k}")) for k in inner}
     sp = propagate(D, costs, case.nx, case.ny, case.start, case.goal, case.astar, fix)
     return D, costs, sp, NOT_EXTRACTED
@@ -476,7 +471,7 @@ def _ask(conditions: list, variables: dict, ranges: dict, lo: int, hi: int, D, t
     return status, model
 
 
-def _takes_flip(branches: list, parent: list, j: int) -> bool:
+def takes_flip(branches: list, parent: list, j: int) -> bool:
     """Whether a path's branches are its parent's first ``j`` and then branch ``j`` negated: what
     the map found for flip ``j`` (by a solver or a sample) must give, the run being exact."""
     if len(branches) <= j or any(not a.eq(b) for a, b in zip(branches[:j], parent[:j])):
@@ -498,7 +493,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
     re-checks those answers like any other."""
     check_cost_box(lo, hi)
     t0 = time.perf_counter()
-    inner = [k for k in _interior(case.nx, case.ny) if k not in case.lethal]
+    inner = [k for k in interior(case.nx, case.ny) if k not in case.lethal]
     results = {n: PropertyResult(n) for n in names}
     out = CaseResult(case, results)
     todo = [(initial or {k: lo for k in inner}, 0, None)]
@@ -508,7 +503,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
     while todo:
         conc, bound, parent = todo.pop()
         D, costs, sp, ex = run(case, conc, lo, hi, make_domain, fix)
-        if parent is not None and not _takes_flip(D.branches, parent, bound - 1):
+        if parent is not None and not takes_flip(D.branches, parent, bound - 1):
             raise RuntimeError(f"{case}: the map {conc} found for flip {bound - 1} does not take that flip")
         out.paths += 1
         variables = {k: costs[k].term for k in inner}

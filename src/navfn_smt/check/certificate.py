@@ -359,7 +359,7 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, plann
     ``verdicts``: the certificate's verdict of each of ``names`` (default: every one proved)."""
     verdicts = verdicts or {n: "proved" for n in names}
     proved = [n for n in names if verdicts.get(n) == "proved"]
-    inner = [k for k in B._interior(case.nx, case.ny) if k not in case.lethal]
+    inner = [k for k in B.interior(case.nx, case.ny) if k not in case.lethal]
     where = json.dumps(case_key(case))
     ev = new_evidence()
     out = {"problems": [], "evidence": ev, "witnesses": []}
@@ -384,7 +384,7 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, plann
         at = f"path {i} (seed {seed}, bound {bound})"
         if i:
             j = bound - 1
-            parent = next((k for k in open_sat.get(j, []) if B._takes_flip(pc, runs[k][0], j)), None)
+            parent = next((k for k in open_sat.get(j, []) if B.takes_flip(pc, runs[k][0], j)), None)
             if parent is None:
                 return refuse(f"{at} has no parent: no earlier path records flip {j} sat with this path's "
                               "branches on the other side")

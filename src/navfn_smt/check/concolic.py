@@ -72,13 +72,6 @@ class ConcolicDomain:
         return self.S.fuses(site)
 
     # ------------------------------------------------------------------ lifting
-    def _kind(self, x) -> str:
-        if isinstance(x, V):
-            return x.kind
-        if isinstance(x, bool):
-            return "bool"
-        return "int" if isinstance(x, int) else "f32"
-
     def _lift(self, x, kind: str) -> V:
         if isinstance(x, V):
             return x

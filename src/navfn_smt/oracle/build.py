@@ -247,7 +247,7 @@ def patched_copy(src: Path, root: Path, patch: Optional[Path] = None, fix: Fix =
     return root
 
 
-def _sha256(p: Path) -> str:
+def sha256_of(p: Path) -> str:
     return hashlib.sha256(p.read_bytes()).hexdigest()
 
 
@@ -274,7 +274,7 @@ def git_commit(src: Path) -> tuple:
 ROOT_NAMES = {"src": "/nav2", "package": "/navfn-smt-oracle", "build": "/oracle-build"}  # in the objects
 
 
-def _compile_all(compiler: Compiler, jobs: dict, programs, tmp: Path) -> None:
+def compile_all(compiler: Compiler, jobs: dict, programs, tmp: Path) -> None:
     """Every program of ``programs``: each of its sources compiled to an object (one per core,
     side by side, :mod:`.objects`), then linked into ``tmp / name``."""
     objects = tmp / ".objects"
@@ -292,7 +292,7 @@ def _compile_all(compiler: Compiler, jobs: dict, programs, tmp: Path) -> None:
     shutil.rmtree(objects)
 
 
-def _jobs(src: Path, tmp: Path) -> dict:
+def program_jobs(src: Path, tmp: Path) -> dict:
     """Each program's (sources, include folders, defines[, extra flags]); the traced and
     unbounded copies are written into ``tmp``."""
     pkg = src / "nav2_navfn_planner"
@@ -443,7 +443,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
     skipped = {name: why for name in programs if (why := _skipped(src, name))}
     programs = tuple(p for p in programs if p not in skipped)
     with atomic_folder(out) as tmp:
-        jobs = _jobs(src, tmp)
+        jobs = program_jobs(src, tmp)
         if library is not None:  # the driver alone, linked with a copy of the library beside it
             lib = tmp / Path(library).name
             shutil.copyfile(library, lib)
@@ -452,7 +452,7 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             jobs["navfn-plain"] = ([driver], includes, defines, [f"-L{tmp}", f"-l:{lib.name}", "-Wl,-rpath,$ORIGIN"])
         compiler = Compiler(tc, {src: ROOT_NAMES["src"], HERE: ROOT_NAMES["package"], tmp: ROOT_NAMES["build"]},
                             cache_dir())
-        _compile_all(compiler, jobs, programs, tmp)
+        compile_all(compiler, jobs, programs, tmp)
         try:
             (tmp / "arithmetic").mkdir()
             if library is None:
@@ -481,11 +481,11 @@ def build(nav2_src, out, programs=PROGRAMS, tc: Optional[Toolchain] = None, libr
             **({"plugin_arithmetic": plugin_arith} if plugin_arith is not None else {}),
             **({"layers_arithmetic": layers_arith} if layers_arith is not None else {}),
             "defines": {name: jobs[name][2] for name in programs}, "programs": list(programs), "skipped": skipped,
-            "source_sha256": {str(p.relative_to(src)): _sha256(p) for p in _used(src, jobs)},
+            "source_sha256": {str(p.relative_to(src)): sha256_of(p) for p in _used(src, jobs)},
             "anchor": ANCHOR,
         }
         if library is not None:
-            doc["library"] = {"file": str(Path(library).resolve()), "sha256": _sha256(Path(library)),
+            doc["library"] = {"file": str(Path(library).resolve()), "sha256": sha256_of(Path(library)),
                               "target": tc.target}
             doc["source_sha256"] = {k: v for k, v in doc["source_sha256"].items() if k.endswith(".hpp")}
         doc.update(_patches_record(src, programs))
@@ -503,7 +503,7 @@ def _patches_record(src: Path, programs) -> dict:
     built = [f for f in fixes.PATCHED if any(p in programs for p in fix_programs(f))]
     if built:
         out["patches"] = {f.name: {"folder": f"patches/{f.patches}", "file": fix_patch(src, f).name,
-                                   "sha256": _sha256(fix_patch(src, f)),
+                                   "sha256": sha256_of(fix_patch(src, f)),
                                    "applied_by": "the sources" if carried == f else "this build",
                                    "programs": [p for p in fix_programs(f) if p in programs]} for f in built}
     if THE_FIX in built:

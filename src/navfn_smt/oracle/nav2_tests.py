@@ -36,7 +36,7 @@ from ..errors import NavfnInputError
 from ..fileio import atomic_folder
 from ..spec import fixes
 from ..spec.fix import FIX as THE_FIX
-from .build import (HERE, ROOT_NAMES, _compile_all, _jobs, _sha256, carried_fix, cxx_standard, distribution,
+from .build import (HERE, ROOT_NAMES, compile_all, program_jobs, sha256_of, carried_fix, cxx_standard, distribution,
                     find_sources, fix_patch, fix_skipped, patched_copy)
 from .objects import Compiler, cache_dir
 from .targets import Toolchain, toolchain
@@ -126,9 +126,9 @@ def _variant_tests(src: Path, roots: dict) -> dict:
 
 
 def _programs(src: Path, roots: dict, tests: dict, tmp: Path) -> dict:
-    """Each ``(test, variant)`` program's job, as :func:`.build._compile_all` takes them:
+    """Each ``(test, variant)`` program's job, as :func:`.build.compile_all` takes them:
     ``roots`` and ``tests`` give each variant's tree and tests."""
-    base = _jobs(src, tmp / "oracle")
+    base = program_jobs(src, tmp / "oracle")
     gtest = googletest()
     gtest_job = [gtest / "src" / "gtest-all.cc"]
     gtest_inc = [gtest / "include", gtest]
@@ -216,7 +216,7 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
         jobs, names = _programs(src, roots, tests, tmp)
         compiler = Compiler(tc, {src: ROOT_NAMES["src"], HERE: ROOT_NAMES["package"], tmp: ROOT_NAMES["build"],
                                  googletest(): "/googletest"}, cache_dir())
-        _compile_all(compiler, jobs, list(jobs), tmp)
+        compile_all(compiler, jobs, list(jobs), tmp)
         results = []
         for name, (t, variant) in names.items():
             xml = tmp / f"{name}.xml"
@@ -236,7 +236,7 @@ def run_nav2_tests(nav2_src, out, variants=VARIANTS, tc: Optional[Toolchain] = N
             "objects": {"cache": str(compiler.cache) if compiler.cache else None, "compiled": compiler.compiled,
                         "reused": compiler.reused},
             "programs": _programs_record(tests, found, shipped),
-            "source_sha256": {str(s.relative_to(s.parents[2])): _sha256(s) for ts in tests.values() for t in ts
+            "source_sha256": {str(s.relative_to(s.parents[2])): sha256_of(s) for ts in tests.values() for t in ts
                               for s in t.sources},
             "variants": list(variants), "results": results,
             **({"sources_carry_fix": True, "sources_carry": carried.name} if carried is not None else {}),
@@ -270,7 +270,7 @@ def _patches(src: Path, chosen) -> dict:
     if not patched:
         return {}
     out = {"patches": {f.name: {"folder": f"patches/{f.patches}", "file": fix_patch(src, f).name,
-                                "sha256": _sha256(fix_patch(src, f))} for f in patched}}
+                                "sha256": sha256_of(fix_patch(src, f))} for f in patched}}
     if THE_FIX in patched:
         out["fix_patch"] = {k: out["patches"][THE_FIX.name][k] for k in ("file", "sha256")}
     return out

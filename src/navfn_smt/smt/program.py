@@ -158,7 +158,7 @@ class ArrayState:
     def cycle_loop(self, runs):
         return self.run.loop("cycle", None)
 
-    def record_cycle(self, cycle, trace_hook, record_trace) -> None:
+    def record_cycle(self, cycle, cycles, trace_hook, record_trace) -> None:
         pass
 
 

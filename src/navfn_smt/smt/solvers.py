@@ -89,7 +89,7 @@ def _smt_quote(name: str) -> str:
     return f"|{name}|"
 
 
-def _strip_bars(name: str) -> str:
+def strip_bars(name: str) -> str:
     """A symbol's name without its SMT-LIB quoting bars."""
     if len(name) >= 2 and name[0] == "|" and name[-1] == "|":
         return name[1:-1]
@@ -115,7 +115,7 @@ def run_bitwuzla(text: str, timeout: float, names: dict[str, str], logic: str) -
     if r == bw.Result.SAT:
         model = {}
         for f in parser.get_declared_funs():
-            name = _strip_bars(f.symbol() or "")
+            name = strip_bars(f.symbol() or "")
             if name not in names:
                 continue
             srt = f.sort()
@@ -159,7 +159,7 @@ def run_cvc5(text: str, timeout: float, names: dict[str, str], logic: str,
     if r.isSat():
         model = {}
         for t in sm.getDeclaredTerms():
-            name = _strip_bars(t.getSymbol())
+            name = strip_bars(t.getSymbol())
             if name not in names:
                 continue
             srt = t.getSort()

@@ -15,7 +15,7 @@ from typing import Optional, Protocol
 
 from . import kernels as K
 from .constants import PATH_STEP
-from .numeric import CONCRETE as _D
+from .numeric import CONCRETE as _D, taken
 
 
 class ExtractionExit(enum.Enum):
@@ -161,32 +161,34 @@ def calc_path(
     path_step: float = PATH_STEP,
     watch: Optional[Watch] = None,
     arith=None,
+    domain=None,
 ) -> Extraction:
-    """``calcPath(n)`` on a propagated potential (flat list of float32 values); ``watch`` is
-    told each iteration and each grid-following step; ``arith``: the build's
-    :class:`~.arithmetic.Arithmetic` (default x86-64's)."""
-    D = _D if arith is None else _D.with_arithmetic(arith)
+    """``calcPath(n)`` on a propagated potential (``potential[i]`` is ``potarr[i]``: float32
+    values); ``watch`` is told each iteration and each grid-following step; ``arith``: the
+    build's :class:`~.arithmetic.Arithmetic` (default x86-64's); ``domain``: the numeric domain
+    to run in instead (its tests go through :func:`~.numeric.taken`: the check's encoding runs
+    this function in its concolic domain).
+
+    gradCell returns early with the vector it stored for a cell; computing it again would give
+    the same vector (calcPath does not change the potentials), so each cell's vector is computed
+    once, when first read."""
+    D = domain if domain is not None else _D if arith is None else _D.with_arithmetic(arith)
     ns = nx * ny
     pot = potential
-    gradx = [0.0] * ns
-    grady = [0.0] * ns
+    zero = D.f32const(0.0)
+    grads: dict = {}
     step = D.f32const(path_step)
     stc = start[1] * nx + start[0]
-    dx = D.f32const(0.0)
-    dy = D.f32const(0.0)
+    dx = dy = zero
     xs: list = []
     ys: list = []
 
-    def grad(m: int) -> None:
-        # gradCell(m): cached when gradx + grady > 0; rows 0 and ny-1 are left alone
-        if K.grad_cached(D, gradx[m], grady[m]):
-            return
-        if m < nx or m > ns - nx:
-            return
-        if m + nx >= ns:
-            # m == ns - nx (0, ny-1) passes gradCell's bound test, then potarr[ns] is read
-            raise UndefinedBehaviour(f"gradCell reads past the potential array at cell {m}")
-        gradx[m], grady[m] = K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1], pot[m - nx], pot[m + nx])
+    def grad(m: int) -> tuple:
+        # gradCell(m); rows 0 and ny-1 keep the zero setupNavFn wrote
+        if m not in grads:
+            grads[m] = (zero, zero) if m < nx or m >= ns - nx else K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1],
+                                                                                 pot[m - nx], pot[m + nx])
+        return grads[m]
 
     for i in range(n):
         if watch is not None:
@@ -209,19 +211,21 @@ def calc_path(
         xs.append(px)
         ys.append(py)
         oscillation = len(xs) > 2 and oscillates(D, xs[-1], ys[-1], xs[-3], ys[-3])
-        if follows_the_grid(D, pot, stc, nx, oscillation):
+        if taken(D, follows_the_grid(D, pot, stc, nx, oscillation)):
             if watch is not None:
                 watch.fallback(i, oscillation)
             stc, dx, dy, stops = grid_step(D, pot, stc, nx)
-            if stops:
+            if taken(D, stops):
                 return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs), stc)
         else:
-            down = stc + nx
-            for m in (stc, stc + 1, down, down + 1):
-                grad(m)
-            x = K.interpolate_gradient(D, dx, dy, gradx[stc], gradx[stc + 1], gradx[down], gradx[down + 1])
-            y = K.interpolate_gradient(D, dx, dy, grady[stc], grady[stc + 1], grady[down], grady[down + 1])
-            if zero_gradient(D, x, y):
+            four = (stc, stc + 1, stc + nx, stc + nx + 1)
+            if ns - nx in four:
+                # cell (0, ny-1) passes gradCell's bound test, then potarr[ns] is read
+                raise UndefinedBehaviour(f"gradCell reads past the potential array at cell {ns - nx}")
+            g = [grad(m) for m in four]
+            x = K.interpolate_gradient(D, dx, dy, g[0][0], g[1][0], g[2][0], g[3][0])
+            y = K.interpolate_gradient(D, dx, dy, g[0][1], g[1][1], g[2][1], g[3][1])
+            if taken(D, zero_gradient(D, x, y)):
                 return Extraction([], ExtractionExit.ZERO_GRADIENT, len(xs), stc)
             dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
             stc += cdx + cdy * nx

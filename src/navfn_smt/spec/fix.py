@@ -28,7 +28,7 @@ from __future__ import annotations
 from . import kernels as K
 from .extraction import EXIT_CODES, Extraction, ExtractionExit, exit_code, ring_of_eight, ring_potentials
 from .constants import POT_HIGH
-from .numeric import CONCRETE as D
+from .numeric import CONCRETE, taken
 from .planner import Fallback, Fix, FurtherCall
 from .propagation import buffers_hold_cells
 
@@ -42,6 +42,7 @@ def extra_cycles(nx: int, ny: int) -> int:
 
 def reached(potential) -> bool:
     """A finite potential (``potarr[n] < POT_HIGH``)."""
+    D = CONCRETE
     return bool(D.lt(D.f32const(float(potential)), D.f32const(POT_HIGH)))
 
 
@@ -87,10 +88,11 @@ class _HighOffTheArray:
         self.potential, self.ns = potential, len(potential)
 
     def __getitem__(self, i: int):
-        return self.potential[i] if 0 <= i < self.ns else D.f32const(POT_HIGH)
+        return self.potential[i] if 0 <= i < self.ns else CONCRETE.f32const(POT_HIGH)
 
 
-def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int) -> Extraction:
+def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int,
+            D=CONCRETE) -> Extraction:
     """``calcPathDescent(n)``: the cells from the start down the potential to the goal, then the
     goal, at most ``n`` points (:func:`descent_iteration` until it stops).
 
@@ -98,11 +100,12 @@ def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
     is not reached within ``n`` points; exits ``ZERO_GRADIENT`` at a cell with no lower neighbour
     other than the goal and ``OUT_OF_BOUNDS`` at a cell whose ring leaves the array, both
     impossible under the potential bound (``Progress``, ``PositionSafe``: a reached cell other
-    than the goal is passable, so off the lethal border)."""
+    than the goal is passable, so off the lethal border).  ``D``: the numeric domain it runs in
+    (the check's encoding runs it in its concolic domain)."""
     ns = nx * ny
     stc = start[1] * nx + start[0]
     goal_cell = goal[1] * nx + goal[0]
-    if K.unreached(D, potential[stc]):
+    if taken(D, K.unreached(D, potential[stc])):
         return Extraction([], ExtractionExit.HIGH_POTENTIAL, 0, stc)
     zero = D.f32const(0.0)
     points: list = []
@@ -121,5 +124,5 @@ def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
 
 FIX = Fix("fixed", "with the fix of docs/fix.md: propagate on once past the cycle limit, descend the potential "
           "where calcPath fails", patches="navfn-fix", further=FurtherCall(calls_again, extra_cycles),
-          fallback=Fallback(descend, descent_iteration),
+          fallback=Fallback(descend),
           proved=(("complete", ("DescentPath",)), ("start-reached", ("ConnectedStartReached",))))

@@ -29,8 +29,6 @@ import ctypes.util
 import math
 import struct
 
-import numpy as np
-
 from .constants import INT_MAX, INT_MIN
 
 _F32 = struct.Struct("<f")
@@ -282,10 +280,16 @@ def _ieee_div(a: float, b: float) -> float:
 CONCRETE = ConcreteDomain()
 
 
+def taken(D, c):
+    """A condition the control flow goes on with, as the domain ``D`` runs it: in a domain that
+    follows one control path (``D.decide``: the concolic domain of ``check``), the branch this
+    run takes, as a plain bool (the domain records it where its box leaves it open); in every
+    other domain ``c`` itself (a bool of the concrete domain; a term of a symbolic one, whose
+    run guards each step by it)."""
+    decide = getattr(D, "decide", None)
+    return c if decide is None or isinstance(c, bool) else decide(c)
+
+
 def f32_bits(x: float) -> int:
     """The binary32 bit pattern of a float32 value (for bit-exact comparisons)."""
     return int.from_bytes(_pack(x), "little")
-
-
-def as_f32_array(values) -> np.ndarray:
-    return np.asarray(values, dtype=np.float32)

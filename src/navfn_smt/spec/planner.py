@@ -24,7 +24,7 @@ from ..errors import NavfnInputError
 from ..inputs import check_inputs
 from .costs import add_border
 from .extraction import Extraction, ExtractionExit, calc_path
-from .numeric import CONCRETE as D
+from .numeric import taken
 from .propagation import PropagationState, TraceHook, cycle_limit, propagate, setup
 
 
@@ -41,12 +41,11 @@ class FurtherCall:
 @dataclass(frozen=True)
 class Fallback:
     """What a patched calcPath does where following the gradient returns no path:
-    ``walk(potential, nx, ny, start, goal, n)``, an :class:`~.extraction.Extraction`, which runs
-    ``iteration(D, pot, stc, points, n, nx, ns, goal_cell)`` (``(code, next cell)``, over a numeric
-    domain) until its code is an exit's; the check's encoding runs the same iteration."""
+    ``walk(potential, nx, ny, start, goal, n, D)``, an :class:`~.extraction.Extraction` (``D``:
+    the numeric domain it runs in, the concrete one by default; the check's encoding runs it in
+    its concolic domain)."""
 
     walk: Callable
-    iteration: Callable
 
 
 @dataclass(frozen=True)
@@ -92,8 +91,8 @@ def calc_navfn(st: PropagationState, start: tuple[int, int], goal: tuple[int, in
     limit = fix.first_cycles(st.nx, st.ny, cycles)
     done = propagate(st, start, goal, astar, limit, at_start, trace_hook=trace_hook, record_trace=record_trace)
     further = fix.further
-    if further is not None and further.test(D, st.potential[start[1] * st.nx + start[0]], len(st.cur),
-                                            len(st.nxt)):
+    if further is not None and taken(st.D, further.test(st.D, st.potential[start[1] * st.nx + start[0]], st.cur.fill,
+                                                        st.nxt.fill)):
         done = propagate(st, start, goal, astar, further.cycles(st.nx, st.ny), at_start, trace_hook=trace_hook,
                          record_trace=record_trace)
         return done, 1
@@ -101,13 +100,14 @@ def calc_navfn(st: PropagationState, start: tuple[int, int], goal: tuple[int, in
 
 
 def extract(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int,
-            fix: Fix = AS_SHIPPED, arith=None) -> tuple[Extraction, bool]:
+            fix: Fix = AS_SHIPPED, arith=None, domain=None) -> tuple[Extraction, bool]:
     """``calcPath(n)`` and, where it returns no path, the fix's fallback: the extraction, and
-    whether the fallback gave the path."""
-    ext = calc_path(potential, nx, ny, start, goal, n, arith=arith)
+    whether the fallback gave the path.  ``domain``: the numeric domain to run in (default: the
+    concrete one in ``arith``, the build's arithmetic)."""
+    ext = calc_path(potential, nx, ny, start, goal, n, arith=arith, domain=domain)
     if fix.fallback is None or ext.exit is ExtractionExit.NEAR_GOAL:
         return ext, False
-    ext = fix.fallback.walk(potential, nx, ny, start, goal, n)
+    ext = fix.fallback.walk(potential, nx, ny, start, goal, n, *(() if domain is None else (domain,)))
     return ext, ext.exit is ExtractionExit.NEAR_GOAL
 
 

@@ -9,7 +9,10 @@ arrays); the proofs over arrays run the same functions on a state of SMT arrays
 (``smt/program.py``), which turns each loop into the conditions of its invariant.  So no
 condition depends on the data through Python's ``if``: the steps compute with the domain's
 ``ite``, ``and_`` and ``not_``; the one ``if`` on data, ``st.may``, skips steps that are no-ops
-where its condition is false (the model may always answer yes: the proofs' does).
+where its condition is false (the model may always answer yes: the proofs' does).  The conditions
+the control goes on with (a cell changed, the buffer a push goes to, a push made, the loop's end
+test) pass through :func:`~.numeric.taken`: a domain that follows one control path (``check``'s
+concolic run, ``check/encoding.py``) takes its branch there, in this order.
 
 Priority buffers are three bounded FIFO buffers (capacity PRIORITYBUFSIZE, or the ``capacity``
 a caller gives ``setup``); a push to a full buffer is silently dropped, as in the C++ macros.
@@ -24,7 +27,7 @@ from typing import Callable, Optional
 from ..errors import NavfnInputError
 from . import kernels as K
 from .constants import COST_OBS, POT_HIGH, PRI_INC, PRIORITYBUFSIZE
-from .numeric import CONCRETE
+from .numeric import CONCRETE, taken
 
 TraceHook = Callable[[int, list], None]
 
@@ -148,7 +151,9 @@ class PropagationState:
         while runs():
             yield
 
-    def record_cycle(self, cycle: int, trace_hook: Optional[TraceHook], record_trace: bool) -> None:
+    def record_cycle(self, cycle: int, cycles: int, trace_hook: Optional[TraceHook], record_trace: bool) -> None:
+        """A cycle of the ``cycles`` of this ``propNavFn*`` call starts (``cycle``, from 0) and
+        processes the current buffer."""
         cells = self.cur.cells
         self.cycles += 1
         if record_trace:
@@ -206,10 +211,10 @@ def init_cost(st, k) -> None:
 
 def push(st, n, wanted, low=None) -> None:
     """The ``push_cur`` macro (``low`` None) or, when an update ``wanted`` the push,
-    ``push_next`` where ``low`` holds and ``push_over`` where not: the kernel
-    :func:`kernels.push` decides the push and the pending flag (capacity PRIORITYBUFSIZE unless
-    the caller chose another); a push refused only for want of room is counted as dropped (C++
-    drops it silently)."""
+    ``push_next`` where ``low`` holds and ``push_over`` where not: the push is made where it is
+    wanted and the kernel :func:`kernels.push` admits the cell (capacity PRIORITYBUFSIZE unless
+    the caller chose another), with the pending flag the kernel gives; a push refused only for
+    want of room is counted as dropped (C++ drops it silently)."""
     D = st.D
     if not st.may(wanted):  # every write below wants `wanted`
         return
@@ -217,9 +222,10 @@ def push(st, n, wanted, low=None) -> None:
     fill = st.cur.fill if low is None else D.ite(low, st.nxt.fill, st.over.fill)
     j = st.index(n)
     admitted, dropped, pending = K.push(D, n, st.ns, st.pending[j], st.costs[j], fill, st.capacity)
-    st.pending[j] = D.ite(wanted, pending, st.pending[j])
+    pushed = taken(D, D.and_(wanted, admitted))
+    st.pending[j] = D.ite(pushed, pending, st.pending[j])
     for buf, chosen in into:
-        buf.append_if(D.and_(D.and_(wanted, admitted), chosen), n)
+        buf.append_if(D.and_(pushed, chosen), n)
     st.note_drop(D.and_(wanted, dropped))
 
 
@@ -240,10 +246,11 @@ def update_cell(st, n, astar_start: Optional[tuple] = None) -> None:
     around = update_neighbours(n, st.nx)
     l, r, u, d = (st.potential[m] for m in around)
     new, changed = K.cell_update(st.domain, st.potential[n], l, r, u, d, st.costs[n], st.cost_f32(n))
+    changed = taken(D, changed)
     st.potential[n] = new  # the old potential unless changed
     if st.may(changed):  # the pushes want `changed`: where it is false they are no-ops
         key = new if astar_start is None else D.add(new, st.heuristic(n, astar_start))
-        low = K.to_low_buffer(D, key, st.cur_t)
+        low = taken(D, K.to_low_buffer(D, key, st.cur_t))
         for m, pm in zip(around, (l, r, u, d)):
             push(st, m, D.and_(changed, K.push_wanted(D, pm, key, st.edge(m))), low)
 
@@ -311,12 +318,12 @@ def propagate(
         st.cur_t = D.add(st.heuristic_between(goal, start), st.cur_t)
     inc = D.int_to_f32(pri_inc)
     check_start = astar or at_start
-    cycle, ended = 0, False
-    for _ in st.cycle_loop(lambda: D.and_(D.not_(ended), cycle_runs(D, cycle, cycles, st.cur.fill, st.nxt.fill))):
-        st.record_cycle(cycle, trace_hook, record_trace)
+    cycle, going = 0, True
+    for _ in st.cycle_loop(lambda: D.and_(going, cycle_runs(D, cycle, cycles, st.cur.fill, st.nxt.fill))):
+        st.record_cycle(cycle, cycles, trace_hook, record_trace)
         run_cycle(st, astar_start, inc)
-        ended = check_start and call_ends_at_the_start(D, st.potential[start_cell])
-        cycle = cycle + D.ite(ended, 0, 1)  # the `break` leaves the counter where it was
+        going = taken(D, D.not_(D.and_(check_start, call_ends_at_the_start(D, st.potential[start_cell]))))
+        cycle = cycle + D.ite(going, 1, 0)  # the `break` leaves the counter where it was
     if astar:
         return call_ends_at_the_start(D, st.potential[start_cell])
     return D.lt(cycle, cycles)
