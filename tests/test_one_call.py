@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from navfn_smt.check import properties as P
+from navfn_smt.check.encoding import interior
 from navfn_smt.maps.suite import load_map
 from navfn_smt.spec import extraction as E
 from navfn_smt.spec import fix as F
@@ -103,7 +104,6 @@ def test_the_jit_runs_the_fixs_hooks_and_compiles_the_specs_tests(name):
 def test_the_checks_encoding_runs_the_fixs_hooks(name, monkeypatch):
     from navfn_smt.check.bounded import Case, _symbolic_run
     from navfn_smt.check.concolic import concrete
-    from navfn_smt.check.encoding import interior
     from navfn_smt.smt.domains import FPDomain
     from navfn_smt.spec.constants import COST_OBS
 
@@ -146,6 +146,34 @@ def test_the_plugin_model_runs_the_fixs_hooks(name):
             assert calls["cycles"] > 0  # the plugin's calcNavFn* runs the fix's cycles hook
     assert _same(runs["spy"].potential, runs["fixed"].potential)
     assert runs["spy"].error == runs["fixed"].error
+
+
+OPEN = "open"  # an 8x8 map of cost 50: A* stops at the start with cells left in the buffers
+
+
+@pytest.mark.parametrize("where,name", [("propagation", OPEN), ("planner", OPEN), ("extraction", OPEN),
+                                        ("fix", TRAPPED)])
+def test_a_test_the_spec_does_not_take_fails_the_checks_run(where, name, monkeypatch):
+    """The spec's tests on domain values go through ``taken``; one that did not (its module's
+    ``taken`` replaced by the identity) would branch by Python's truth test, on one side for
+    every map of the box: in the check's run it raises instead."""
+    import importlib
+
+    from navfn_smt.check.bounded import Case, _symbolic_run
+    from navfn_smt.smt.domains import FPDomain
+    from navfn_smt.spec.constants import COST_OBS
+
+    costs, s, g, astar = (np.full((8, 8), 50, np.uint8), (2, 2), (4, 4), True) if name == OPEN else _case(name)
+    arr = add_border(costs)
+    ny, nx = arr.shape
+    inner = interior(nx, ny)
+    lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
+    conc = {k: int(arr.flat[k]) for k in inner if k not in lethal}
+    case = Case(nx, ny, lethal, s, g, astar)
+    _symbolic_run(case, conc, 50, 253, FPDomain, F.FIX)  # as the spec states it: it runs
+    monkeypatch.setattr(importlib.import_module(f"navfn_smt.spec.{where}"), "taken", lambda D, c: c)
+    with pytest.raises(TypeError, match="concolic"):
+        _symbolic_run(case, conc, 50, 253, FPDomain, F.FIX)
 
 
 @pytest.mark.fast

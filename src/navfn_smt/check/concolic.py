@@ -46,6 +46,12 @@ class V:
     def decided(self) -> bool:
         return self.lo == self.hi
 
+    def __bool__(self):
+        """Refused: a branch on a value is taken by the domain (``ConcolicDomain.decide``, which
+        the spec reaches through ``spec.numeric.taken``), never by Python's truth test, which
+        would take one side silently for every map of the box."""
+        raise TypeError(f"the truth of a concolic {self.kind} value is taken with decide(), not bool()")
+
 
 def _plain(x) -> bool:
     return not isinstance(x, V)
