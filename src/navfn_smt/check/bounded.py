@@ -440,7 +440,7 @@ def _propagation_run(case: Case, conc: dict, lo: int, hi: int, make_domain: Call
     return D, costs, sp, NOT_EXTRACTED
 
 
-# properties settled on a control path once the start's reach is certain (encoding._queued,
+# properties settled on a control path once the start's reach is certain (encoding._Run's mark,
 # QueuedStartReached): explored alone, a path's branches after that point are never flipped
 SETTLED_BY_REACH = frozenset({"start-reached"})
 

@@ -56,7 +56,7 @@ from .common import replay as spec_replay
 
 FORMAT = "navfn-smt check certificate 1"
 SOURCES = ("spec/kernels.py", "spec/constants.py", "spec/numeric.py", "spec/extraction.py", "spec/fix.py",
-           "spec/propagation.py", "smt/domains.py", "check/encoding.py", "check/concolic.py")
+           "spec/propagation.py", "spec/planner.py", "smt/domains.py", "check/encoding.py", "check/concolic.py")
 # ... and of check/bounded.py the functions that build a path's terms and its properties
 FUNCTIONS = ("Case", "_symbolic_run", "_reached", "property_value", "component", "representative", "reduce_cases",
              "SETTLED_BY_REACH", "flippable")

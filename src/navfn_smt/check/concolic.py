@@ -31,7 +31,7 @@ from ..spec.numeric import CONCRETE as C
 _INF = math.inf
 
 
-@dataclass
+@dataclass(eq=False)
 class V:
     """A value: concrete, interval [lo, hi] over the box, and term.  ``kind``: f32, f64, int, bool.
     For bools ``lo``/``hi`` are the least and greatest truth value over the box."""
@@ -51,6 +51,12 @@ class V:
         the spec reaches through ``spec.numeric.taken``), never by Python's truth test, which
         would take one side silently for every map of the box."""
         raise TypeError(f"the truth of a concolic {self.kind} value is taken with decide(), not bool()")
+
+    def __eq__(self, other):
+        """Refused, as :meth:`__bool__`: ``==`` on a value is the domain's ``eq``, then taken."""
+        raise TypeError(f"a concolic {self.kind} value is compared with the domain's eq(), not ==")
+
+    __hash__ = object.__hash__
 
 
 def _plain(x) -> bool:

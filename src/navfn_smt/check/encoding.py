@@ -7,9 +7,12 @@ on the array model below, in a :class:`~.concolic.ConcolicDomain`.  The interior
 are domain values (symbolic bytes with a concrete value, or constants); the start and the goal
 are fixed.  Every condition the control goes on with passes through
 :func:`~navfn_smt.spec.numeric.taken`, where the concolic domain takes the branch of the
-concrete map and records it when the cost box leaves it open: the records are the control
-path's condition, and every value the run computes carries its term.  So cells, slots and fills
-stay plain ints and only potentials (and the near-goal probe's cell) are terms.
+concrete map and records it when the cost box leaves it open (the kernels' own ``ite`` and the
+``ite`` chains of calcPath's and the descent's exits decide the same way): the records are the
+control path's condition, and every value the run computes carries its term.  So cells, slots
+and fills stay plain ints; the costs and what is computed from them (potentials, gradients, path
+points, the near-goal probe's cell) are terms.  A concolic value refuses ``bool()`` and ``==``,
+so a test that reached Python's ``if`` without being taken raises.
 
 What is written here is the array model (:class:`_Run`): the state of
 :class:`~navfn_smt.spec.propagation.PropagationState` with the costs' terms, plus what the
