@@ -59,6 +59,19 @@ def _case(name: str):
 UNREACHED, TRAPPED = "unreached-astar-7x8", "incomplete-astar-5x5"
 
 
+def _checks_case(costs, s, g, astar):
+    """The check's case of a map (its lethal interior cells fixed) and its other costs:
+    ``(Case, {cell: cost})``, what ``bounded._symbolic_run`` takes."""
+    from navfn_smt.check.bounded import Case
+    from navfn_smt.spec.constants import COST_OBS
+
+    arr = add_border(costs)
+    ny, nx = arr.shape
+    inner = interior(nx, ny)
+    lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
+    return Case(nx, ny, lethal, s, g, astar), {k: int(arr.flat[k]) for k in inner if k not in lethal}
+
+
 def _same(a, b) -> bool:
     return np.asarray(a).tobytes() == np.asarray(b).tobytes()
 
@@ -102,24 +115,18 @@ def test_the_jit_runs_the_fixs_hooks_and_compiles_the_specs_tests(name):
 
 @pytest.mark.parametrize("name", [UNREACHED, TRAPPED])
 def test_the_checks_encoding_runs_the_fixs_hooks(name, monkeypatch):
-    from navfn_smt.check.bounded import Case, _symbolic_run
+    from navfn_smt.check.bounded import _symbolic_run
     from navfn_smt.check.concolic import concrete
     from navfn_smt.smt.domains import FPDomain
-    from navfn_smt.spec.constants import COST_OBS
-
     from navfn_smt.spec import planner as PL
 
     costs, s, g, astar = _case(name)
-    arr = add_border(costs)
-    ny, nx = arr.shape
-    inner = interior(nx, ny)
-    lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
-    conc = {k: int(arr.flat[k]) for k in inner if k not in lethal}
+    case, conc = _checks_case(costs, s, g, astar)
     calls = Counter()
     # the spec's steps themselves, counted where the spec calls them
     for module, step in ((PR, "update_cell"), (PR, "push"), (PR, "end_of_cycle"), (PL, "calc_path")):
         monkeypatch.setattr(module, step, _spy(calls, step, getattr(module, step)))
-    _, _, sp, ex = _symbolic_run(Case(nx, ny, lethal, s, g, astar), conc, 50, 253, FPDomain, _spy_fix(calls))
+    _, _, sp, ex = _symbolic_run(case, conc, 50, 253, FPDomain, _spy_fix(calls))
     want = plan(costs, s, g, astar, fix=F.FIX)
     assert calls["cycles"] > 0 and calls["test"] > 0
     assert (calls["walk"] > 0) == (name == TRAPPED)  # the spec's walk, on terms
@@ -159,17 +166,11 @@ def test_a_test_the_spec_does_not_take_fails_the_checks_run(where, name, monkeyp
     every map of the box: in the check's run it raises instead."""
     import importlib
 
-    from navfn_smt.check.bounded import Case, _symbolic_run
+    from navfn_smt.check.bounded import _symbolic_run
     from navfn_smt.smt.domains import FPDomain
-    from navfn_smt.spec.constants import COST_OBS
 
     costs, s, g, astar = (np.full((8, 8), 50, np.uint8), (2, 2), (4, 4), True) if name == OPEN else _case(name)
-    arr = add_border(costs)
-    ny, nx = arr.shape
-    inner = interior(nx, ny)
-    lethal = frozenset(k for k in inner if arr.flat[k] >= COST_OBS)
-    conc = {k: int(arr.flat[k]) for k in inner if k not in lethal}
-    case = Case(nx, ny, lethal, s, g, astar)
+    case, conc = _checks_case(costs, s, g, astar)
     _symbolic_run(case, conc, 50, 253, FPDomain, F.FIX)  # as the spec states it: it runs
     monkeypatch.setattr(importlib.import_module(f"navfn_smt.spec.{where}"), "taken", lambda D, c: c)
     with pytest.raises(TypeError, match="concolic"):
