@@ -88,29 +88,55 @@ def test_the_spec_and_the_judges_run_the_fixs_hooks(name, acted):
         assert _same(got.potential, want.potential) and _same(got.path, want.path)
 
 
+def _compiled_from(fn) -> list:
+    """The Python functions numba compiled for calls of ``fn`` in this process (its overloads'
+    implementations)."""
+    from numba.core.registry import cpu_target
+
+    fnty = cpu_target.typing_context.resolve_value_type(fn)
+    return [disp.py_func for tmpl in fnty.templates for disp, _ in getattr(tmpl, "_impl_cache", {}).values()]
+
+
+def _stricter_test(D, start_pot, fill_cur, fill_next):
+    """A fix's own further-call test, new to the JIT: the start unreached and the current buffer
+    holding cells (the fix's test also goes on from cells in the next buffer)."""
+    return D.and_(D.not_(D.lt(start_pot, D.f32const(1e10))), D.lt(0, fill_cur))
+
+
 @pytest.mark.parametrize("name", [UNREACHED, TRAPPED])
-def test_the_jit_runs_the_fixs_hooks_and_compiles_the_specs_tests(name):
+def test_the_jit_compiles_the_specs_call_and_runs_the_fixs_hooks(name):
+    import numba
+
     from navfn_smt.backends import get_backend
     from navfn_smt.backends import jit as J
+    from navfn_smt.spec import planner as PL
 
-    # the compiled tests are the spec's functions, compiled, not copies
-    for compiled, spec in ((J.cycle_runs, PR.cycle_runs), (J.call_ends_at_the_start, PR.call_ends_at_the_start),
-                           (J.calls_again, F.calls_again), (J.update_neighbours, PR.update_neighbours),
-                           (J.iteration_test, E.iteration_test), (J.follows_the_grid, E.follows_the_grid),
-                           (J.grid_step, E.grid_step), (J.oscillates, E.oscillates),
-                           (J.zero_gradient, E.zero_gradient)):
-        assert compiled.py_func is spec
     costs, s, g, astar = _case(name)
-    calls = Counter()
-    got = get_backend("jit", PlannerUnderTest(_spy_fix(calls, test=False))).prepare(costs).run(s, g, astar)
-    want = plan(costs, s, g, astar, fix=F.FIX)
-    assert calls["cycles"] > 0 and calls["further cycles"] > 0
-    assert (calls["walk"] > 0) == (name == TRAPPED)
-    for field in ("potential", "path", "trace"):
-        assert _same(getattr(got, field), getattr(want, field)), field
-    assert got.extra == want.extra
-    with pytest.raises(Exception, match="compiles the further propNavFn\\* call of the fix of docs/fix.md only"):
-        get_backend("jit", PlannerUnderTest(_spy_fix(Counter())))
+    # a fresh compilation of the JIT's entry points: every step of the call it compiles is the
+    # spec's own function (numba's overload of it has the function itself as implementation)
+    planner = J.JitPlanner(add_border(costs))
+    numba.njit(J.plan_call.py_func)(planner.D, planner.work, *s, *g, astar, 100, J.compiled_test(F.calls_again),
+                                     10, True)
+    numba.njit(J.extract_path.py_func)(planner.D, planner.pot, planner.nx, planner.ny, *s, *g, 20, planner.trail)
+    steps = (PR.init_cost, PR.push_cur, PR.push, PR.admit, PR.update_cell, PR.run_cycle, PR.end_of_cycle,
+             PR.propagate, PR.cycle_runs, PR.call_ends_at_the_start, PL.call, E.follow, E.gradient,
+             E.iteration_test, E.follows_the_grid, E.grid_step, E.zero_gradient)
+    for step in steps:
+        compiled = _compiled_from(step)
+        assert compiled and all(c is step for c in compiled), step.__qualname__
+    assert J.compiled_test(F.calls_again).py_func is F.calls_again  # a fix's test is compiled as it is
+    # the fix's hooks run, its further test compiled as it is (a new one too), bit-exact with the spec
+    for test in (F.calls_again, _stricter_test):
+        calls = Counter()
+        fix = replace(_spy_fix(calls, test=False), further=FurtherCall(test, _spy(calls, "further cycles",
+                                                                                   F.extra_cycles)))
+        got = get_backend("jit", PlannerUnderTest(fix)).prepare(costs).run(s, g, astar)
+        want = plan(costs, s, g, astar, fix=fix)
+        assert calls["cycles"] > 0 and calls["further cycles"] > 0
+        assert (calls["walk"] > 0) == (name == TRAPPED)
+        for field in ("potential", "path", "trace"):
+            assert _same(getattr(got, field), getattr(want, field)), field
+        assert got.extra == want.extra and got.extra["fix"]
 
 
 @pytest.mark.parametrize("name", [UNREACHED, TRAPPED])

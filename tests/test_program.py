@@ -115,8 +115,8 @@ def test_a_swap_that_keeps_the_old_next_buffer_breaks_the_buffer_invariant(monke
 def test_an_update_that_writes_a_neighbour_breaks_the_potential_invariant(monkeypatch):
     real_update = P.update_cell
 
-    def stray(st, n, astar_start=None):
-        real_update(st, n, astar_start)
+    def stray(st, n, astar=False, start=(0, 0)):
+        real_update(st, n, astar, start)
         st.potential[n + 1] = st.D.f32const(0.0)  # a second write, to a cell the invariant does not allow
 
     monkeypatch.setattr(P, "update_cell", stray)
@@ -147,9 +147,9 @@ def test_the_two_array_models_agree_on_concrete_values():
     rng = random.Random(7)
     for trial in range(20):
         conc = P.PropagationState(nx=3, ny=3, costs=[50] * 9)
-        conc.pending, conc.cur, conc.nxt = conc.filled(False), P.Buffer(), P.Buffer()
+        conc.pending, conc.cur, conc.nxt = conc.filled(conc.pending, False), P.Buffer(), P.Buffer()
         sym = program.ArrayState(run)
-        sym.pending = sym.filled(False)
+        sym.pending = sym.filled(sym.pending, False)
         empty = program.Slots(run, z3.K(program.cell_sort(D), program.int_const(D, 0)), program.int_const(D, 0),
                               z3.K(program.cell_sort(D), False), z3.K(program.cell_sort(D), program.int_const(D, 0)))
         sym.cur, sym.nxt = empty, empty.emptied()

@@ -559,7 +559,7 @@ def test_push_to_full_buffer_is_dropped_and_not_pending():
     assert stt.dropped == 2
     # 9999 entries: one more fits exactly (push_cur)
     stt.cur = P.Buffer([7] * 9999)
-    P.push(stt, 13, True)
+    P.push_cur(stt, 13)
     assert len(stt.cur) == 10000 and stt.cur.cell(9999) == 13 and stt.pending[13] and stt.dropped == 2
 
 
@@ -935,11 +935,10 @@ def test_calc_path_gradcell_reads_past_potarr_is_undefined(start):
         calc_path(pot, 5, 5, start, (2, 2), 10)
     # the JIT backend's extraction reports the same exit instead of reading out of bounds
     from navfn_smt.backends import jit as J
+    from navfn_smt.backends.jit_state import new_trail_work
     from navfn_smt.backends.numba_domain import ND
 
-    n = 25
-    code, _ = J.calc_path_zeroed(ND, np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10,
-                           np.zeros(n, np.float32), np.zeros(n, np.float32), np.zeros((11, 2), np.float32))
+    code = J.extract_path(ND, np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10, new_trail_work(25, 10))
     assert code == J.EXIT_UB
 
 

@@ -127,7 +127,7 @@ def test_coverage_report(tmp_path):
     assert {f["file"] for f in doc["files"]} == {"kernels.py", "numeric.py", "propagation.py", "extraction.py",
                                                 "planner.py"}
     # from an interior start extraction never leaves the map: that branch is reported uncovered, with its reason
-    out = [u for u in doc["uncovered"] if "_OUT_OF_BOUNDS" in u["source"]]
+    out = [u for u in doc["uncovered"] if "OUT_OF_BOUNDS" in u["source"]]
     assert out and out[0]["reason"]
     rc, o, e = run("coverage", suite, "--max-cases", 2, "--min-branch", 100)
     assert rc == 1

@@ -270,9 +270,7 @@ def _bench_sizes_of(b: str, sizes, repeat: int, modes: str, advance) -> list[dic
 def _work_bytes(planner) -> int:
     """Bytes of the planner's own arrays (JIT backend, trace off); 0 where not measured."""
     p = getattr(planner, "work", None)
-    if p is None:
-        return 0
-    return int(sum(a.nbytes for a in vars(p).values() if isinstance(a, np.ndarray)))
+    return 0 if p is None else p.nbytes()
 
 
 

@@ -11,8 +11,8 @@ start, goal, path_cycles)`` runs calcPath alone; ``planner.run_batch(cases, asta
 plans many cases without traces and returns the columns of :func:`.jit.run_cases`.
 ``get_backend(name, planner)`` gives the backend planning as a planner under test
 (:class:`~navfn_smt.under_test.PlannerUnderTest`): in its arithmetic, with its fix's hooks
-(:class:`~navfn_smt.spec.planner.Fix`; the spec runs them, the JIT compiles the cycles and the
-further call, and runs the spec's fallback where calcPath fails).
+(:class:`~navfn_smt.spec.planner.Fix`; the spec runs them, the JIT compiles the spec's planning
+call with its further call, and runs the spec's fallback where calcPath fails).
 """
 
 from __future__ import annotations
@@ -28,7 +28,6 @@ from ..spec.extraction import EXIT_CODES, ExtractionExit, UndefinedBehaviour
 from ..spec.planner import AS_SHIPPED, Fix, PlanResult, acted, extract, path_cycle_limit, plan
 from ..spec.constants import POT_HIGH, PRIORITYBUFSIZE
 from ..spec.propagation import check_capacity
-from ..spec import fix as F
 
 
 class MapPlanner(Protocol):
@@ -135,61 +134,52 @@ class JitMapPlanner:
         """One case as :func:`~navfn_smt.spec.planner.plan` plans it: the compiled propagation with
         the fix's cycles and further call, compiled calcPath, and the fix's fallback (the spec's,
         in Python) where calcPath returns no path."""
-        from . import jit as J
-
         check_inputs(self.costs, start, goal)
         p, fix = self.work, self.fix
         start = (int(start[0]), int(start[1]))
         goal = (int(goal[0]), int(goal[1]))
         n = self.path_cycles if path_cycles is None else int(path_cycles)
-        limit = fix.first_cycles(self.nx, self.ny, cycles)
-        further = fix.further.cycles(self.nx, self.ny) if fix.further is not None else 0
-        reached, code, npath = p.run(start, goal, astar, limit, n, trace, further)
-        if code == J.EXIT_UB:
-            raise UndefinedBehaviour("calcPath reads outside the potential array")
+        reached = p.propagate(start, goal, astar, fix.first_cycles(self.nx, self.ny, cycles), trace, fix.further)
+        ran, updates, dropped, traced = p.counts()
         pot = p.pot.reshape(self.ny, self.nx).copy()
-        exit_ = EXIT_CODES[code]
-        path = p.path[:npath].copy() if exit_ is ExtractionExit.NEAR_GOAL else np.zeros((0, 2), np.float32)
-        descended = False
-        if fix.fallback is not None and exit_ is not ExtractionExit.NEAR_GOAL:
-            ext = fix.fallback.walk([float(v) for v in p.pot], self.nx, self.ny, start, goal, n)
-            exit_, descended = ext.exit, ext.exit is ExtractionExit.NEAR_GOAL
-            path = np.array(ext.path, dtype=np.float32).reshape(-1, 2)
+        exit_, path, descended = self._extract(p.pot, start, goal, n)
         res = PlanResult(
             start_reached=reached,
             start_potential=pot[start[1], start[0]],
             path=path,
             potential=pot,
-            trace=p.trace[: p.counters[J.TRACE_LEN]].copy() if trace else None,
-            cycles=int(p.counters[J.CYCLES]),
-            updates=int(p.counters[J.UPDATES]),
-            dropped=int(p.counters[J.DROPPED]),
+            trace=p.trace[:traced].copy() if trace else None,
+            cycles=ran,
+            updates=updates,
+            dropped=dropped,
             exit=exit_,
         )
         if not fix.shipped:
             res.extra = {"fix": acted(self.nx, self.ny, res.cycles, p.calls, cycles, descended)}
         return res
 
-    def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
-        """``calcPath(path_cycles)`` alone on a given potential, compiled."""
-        from .jit import EXIT_UB, calc_path_zeroed
+    def _extract(self, pot: np.ndarray, start, goal, n: int) -> tuple[ExtractionExit, np.ndarray, bool]:
+        """Compiled calcPath(n) on ``pot`` and the fix's fallback (the spec's, in Python) where it
+        returns no path: (exit, path, whether the fallback gave it)."""
+        from . import jit as J
 
-        pot = np.ascontiguousarray(potential, dtype=np.float32).ravel()
-        n = int(path_cycles)
-        path = np.empty((max(n, 0) + 1, 2), np.float32)
-        p = self.work
-        code, npath = calc_path_zeroed(p.D, pot, self.nx, self.ny, int(start[0]), int(start[1]), int(goal[0]), int(goal[1]),
-                                 n, p.gradx, p.grady, path)
-        if code == EXIT_UB:
+        code, npath = self.work.extract(start, goal, n, pot)
+        if code == J.EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         exit_ = EXIT_CODES[code]
         if exit_ is ExtractionExit.NEAR_GOAL:
-            return exit_, path[:npath].copy()
+            return exit_, self.work.path[:npath].copy(), False
         if self.fix.fallback is None:
-            return exit_, np.zeros((0, 2), np.float32)
-        ext = self.fix.fallback.walk([float(v) for v in pot], self.nx, self.ny, (int(start[0]), int(start[1])),
-                               (int(goal[0]), int(goal[1])), n)
-        return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2)
+            return exit_, np.zeros((0, 2), np.float32), False
+        ext = self.fix.fallback.walk([float(v) for v in pot], self.nx, self.ny, start, goal, n)
+        return ext.exit, np.array(ext.path, dtype=np.float32).reshape(-1, 2), ext.exit is ExtractionExit.NEAR_GOAL
+
+    def extract(self, potential: np.ndarray, start, goal, path_cycles: int) -> tuple[ExtractionExit, np.ndarray]:
+        """``calcPath(path_cycles)`` alone on a given potential, compiled, with the fix's fallback."""
+        pot = np.ascontiguousarray(potential, dtype=np.float32).ravel()
+        exit_, path, _ = self._extract(pot, (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])),
+                                       int(path_cycles))
+        return exit_, path
 
     def run_batch(self, cases, astar: bool) -> dict:
         """Plan many cases in one compiled call (no traces); see :func:`.jit.run_cases`.  The
@@ -211,14 +201,12 @@ class JitMapPlanner:
 
 
 class JitBackend:
-    """The kernels compiled by numba, with loops and buffers of its own (:mod:`.jit`)."""
+    """The spec's planning call compiled by numba (:mod:`.jit`), with any fix's further call; a
+    fix's fallback runs in Python (the spec's) where calcPath returns no path."""
 
     name = "jit"
 
     def __init__(self, arith=None, fix: Fix = AS_SHIPPED):
-        if fix.further is not None and fix.further.test is not F.calls_again:
-            raise NavfnInputError(f"the JIT compiles the further propNavFn* call of the fix of docs/fix.md only; "
-                                  f"plan {fix.name} with --backend reference")
         self.arith = arith  # the build's arithmetic (spec.arithmetic; None: x86-64's)
         self.fix = fix
 

@@ -163,30 +163,6 @@ _wrap_int32 = njit(**JIT_OPTIONS)(numeric.wrap_int32)
 F32, F64 = np.float32, np.float64
 
 
-def _f32const(self, x):
-    return F32(x)
-
-
-def _f64const(self, x):
-    return F64(x)
-
-
-def _widen(self, a):  # float -> double, exact
-    return F64(F32(a))
-
-
-def _narrow(self, a):  # double -> float, round to nearest even
-    return F32(F64(a))
-
-
-def _int_to_f32(self, n):
-    return F32(n)
-
-
-def _int_to_f64(self, n):
-    return F64(n)
-
-
 def _to_int32(self, a):  # the build's conversion: cvttss2si / cvttsd2si, or fcvtzs
     convert = _CONVERTERS[self.arith.conversion]
 
@@ -194,46 +170,6 @@ def _to_int32(self, a):  # the build's conversion: cvttss2si / cvttsd2si, or fcv
         return convert(a)
 
     return impl
-
-
-def _add_int(self, a, b):
-    return _wrap_int32(a + b)
-
-
-def _add(self, a, b):
-    return F32(F32(a) + F32(b))
-
-
-def _sub(self, a, b):
-    return F32(F32(a) - F32(b))
-
-
-def _mul(self, a, b):
-    return F32(F32(a) * F32(b))
-
-
-def _div(self, a, b):
-    return F32(F32(a) / F32(b))
-
-
-def _neg(self, a):
-    return -F32(a)
-
-
-def _add64(self, a, b):
-    return F64(a) + F64(b)
-
-
-def _sub64(self, a, b):
-    return F64(a) - F64(b)
-
-
-def _mul64(self, a, b):
-    return F64(a) * F64(b)
-
-
-def _div64(self, a, b):
-    return F64(a) / F64(b)
 
 
 @intrinsic
@@ -251,14 +187,6 @@ def fma_llvm(typingctx, a, b, c):
     return sig, codegen
 
 
-def _fma(self, a, b, c):
-    return fma_llvm(F32(a), F32(b), F32(c))
-
-
-def _fma64(self, a, b, c):
-    return fma_llvm(F64(a), F64(b), F64(c))
-
-
 def _fuses(self, site):  # a constant of the compiled code: whether the build fused ``site``
     if not isinstance(site, types.StringLiteral):
         return None  # asked again with the site's literal value
@@ -270,71 +198,37 @@ def _fuses(self, site):  # a constant of the compiled code: whether the build fu
     return impl
 
 
-def _hypot64(self, a, b):  # libm hypot
-    return math.hypot(F64(a), F64(b))
-
-
-def _hypotf(self, a, b):  # libm hypotf
-    return F32(math.hypot(F32(a), F32(b)))
-
-
-def _roundf_op(self, a):
-    return F32(_roundf(F32(a)))
-
-
-def _lt(self, a, b):
-    return a < b
-
-
-def _le(self, a, b):
-    return a <= b
-
-
-def _gt(self, a, b):
-    return a > b
-
-
-def _ge(self, a, b):
-    return a >= b
-
-
-def _eq(self, a, b):
-    return a == b
-
-
-def _and(self, a, b):
-    return a and b
-
-
-def _or(self, a, b):
-    return a or b
-
-
-def _not(self, a):
-    return not a
-
-
-def _ite(self, c, a, b):
-    return a if c else b
-
-
+# every operation but the two typed by the arithmetic: float operands coerced to float32 (C++
+# float) or float64 (double) first
 OPERATIONS = {
-    "f32const": _f32const, "f64const": _f64const, "widen": _widen, "narrow": _narrow,
-    "int_to_f32": _int_to_f32, "int_to_f64": _int_to_f64, "to_int32": _to_int32, "add_int": _add_int,
-    "add": _add, "sub": _sub, "mul": _mul, "div": _div, "neg": _neg,
-    "add64": _add64, "sub64": _sub64, "mul64": _mul64, "div64": _div64, "fma": _fma, "fma64": _fma64,
+    "f32const": lambda self, x: F32(x), "f64const": lambda self, x: F64(x),
+    "widen": lambda self, a: F64(F32(a)),  # float -> double, exact
+    "narrow": lambda self, a: F32(F64(a)),  # double -> float, round to nearest even
+    "int_to_f32": lambda self, n: F32(n), "int_to_f64": lambda self, n: F64(n), "to_int32": _to_int32,
+    "add_int": lambda self, a, b: _wrap_int32(a + b),
+    "add": lambda self, a, b: F32(F32(a) + F32(b)), "sub": lambda self, a, b: F32(F32(a) - F32(b)),
+    "mul": lambda self, a, b: F32(F32(a) * F32(b)), "div": lambda self, a, b: F32(F32(a) / F32(b)),
+    "neg": lambda self, a: -F32(a),
+    "add64": lambda self, a, b: F64(a) + F64(b), "sub64": lambda self, a, b: F64(a) - F64(b),
+    "mul64": lambda self, a, b: F64(a) * F64(b), "div64": lambda self, a, b: F64(a) / F64(b),
+    "fma": lambda self, a, b, c: fma_llvm(F32(a), F32(b), F32(c)),
+    "fma64": lambda self, a, b, c: fma_llvm(F64(a), F64(b), F64(c)),
     "fuses": _fuses,
-    "hypot64": _hypot64, "hypotf": _hypotf, "roundf": _roundf_op,
-    "lt": _lt, "le": _le, "gt": _gt, "ge": _ge, "eq": _eq,
-    "and_": _and, "or_": _or, "not_": _not, "ite": _ite,
+    "hypot64": lambda self, a, b: math.hypot(F64(a), F64(b)),  # libm hypot
+    "hypotf": lambda self, a, b: F32(math.hypot(F32(a), F32(b))),  # libm hypotf
+    "roundf": lambda self, a: F32(_roundf(F32(a))),
+    "lt": lambda self, a, b: a < b, "le": lambda self, a, b: a <= b, "gt": lambda self, a, b: a > b,
+    "ge": lambda self, a, b: a >= b, "eq": lambda self, a, b: a == b,
+    "and_": lambda self, a, b: a and b, "or_": lambda self, a, b: a or b, "not_": lambda self, a: not a,
+    "ite": lambda self, c, a, b: a if c else b,
 }
 
 
-def _returning(impl):
+def returning(impl):
     """A typing function with ``impl``'s signature that always answers ``impl``."""
 
     @functools.wraps(impl)
-    def typer(*args):
+    def typer(*args, **kwargs):
         return impl
 
     return typer
@@ -348,7 +242,7 @@ def _register(name, impl):
     if name in TYPED_BY_ARITHMETIC:
         overload_method(NumbaDomainType, name, jit_options=JIT_OPTIONS, prefer_literal=True)(impl)
     else:
-        overload_method(NumbaDomainType, name, jit_options=JIT_OPTIONS)(_returning(impl))
+        overload_method(NumbaDomainType, name, jit_options=JIT_OPTIONS)(returning(impl))
 
 
 for _name, _impl in OPERATIONS.items():
@@ -367,11 +261,11 @@ for _name in KERNELS:
     # a kernel that names a multiply-add site is typed with the site's literal value, so that
     # ``D.fuses(site)`` inside it is a constant
     _literal = "site" in inspect.signature(_fn).parameters
-    overload(_fn, jit_options=JIT_OPTIONS, prefer_literal=_literal)(_returning(_fn))
+    overload(_fn, jit_options=JIT_OPTIONS, prefer_literal=_literal)(returning(_fn))
 
 # the helpers of the spec's loop steps the compiled loops run (calcPath's ring of eight, its
 # potentials and its tests, spec/extraction.py; the buffers' emptiness test, spec/propagation.py),
 # callable the same way
 for _fn in (E.ring_of_eight, E.ring_potentials, E.off_the_rows, E.ring_leaves_the_array, E.grid_wanted,
             P.buffers_hold_cells):
-    overload(_fn, jit_options=JIT_OPTIONS)(_returning(_fn))
+    overload(_fn, jit_options=JIT_OPTIONS)(returning(_fn))

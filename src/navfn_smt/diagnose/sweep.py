@@ -251,7 +251,6 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         ros[robot[1], robot[0]] = 0  # clearRobotCell
         navfn = add_border(set_costmap(ros, is_ros=True, allow_unknown=params.allow_unknown))
         planner = JitPlanner(navfn)  # work arrays (PRIORITYBUFSIZE buffers, as the plugin's)
-        costs = planner.costs
         cycles = cycle_limit(nx, ny)
         tol = params.tolerance
         col_of, xs, xcells, xlen, xerr = _tolerance_tables(gxy[:, 0], tol, cm.origin_x, cm.resolution, nx)
@@ -261,25 +260,21 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         out_i[planned, S.ST] = S.S_PENDING
         wx, wy = np.ascontiguousarray(gxy[:, 0]), np.ascontiguousarray(gxy[:, 1])
         tables = S.Tolerance(col_of, row_of, xs, xcells, xlen, ys, ycells, ylen, wx, wy)
-        buf = np.empty((max(n_cycles, 0) + 1, 2), np.float32)
-        touched = np.empty(4 * max(n_cycles, 0) + 4, np.int64)
+        planner.fit_path(n_cycles)
         if params.use_astar:
             for lo in range(0, len(planned), ASTAR_GOALS_PER_CALL):
                 chunk = planned[lo:lo + ASTAR_GOALS_PER_CALL]
-                pts = S.sweep_astar(planner.D, costs, nx, ny, robot[0], robot[1], cycles, chunk, planner.wave,
-                                    planner.memo, tcell, n_cycles, planner.gradx, planner.grady, buf, touched, out_i,
-                                    out_f, pts, st, keep_paths, tables)
+                pts = S.sweep_astar(planner.D, planner.work, robot[0], robot[1], cycles, chunk, tcell, n_cycles,
+                                    planner.trail, out_i, out_f, pts, st, keep_paths, tables)
                 report(done + lo + len(chunk), G)
         else:
             goal_of = np.full(nx * ny, -1, np.int64)
             goal_of[tcell[planned, 1] * nx + tcell[planned, 0]] = planned
-            newly = np.empty(G + 1, np.int64)
-            counters = np.zeros(S.NCOUNTERS, np.int64)
+            work = planner.work._replace(watch=goal_of.copy(), newly=np.empty(G + 1, np.int64))
             memo_cell = np.full(nx * ny, -1, np.int64)
             while not st[S.DONE]:
-                pts = S.sweep_dijkstra(planner.D, costs, nx, ny, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL,
-                                       planner.wave, counters, st, goal_of, newly, tcell, n_cycles, planner.gradx,
-                                       planner.grady, buf, touched, out_i, out_f, pts, keep_paths, tables, memo_cell)
+                pts = S.sweep_dijkstra(planner.D, work, robot[0], robot[1], cycles, DIJKSTRA_CYCLES_PER_CALL, st, goal_of,
+                                       tcell, n_cycles, planner.trail, out_i, out_f, pts, keep_paths, tables, memo_cell)
                 report(done + int(np.count_nonzero(out_i[planned, S.ST] != S.S_PENDING)), G)
         _refused(out_i, planned, col_of, row_of, xerr, yerr)
         p = planned

@@ -45,15 +45,18 @@ REASONS = {
     "if a != a or a == 0.0:": "0/0 needs dc == 0 and hf == 0 in the same update; dc/hf is only "
                               "divided (eagerly, by the ite form) with hf = 0 on cost-0 cells",
     # extraction.py
-    "if ns - nx in four:":
+    "if corner == 0 or corner == 1 or corner == nx or corner == nx + 1:":
         "gradCell(ns - nx) is undefined behaviour of the C++; a planned potential never has the "
         "nine reached cells around (0, ny-2) or (nx-1, ny-3) that lead there",
+    "if code == EXIT_GRADIENT_UNDEFINED:":
+        "gradCell(ns - nx) is undefined behaviour of the C++ (see follow's corner test)",
     "if taken(D, zero_gradient(D, x, y)):":
         "an exactly zero gradient needs a plateau of equal potentials (cost-0 cells), which the "
         "paper's maps lack; reached by tests/data/unseen-suite (zero/*)",
-    "if code == _OUT_OF_BOUNDS:":
-        "from an interior start, extraction moves only to reached cells (grid fallback) or by at most "
-        "one cell from a cell whose eight neighbours are reached; the border rows are never reached",
+    "if code != ITERATION_GOES_ON:  # OUT_OF_BOUNDS, or the ring of (0, 1), (nx-1, ny-2), (0, ny-1)":
+        "OUT_OF_BOUNDS: from an interior start, extraction moves only to reached cells (grid fallback) or "
+        "by at most one cell from a cell whose eight neighbours are reached; the border rows are never "
+        "reached; the ring's read outside potarr is undefined behaviour of the C++ at three border cells",
     # propagation.py
     # kernels.py (ite sites, decision coverage)
     "dx1 = D.ite(reached_l, D.add(zero, D.sub(pl, cv)), zero)":

@@ -616,23 +616,20 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
 
 def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend: str = "jit",
                    fix: Fix = AS_SHIPPED) -> None:
-    """Propagation with a cell one past the edge, its coordinates as they are: on the reference
-    spec (:func:`~navfn_smt.spec.planner.calc_navfn`), or compiled (the JIT's loop, without its
-    heuristic memo, which assumes cells on the map) where the fix adds no further call."""
+    """Propagation with a cell one past the edge, its coordinates as they are: the spec's planning
+    call (:func:`~navfn_smt.spec.planner.calc_navfn`), on the reference spec or compiled (the JIT,
+    without its heuristic memo, which assumes cells on the map)."""
     from ..spec.planner import calc_navfn
     from ..spec.propagation import setup
 
     ny, nx = run.costs.shape
-    if backend == "jit" and fix.further is None:
-        from ..backends import jit as J
+    if backend == "jit":
+        from ..backends.jit import JitPlanner
 
-        planner = J.JitPlanner(add_border(run.costs), arith=run.arith.navfn)
-        no_memo = np.empty(0, np.float32)
-        run.reached = bool(J.propagate(planner.D, planner.costs, nx, ny, navfn_start[0], navfn_start[1], navfn_goal[0],
-                                       navfn_goal[1], astar, run.cycle_limit, planner.wave, planner.no_trace,
-                                       planner.counters, no_memo))
+        planner = JitPlanner(add_border(run.costs), arith=run.arith.navfn, memo=False)
+        run.reached = planner.propagate(navfn_start, navfn_goal, astar, run.cycle_limit, False, fix.further)
         run.potential = planner.pot.reshape(ny, nx).copy()
-        run.cycles, run.dropped = int(planner.counters[J.CYCLES]), int(planner.counters[J.DROPPED])
+        run.cycles, _, run.dropped, _ = planner.counts()
         return
     st = setup(add_border(run.costs).ravel().tolist(), nx, ny, navfn_goal, arith=run.arith.navfn)
     reached, _ = calc_navfn(st, navfn_start, navfn_goal, astar, fix, record_trace=False)

@@ -4,23 +4,22 @@ compiled NavFn (:mod:`navfn_smt.backends.jit`) and the plugin's own rules.
 
 Dijkstra: ``propNavFnDijkstra(cycles, atStart=true)`` for NavFn start ``t`` (a goal's cell)
 runs the very same cycles as the loop with ``atStart=false``, up to the end of the cycle in
-which ``potarr[t]`` first drops below POT_HIGH; it then stops.  So one loop serves every goal
-(the backend's resumable loop, :func:`~navfn_smt.backends.jit.run_cycles`, paused there):
-at the end of each cycle the goals whose potential became finite in that cycle see exactly
-their single-goal potential, and are extracted there (``calcPath``, in the middle of the
-propagation).  A goal never reached sees the loop's final state: the single-goal run ends
-for the same reason the full loop does (buffers empty, or the cycle limit with ``cycle ==
+which ``potarr[t]`` first drops below POT_HIGH; it then stops.  So one loop serves every goal:
+the spec's propagation (:func:`~navfn_smt.spec.propagation.propagate`) compiled on the JIT's
+state, which watches the goals' cells and pauses at the end of a cycle that reached some
+(:mod:`navfn_smt.backends.jit_state`).  There the goals whose potential became finite in that
+cycle see exactly their single-goal potential, and are extracted (``calcPath``, in the middle
+of the propagation).  A goal never reached sees the loop's final state: the single-goal run
+ends for the same reason the full loop does (buffers empty, or the cycle limit with ``cycle ==
 cycles``), after the same cycles.  The robot's own cell is finite before the first cycle, so
 its run stops at the end of cycle 0 (or never starts when the buffers are empty).
 
-A*: the heuristic depends on the goal, so every goal is planned alone (:func:`~navfn_smt.backends.jit.propagate`).
+A*: the heuristic depends on the goal, so every goal is planned alone (the JIT's planning call).
 
-``calcPath`` here is :func:`~navfn_smt.backends.jit.calc_path_touched`, the body of
-:func:`~navfn_smt.backends.jit.calc_path_zeroed` without its reset of the whole gradient
-arrays: the cells it writes are recorded and zeroed after the call, which leaves the arrays
-as the reset would (all zero) at the next call;
-``gradCell``'s cache is a pure function of the potential, so the results are bit-identical at
-O(path) instead of O(cells) per goal.
+``calcPath`` here is the JIT's (:func:`~navfn_smt.backends.jit.extract_path`), which zeroes the
+gradient cells it wrote after the call, as the reset of the whole arrays would (all zero) at the
+next call; ``gradCell``'s cache is a pure function of the potential, so the results are
+bit-identical at O(path) instead of O(cells) per goal.
 
 The tolerance search is ``_legal_pose`` of the plugin over tables of its world points (the
 plugin's ``tolerance_steps`` and rounding ``worldToMap`` computed once per goal column and
@@ -34,10 +33,12 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..backends import jit as J
-from ..backends.jit import (EXIT_NEAR_GOAL, EXIT_UB, NCOUNTERS, calc_path_touched, propagate, run_cycles,
-                            start_propagation)
+from ..backends.jit import EXIT_NEAR_GOAL, EXIT_UB, NEVER, extract_path, plan_call, start_call
+from ..backends.jit_state import BUDGET as BUDGET_AT
+from ..backends.jit_state import NPATH as POINTS
+from ..backends.jit_state import CYCLES, NNEW, NX, NY, PAUSED, poke, state_of
 from ..backends.numba_domain import jit
+from ..spec import propagation as P
 from ..spec.constants import DBL_MAX, POT_HIGH
 from .plugin import squared_offset, tolerance_prefers
 
@@ -90,8 +91,7 @@ def _legal_cell(D, pot, nx, g, tables):
 
 
 @jit
-def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts, st,
-                 keep, tables, memo_cell):
+def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, trail, out_i, out_f, pts, st, keep, tables, memo_cell):
     """``_legal_pose`` + ``getPlanFromPotential`` for goal ``g`` (NavFn start ``(tx, ty)``) on
     ``pot`` as it is now; results into row ``g``.  ``memo_cell`` (length ns, or empty) maps a
     start cell to the goal whose extraction from it on this same potential is reused.
@@ -118,11 +118,9 @@ def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, tou
             out_f[g, LENGTH] = out_f[h, LENGTH]
             return pts
         memo_cell[by * nx + bx] = g
-    code, npath, nt = calc_path_touched(D, pot, nx, ny, bx, by, rx, ry, nmax, gradx, grady, buf, touched)
-    zero = D.f32const(0.0)
-    for i in range(nt):
-        gradx[touched[i]] = zero
-        grady[touched[i]] = zero
+    code = extract_path(D, pot, nx, ny, bx, by, rx, ry, nmax, trail)
+    npath = trail.ints[POINTS]
+    buf = trail.path
     out_i[g, EXIT] = code
     if code == EXIT_UB:
         out_i[g, ST] = S_UB
@@ -153,64 +151,68 @@ def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, tou
 
 
 @jit
-def sweep_dijkstra(D, costs, nx, ny, rx, ry, cycles, budget, wave, counters, st, goal_of, newly, tcell, nmax, gradx,
-                   grady, buf, touched, out_i, out_f, pts, keep, tables, memo_cell):
+def sweep_dijkstra(D, work, rx, ry, cycles, budget, sw, goal_of, tcell, nmax, trail, out_i, out_f, pts, keep, tables,
+                   memo_cell):
     """Up to ``budget`` cycles of ``propNavFnDijkstra(cycles, atStart=false)`` from the robot
-    cell, by :func:`~navfn_smt.backends.jit.run_cycles` (its state in ``wave`` and ``counters``;
-    before the first call, ``st[STARTED]`` 0, it runs
-    :func:`~navfn_smt.backends.jit.start_propagation`).
-    At the end of each cycle every goal whose NavFn start became finite in it is finished on
-    the potential as it is then; when the loop is over (``st[DONE]``), every goal still
-    pending is finished on the final potential.  ``goal_of[n]`` is the goal planned from
-    cell ``n`` (-1: none), ``tcell[g]`` its cell.  Returns ``pts``."""
-    no_trace = np.empty(0, np.int32)
-    no_memo = np.empty(0, np.float32)
-    no_memo_cell = np.empty(0, np.int64)
-    pot = wave.pot
-    if not st[STARTED]:
-        start_propagation(D, costs, nx, ny, rx, ry, wave)
-        st[STARTED] = 1
+    cell: the spec's :func:`~navfn_smt.spec.propagation.propagate` on the state of ``work``
+    (:mod:`navfn_smt.backends.jit_state`), which watches the goals' cells (``work.watch``, a copy
+    of ``goal_of`` that the loop marks as it reports them) and pauses at the end of a cycle that
+    reached some.  Before the first call (``sw[STARTED]`` 0) it runs ``initCost``.  At each pause
+    every goal whose NavFn start became finite in that cycle is finished on the potential as it
+    is then; when the loop is over (``sw[DONE]``), every goal still pending is finished on the
+    final potential.  ``goal_of[n]`` is the goal planned from cell ``n`` (-1: none), ``tcell[g]``
+    its cell.  Returns ``pts``."""
+    st = state_of(D, work)
+    ints = work.ints
+    pot = work.potential
+    nx = st.nx
+    ny = st.ny
+    if not sw[STARTED]:
+        start_call(st)
         k = rx + ry * nx
-        if goal_of[k] >= 0:  # the robot's own cell: finite before the first cycle
-            newly[0] = goal_of[k]
-            counters[J.NEWLY] = 1
-    stop = counters[J.CYCLE] + budget
-    while counters[J.CYCLE] < stop:
-        if run_cycles(D, costs, nx, ny, rx, ry, False, False, cycles, stop - counters[J.CYCLE], wave, no_trace, counters,
-                      no_memo, goal_of, newly):
-            st[DONE] = 1
+        P.init_cost(st, k)
+        sw[STARTED] = 1
+        if goal_of[k] >= 0:  # the robot's own cell: finite before the first cycle, reported at its end
+            work.newly[0] = goal_of[k]
+            work.watch[k] = -1
+            poke(st.p_ints, NNEW, 1)
+    poke(st.p_ints, BUDGET_AT, budget)
+    while True:
+        P.propagate(st, (rx, ry), (rx, ry), False, cycles - ints[CYCLES], False, record_trace=False)
+        if not ints[PAUSED]:
+            sw[DONE] = 1
             break
         # the end of a cycle: here a single-goal run of each newly reached goal stops
-        for i in range(counters[J.NEWLY]):
-            g = newly[i]
-            out_i[g, CYCLE] = counters[J.CYCLE]
-            pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf, touched,
-                               out_i, out_f, pts, st, keep, tables, no_memo_cell)
-        counters[J.NEWLY] = 0
-    if st[DONE]:
-        for g in range(out_i.shape[0]):
-            if out_i[g, ST] == S_PENDING and goal_of[tcell[g, 1] * nx + tcell[g, 0]] == g:
-                out_i[g, CYCLE] = counters[J.CYCLE]
-                pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, gradx, grady, buf,
-                                   touched, out_i, out_f, pts, st, keep, tables, memo_cell)
+        for i in range(ints[NNEW]):
+            g = work.newly[i]
+            out_i[g, CYCLE] = ints[CYCLES]
+            pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, trail, out_i, out_f, pts, sw,
+                               keep, tables, memo_cell[:0])
+        poke(st.p_ints, NNEW, 0)
+        if ints[BUDGET_AT] == 0:
+            return pts
+    for g in range(out_i.shape[0]):
+        if out_i[g, ST] == S_PENDING and goal_of[tcell[g, 1] * nx + tcell[g, 0]] == g:
+            out_i[g, CYCLE] = ints[CYCLES]
+            pts = _finish_goal(D, pot, nx, ny, g, tcell[g, 0], tcell[g, 1], rx, ry, nmax, trail, out_i, out_f, pts, sw,
+                               keep, tables, memo_cell)
     return pts
 
 
 @jit
-def sweep_astar(D, costs, nx, ny, rx, ry, cycles, goals, wave, memo, tcell, nmax, gradx, grady, buf, touched, out_i,
-                out_f, pts, st, keep, tables):
+def sweep_astar(D, work, rx, ry, cycles, goals, tcell, nmax, trail, out_i, out_f, pts, sw, keep, tables):
     """``calcNavFnAstar`` + ``_legal_pose`` + ``getPlanFromPotential`` for each goal in ``goals``
-    alone (NavFn start its cell, NavFn goal the robot's).  Returns ``pts``."""
-    no_trace = np.empty(0, np.int32)
-    counters = np.zeros(NCOUNTERS, np.int64)
+    alone (NavFn start its cell, NavFn goal the robot's): the spec's planning call on the state of
+    ``work``.  Returns ``pts``."""
     no_memo = np.empty(0, np.int64)
-    pot = wave.pot
+    pot = work.potential
+    nx = work.ints[NX]
+    ny = work.ints[NY]
     for i in range(goals.shape[0]):
         g = goals[i]
         tx = tcell[g, 0]
         ty = tcell[g, 1]
-        propagate(D, costs, nx, ny, tx, ty, rx, ry, True, cycles, wave, no_trace, counters, memo)
-        out_i[g, CYCLE] = counters[J.CYCLES]
-        pts = _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, gradx, grady, buf, touched, out_i, out_f, pts,
-                           st, keep, tables, no_memo)
+        plan_call(D, work, tx, ty, rx, ry, True, cycles, NEVER, 0, False)
+        out_i[g, CYCLE] = work.ints[CYCLES]
+        pts = _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, trail, out_i, out_f, pts, sw, keep, tables, no_memo)
     return pts

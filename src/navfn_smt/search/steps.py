@@ -18,6 +18,8 @@ import numpy as np
 from numba import njit
 
 from ..backends.jit import JitPlanner, case_columns, plan_cases_into
+from ..backends.jit_state import NX, NY
+from ..backends.numba_domain import jit
 from ..spec.constants import COST_OBS
 from .fast import gaps
 
@@ -82,17 +84,16 @@ def mutate(rng, c, lo, hi, maximise):
         c[y, x] = v
 
 
-@njit(cache=True)
-def _best_gap(D, cand, cases, astar, cycles, path_cycles, wave, memo, gradx, grady, reached, start_pot, ncycles,
-              nupdates, ndropped, exits, path_off, path_pts):
-    """The cost screen of ``cand`` on ``cases``: the largest gap (0 when none is positive) and
-    the first case that has it, as ``np.argmax`` of ``kinds._screen_cost`` picks it."""
-    ny, nx = cand.shape
-    flat = cand.ravel()
-    plan_cases_into(D, flat, nx, ny, cases, astar, cycles, path_cycles, wave, memo, gradx, grady, reached, start_pot,
-                    ncycles, nupdates, ndropped, exits, path_off, path_pts)
+@jit  # cached by the sources of the compiled planner it calls
+def _best_gap(D, work, trail, cases, astar, cycles, path_cycles, reached, start_pot, ncycles, nupdates, ndropped,
+              exits, path_off, path_pts):
+    """The cost screen of the map ``work`` plans on (its costs view the candidate) on ``cases``:
+    the largest gap (0 when none is positive) and the first case that has it, as ``np.argmax``
+    of ``kinds._screen_cost`` picks it."""
+    plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, reached, start_pot, ncycles, nupdates, ndropped,
+                    exits, path_off, path_pts)
     n = cases.shape[0]
-    g, _ = gaps(flat, nx, ny, path_pts[: path_off[n]], path_off[: n + 1])
+    g, _ = gaps(work.costs, work.ints[NX], work.ints[NY], path_pts[: path_off[n]], path_off[: n + 1])
     best, at = 0, 0
     for i in range(g.shape[0]):
         if g[i] > best:
@@ -100,16 +101,16 @@ def _best_gap(D, cand, cases, astar, cycles, path_cycles, wave, memo, gradx, gra
     return float(best), at
 
 
-@njit(cache=True)
+@jit
 def _focus_steps(D, rng, cur, cur_score, cand, lo, hi, cases, astar, cycles, path_cycles, stale, patience, steps,
-                 wave, memo, gradx, grady, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
+                 work, trail, reached, start_pot, ncycles, nupdates, ndropped, exits, path_off, path_pts):
     for k in range(steps):
         if stale > patience:
             return k, stale, -1.0, -1
         cand[:, :] = cur
         mutate(rng, cand, lo, hi, True)
-        sc, at = _best_gap(D, cand, cases, astar, cycles, path_cycles, wave, memo, gradx, grady, reached, start_pot,
-                           ncycles, nupdates, ndropped, exits, path_off, path_pts)
+        sc, at = _best_gap(D, work, trail, cases, astar, cycles, path_cycles, reached, start_pot, ncycles, nupdates,
+                           ndropped, exits, path_off, path_pts)
         if sc > cur_score:
             return k + 1, stale, sc, at
         if sc == cur_score:
@@ -123,10 +124,11 @@ class FocusSteps:
 
     def __init__(self, nx: int, ny: int, pairs: int, cycles: int, path_cycles: int):
         self.cycles, self.path_cycles = int(cycles), int(path_cycles)
-        planner = JitPlanner(np.full((ny, nx), COST_OBS, np.uint8))
-        self.D, self.work = planner.D, planner.work_arrays()
+        self.cand = np.full((ny, nx), COST_OBS, np.uint8)
+        planner = JitPlanner(self.cand)  # its costs view the candidate, which the steps change in place
+        planner.fit_path(self.path_cycles)
+        self.D, self.work = planner.D, (planner.work, planner.trail)
         self.out = tuple(case_columns(pairs, self.path_cycles).values())
-        self.cand = np.empty((ny, nx), np.uint8)
 
     def run(self, rng, cur: np.ndarray, cur_score: float, lo: int, hi: int, cases: np.ndarray, astar: bool,
             stale: int, patience: int, steps: int) -> tuple[int, int, float, int]:

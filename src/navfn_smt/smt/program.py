@@ -103,6 +103,9 @@ class Slots:
         return Slots(self.run, self.slots, int_const(D, 0), z3.K(cell_sort(D), False), self.slot_of)
 
 
+_OVER = object()  # the end of a loop's rule
+
+
 class ArrayState:
     """The spec's propagation state over SMT arrays: the array model :class:`Program` runs the
     spec's steps on (the methods are :class:`~navfn_smt.spec.propagation.PropagationState`'s)."""
@@ -117,8 +120,9 @@ class ArrayState:
         self.cur = self.nxt = self.over = None
         self.potential = self.pending = None
         self.cur_t = None
+        self._cycle = None  # the cycle loop's rule while it runs (next_cycle)
 
-    def filled(self, value) -> Cells:
+    def filled(self, array, value) -> Cells:
         return Cells(z3.K(cell_sort(self.D), value), self.run.cell_seen)
 
     @staticmethod
@@ -155,8 +159,15 @@ class ArrayState:
     def loop(self, name: str, bound):
         return self.run.loop(name, bound)
 
-    def cycle_loop(self, runs):
-        return self.run.loop("cycle", None)
+    def next_cycle(self, runs) -> bool:
+        """Hoare's rule at the cycle loop: true once (the body runs on the invariant's state), then
+        false (the state after the loop); ``runs`` is what the invariant's conditions say."""
+        if self._cycle is None:
+            self._cycle = self.run.loop("cycle", None)
+        if next(self._cycle, _OVER) is _OVER:
+            self._cycle = None
+            return False
+        return True
 
     def record_cycle(self, cycle, cycles, trace_hook, record_trace) -> None:
         pass

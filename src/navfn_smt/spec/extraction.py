@@ -151,6 +151,115 @@ def goal_point(D, goal):
     return D.int_to_f32(goal[0]), D.int_to_f32(goal[1])
 
 
+class Trail:
+    """calcPath's writes in the concrete array model: the points (``xs``, ``ys``) and gradCell's
+    stored vectors by cell; a :class:`Watch`, when given, is told each iteration and each
+    grid-following step.  The JIT's trail holds the same in arrays (``backends/jit_state.py``)."""
+
+    def __init__(self, watch: Optional[Watch] = None):
+        self.xs: list = []
+        self.ys: list = []
+        self.grads: dict = {}
+        self.watch = watch
+
+    def append(self, x, y) -> None:
+        self.xs.append(x)
+        self.ys.append(y)
+
+    @property
+    def count(self) -> int:
+        return len(self.xs)
+
+    def point(self, i: int) -> tuple:
+        return self.xs[i], self.ys[i]
+
+    def knows(self, m: int) -> bool:
+        return m in self.grads
+
+    def keep(self, m: int, gx, gy) -> None:
+        self.grads[m] = (gx, gy)
+
+    def vector(self, m: int) -> tuple:
+        return self.grads[m]
+
+    def iteration(self, i: int, stc: int, dx, dy) -> None:
+        if self.watch is not None:
+            self.watch.iteration(i, stc, dx, dy, self.xs, self.ys)
+
+    def fallback(self, i: int, oscillation: bool) -> None:
+        if self.watch is not None:
+            self.watch.fallback(i, oscillation)
+
+
+# follow's code for the read past potarr of gradCell(ns - nx), undefined in C++ as the ring's
+EXIT_GRADIENT_UNDEFINED = EXIT_UNDEFINED + 1
+_HIGH_POTENTIAL = exit_code(ExtractionExit.HIGH_POTENTIAL)
+_ZERO_GRADIENT = exit_code(ExtractionExit.ZERO_GRADIENT)
+_EXHAUSTED = exit_code(ExtractionExit.EXHAUSTED)
+
+
+def gradient(D, pot, trail, m, nx, ns):
+    """``gradCell(m)``: the vector it stored for ``m``, else the kernel's (rows 0 and ny-1 keep the
+    zero ``setupNavFn`` wrote), stored.  gradCell tests its cache by the vector being nonzero; a
+    vector computed again is the same (calcPath changes no potential), so a trail may store each
+    cell's vector once."""
+    if not trail.knows(m):
+        if m < nx or m >= ns - nx:
+            zero = D.f32const(0.0)
+            trail.keep(m, zero, zero)
+        else:
+            gx, gy = K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1], pot[m - nx], pot[m + nx])
+            trail.keep(m, gx, gy)
+    return trail.vector(m)
+
+
+def follow(D, pot, nx, ny, start, goal, n, path_step, trail):
+    """The loop of ``calcPath(n)``: follow the gradient of ``pot`` from ``start``, writing the
+    points to ``trail``.  Returns (the exit's :func:`exit_code`, or :data:`EXIT_UNDEFINED` for a
+    read outside potarr; the cell ``stc`` at the exit)."""
+    ns = nx * ny
+    zero = D.f32const(0.0)
+    step = D.f32const(path_step)
+    stc = start[1] * nx + start[0]
+    dx = zero
+    dy = zero
+    for i in range(n):
+        trail.iteration(i, stc, dx, dy)
+        code = iteration_test(D, pot, stc, dx, dy, nx, ns)
+        if code == _NEAR_GOAL:
+            gx, gy = goal_point(D, goal)
+            trail.append(gx, gy)
+            return _NEAR_GOAL, stc
+        if code != ITERATION_GOES_ON:  # OUT_OF_BOUNDS, or the ring of (0, 1), (nx-1, ny-2), (0, ny-1)
+            return code, stc
+        px, py = K.path_point(D, stc, nx, dx, dy)
+        trail.append(px, py)
+        oscillation = False
+        if trail.count > 2:
+            qx, qy = trail.point(-3)
+            oscillation = oscillates(D, px, py, qx, qy)
+        if taken(D, follows_the_grid(D, pot, stc, nx, oscillation)):
+            trail.fallback(i, oscillation)
+            stc, dx, dy, stops = grid_step(D, pot, stc, nx)
+            if taken(D, stops):
+                return _HIGH_POTENTIAL, stc
+        else:
+            corner = ns - nx - stc  # cell (0, ny-1) passes gradCell's bound test, then potarr[ns] is read
+            if corner == 0 or corner == 1 or corner == nx or corner == nx + 1:
+                return EXIT_GRADIENT_UNDEFINED, stc
+            g0x, g0y = gradient(D, pot, trail, stc, nx, ns)
+            g1x, g1y = gradient(D, pot, trail, stc + 1, nx, ns)
+            g2x, g2y = gradient(D, pot, trail, stc + nx, nx, ns)
+            g3x, g3y = gradient(D, pot, trail, stc + nx + 1, nx, ns)
+            x = K.interpolate_gradient(D, dx, dy, g0x, g1x, g2x, g3x)
+            y = K.interpolate_gradient(D, dx, dy, g0y, g1y, g2y, g3y)
+            if taken(D, zero_gradient(D, x, y)):
+                return _ZERO_GRADIENT, stc
+            dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
+            stc += cdx + cdy * nx
+    return _EXHAUSTED, stc
+
+
 def calc_path(
     potential: list,
     nx: int,
@@ -164,69 +273,17 @@ def calc_path(
     domain=None,
 ) -> Extraction:
     """``calcPath(n)`` on a propagated potential (``potential[i]`` is ``potarr[i]``: float32
-    values); ``watch`` is told each iteration and each grid-following step; ``arith``: the
-    build's :class:`~.arithmetic.Arithmetic` (default x86-64's); ``domain``: the numeric domain
-    to run in instead (its tests go through :func:`~.numeric.taken`: the check's encoding runs
-    this function in its concolic domain).
-
-    gradCell returns early with the vector it stored for a cell; computing it again would give
-    the same vector (calcPath does not change the potentials), so each cell's vector is computed
-    once, when first read."""
+    values), by :func:`follow` on a :class:`Trail`; ``watch`` is told each iteration and each
+    grid-following step; ``arith``: the build's :class:`~.arithmetic.Arithmetic` (default
+    x86-64's); ``domain``: the numeric domain to run in instead (its tests go through
+    :func:`~.numeric.taken`: the check's encoding runs this function in its concolic domain).
+    A read outside potarr, which C++ leaves undefined, raises :class:`UndefinedBehaviour`."""
     D = domain if domain is not None else _D if arith is None else _D.with_arithmetic(arith)
-    ns = nx * ny
-    pot = potential
-    zero = D.f32const(0.0)
-    grads: dict = {}
-    step = D.f32const(path_step)
-    stc = start[1] * nx + start[0]
-    dx = dy = zero
-    xs: list = []
-    ys: list = []
-
-    def grad(m: int) -> tuple:
-        # gradCell(m); rows 0 and ny-1 keep the zero setupNavFn wrote
-        if m not in grads:
-            grads[m] = (zero, zero) if m < nx or m >= ns - nx else K.grad_cell(D, pot[m], pot[m - 1], pot[m + 1],
-                                                                                 pot[m - nx], pot[m + nx])
-        return grads[m]
-
-    for i in range(n):
-        if watch is not None:
-            watch.iteration(i, stc, dx, dy, xs, ys)
-        code = iteration_test(D, pot, stc, dx, dy, nx, ns)
-        if code == _NEAR_GOAL:
-            gx, gy = goal_point(D, goal)
-            xs.append(gx)
-            ys.append(gy)
-            return Extraction(list(zip(xs, ys)), ExtractionExit.NEAR_GOAL, len(xs), stc)
-        if code == _OUT_OF_BOUNDS:
-            return Extraction([], ExtractionExit.OUT_OF_BOUNDS, len(xs), stc)
-        if code == EXIT_UNDEFINED:
-            # (0, 1), (nx-1, ny-2) and (0, ny-1) pass the bound test, but their eight-cell
-            # ring reaches one cell outside potarr
-            raise UndefinedBehaviour(
-                f"calcPath reads outside the potential array around cell {stc}"
-            )
-        px, py = K.path_point(D, stc, nx, dx, dy)
-        xs.append(px)
-        ys.append(py)
-        oscillation = len(xs) > 2 and oscillates(D, xs[-1], ys[-1], xs[-3], ys[-3])
-        if taken(D, follows_the_grid(D, pot, stc, nx, oscillation)):
-            if watch is not None:
-                watch.fallback(i, oscillation)
-            stc, dx, dy, stops = grid_step(D, pot, stc, nx)
-            if taken(D, stops):
-                return Extraction([], ExtractionExit.HIGH_POTENTIAL, len(xs), stc)
-        else:
-            four = (stc, stc + 1, stc + nx, stc + nx + 1)
-            if ns - nx in four:
-                # cell (0, ny-1) passes gradCell's bound test, then potarr[ns] is read
-                raise UndefinedBehaviour(f"gradCell reads past the potential array at cell {ns - nx}")
-            g = [grad(m) for m in four]
-            x = K.interpolate_gradient(D, dx, dy, g[0][0], g[1][0], g[2][0], g[3][0])
-            y = K.interpolate_gradient(D, dx, dy, g[0][1], g[1][1], g[2][1], g[3][1])
-            if taken(D, zero_gradient(D, x, y)):
-                return Extraction([], ExtractionExit.ZERO_GRADIENT, len(xs), stc)
-            dx, dy, cdx, cdy = K.step_offsets(D, dx, dy, x, y, step)
-            stc += cdx + cdy * nx
-    return Extraction([], ExtractionExit.EXHAUSTED, len(xs), stc)
+    trail = Trail(watch)
+    code, stc = follow(D, potential, nx, ny, start, goal, n, path_step, trail)
+    if code == EXIT_UNDEFINED:
+        raise UndefinedBehaviour(f"calcPath reads outside the potential array around cell {stc}")
+    if code == EXIT_GRADIENT_UNDEFINED:
+        raise UndefinedBehaviour(f"gradCell reads past the potential array at cell {nx * ny - nx}")
+    path = list(zip(trail.xs, trail.ys)) if code == _NEAR_GOAL else []
+    return Extraction(path, EXIT_CODES[code], trail.count, stc)

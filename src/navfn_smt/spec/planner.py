@@ -86,16 +86,27 @@ def calc_navfn(st: PropagationState, start: tuple[int, int], goal: tuple[int, in
                fix: Fix = AS_SHIPPED, cycles: Optional[int] = None, at_start: bool = True,
                trace_hook: Optional[TraceHook] = None, record_trace: bool = True) -> tuple[bool, int]:
     """``calcNavFnAstar`` / ``calcNavFnDijkstra(atStart)`` after ``setupNavFn``, with ``fix``'s
-    hooks: ``propNavFn*`` with the fix's cycles (or ``cycles``), then the fix's further call where
-    its test holds.  Returns the last call's return value and the further calls made (0 or 1)."""
-    limit = fix.first_cycles(st.nx, st.ny, cycles)
-    done = propagate(st, start, goal, astar, limit, at_start, trace_hook=trace_hook, record_trace=record_trace)
+    hooks: :func:`call` with the fix's cycles (or ``cycles``) and its further call.  Returns the
+    last call's return value and the further calls made (0 or 1)."""
     further = fix.further
-    if further is not None and taken(st.D, further.test(st.D, st.potential[start[1] * st.nx + start[0]], st.cur.fill,
-                                                        st.nxt.fill)):
-        done = propagate(st, start, goal, astar, further.cycles(st.nx, st.ny), at_start, trace_hook=trace_hook,
-                         record_trace=record_trace)
-        return done, 1
+    return call(st, start, goal, astar, fix.first_cycles(st.nx, st.ny, cycles),
+                None if further is None else further.test, 0 if further is None else further.cycles(st.nx, st.ny),
+                at_start, trace_hook, record_trace)
+
+
+def call(st, start, goal, astar, cycles, further_test, further_cycles, at_start=True, trace_hook=None,
+         record_trace=True):
+    """The propagation of one planning call: ``propNavFn*(cycles)``, then, where
+    ``further_test(D, start_pot, fill_cur, fill_next)`` holds after it (None: never), a further
+    ``propNavFn*(further_cycles)``.  Returns the last call's return value and the further calls
+    made (0 or 1).  The JIT compiles this function with its state (``backends/jit_state.py``)."""
+    D = st.D
+    done = propagate(st, start, goal, astar, cycles, at_start, trace_hook=trace_hook, record_trace=record_trace)
+    if further_test is not None:
+        if taken(D, further_test(D, st.potential[start[1] * st.nx + start[0]], st.cur.fill, st.nxt.fill)):
+            done = propagate(st, start, goal, astar, further_cycles, at_start, trace_hook=trace_hook,
+                             record_trace=record_trace)
+            return done, 1
     return done, 0
 
 

@@ -1,6 +1,7 @@
 """Potential propagation: ``setupNavFn``, ``initCost``, ``propNavFnDijkstra`` and ``propNavFnAstar``.
 
-Stated once, as steps over a state: :func:`init_cost`, :func:`push`, :func:`update_cell`,
+Stated once, as steps over a state: :func:`init_cost`, :func:`push_cur` and :func:`push` (the
+C++'s push macros, sharing :func:`admit`), :func:`update_cell`,
 :func:`run_cycle` (the clearing loop, the update loop, :func:`end_of_cycle`) and the loop of
 :func:`propagate`.  The state's few operations are its array model's: arrays filled with one
 value, a buffer's conditional append, a choice between two buffers, the loops.  Here the model
@@ -107,7 +108,8 @@ class PropagationState:
         return self.nx * self.ny
 
     # the concrete array model ------------------------------------------------------------
-    def filled(self, value) -> list:
+    def filled(self, array, value) -> list:
+        """``array`` with every cell ``value`` (here a new list; a model may write it in place)."""
         return [value] * self.ns
 
     def index(self, n: int) -> int:
@@ -147,9 +149,9 @@ class PropagationState:
         return range(bound)
 
     @staticmethod
-    def cycle_loop(runs: Callable[[], bool]):
-        while runs():
-            yield
+    def next_cycle(runs: bool) -> bool:
+        """The cycle loop's test, at its top: whether another cycle runs (here ``runs`` itself)."""
+        return runs
 
     def record_cycle(self, cycle: int, cycles: int, trace_hook: Optional[TraceHook], record_trace: bool) -> None:
         """A cycle of the ``cycles`` of this ``propNavFn*`` call starts (``cycle``, from 0) and
@@ -201,32 +203,44 @@ def init_cost(st, k) -> None:
     ``curT = COST_OBS``; then ``initCost(k, 0)``: the goal cell ``k`` gets potential 0 and its
     four neighbours are pushed onto the current buffer (right, left, up, down)."""
     D = st.D
-    st.potential, st.pending = st.filled(D.f32const(POT_HIGH)), st.filled(False)
+    st.potential, st.pending = st.filled(st.potential, D.f32const(POT_HIGH)), st.filled(st.pending, False)
     st.cur, st.nxt, st.over = st.cur.emptied(), st.nxt.emptied(), st.over.emptied()
     st.cur_t = D.f32const(COST_OBS)
     st.potential[k] = D.f32const(0.0)
     for n in (k + 1, k - 1, k - st.nx, k + st.nx):
-        push(st, n, True)
+        push_cur(st, n)
 
 
-def push(st, n, wanted, low=None) -> None:
-    """The ``push_cur`` macro (``low`` None) or, when an update ``wanted`` the push,
-    ``push_next`` where ``low`` holds and ``push_over`` where not: the push is made where it is
-    wanted and the kernel :func:`kernels.push` admits the cell (capacity PRIORITYBUFSIZE unless
-    the caller chose another), with the pending flag the kernel gives; a push refused only for
-    want of room is counted as dropped (C++ drops it silently)."""
+def admit(st, n, wanted, fill):
+    """What the push macros share: where the push is ``wanted``, the kernel :func:`kernels.push`
+    admits the cell into a buffer of ``fill`` cells (capacity PRIORITYBUFSIZE unless the caller
+    chose another) and gives its pending flag; a push refused only for want of room is counted as
+    dropped (C++ drops it silently).  Returns whether the push is made."""
     D = st.D
-    if not st.may(wanted):  # every write below wants `wanted`
-        return
-    into = ((st.cur, True),) if low is None else ((st.nxt, low), (st.over, D.not_(low)))
-    fill = st.cur.fill if low is None else D.ite(low, st.nxt.fill, st.over.fill)
     j = st.index(n)
     admitted, dropped, pending = K.push(D, n, st.ns, st.pending[j], st.costs[j], fill, st.capacity)
     pushed = taken(D, D.and_(wanted, admitted))
     st.pending[j] = D.ite(pushed, pending, st.pending[j])
-    for buf, chosen in into:
-        buf.append_if(D.and_(pushed, chosen), n)
     st.note_drop(D.and_(wanted, dropped))
+    return pushed
+
+
+def push_cur(st, n) -> None:
+    """The ``push_cur`` macro (initCost's pushes): into the current buffer."""
+    D = st.D
+    pushed = admit(st, n, True, st.cur.fill)
+    st.cur.append_if(D.and_(pushed, True), n)
+
+
+def push(st, n, wanted, low) -> None:
+    """An update's push where it is ``wanted``: ``push_next`` where ``low`` holds, ``push_over``
+    where not."""
+    D = st.D
+    if not st.may(wanted):  # every write below wants `wanted`
+        return
+    pushed = admit(st, n, wanted, D.ite(low, st.nxt.fill, st.over.fill))
+    st.nxt.append_if(D.and_(pushed, low), n)
+    st.over.append_if(D.and_(pushed, D.not_(low)), n)
 
 
 def update_neighbours(n, nx):
@@ -235,21 +249,21 @@ def update_neighbours(n, nx):
     return n - 1, n + 1, n - nx, n + nx
 
 
-def update_cell(st, n, astar_start: Optional[tuple] = None) -> None:
-    """``updateCell(n)`` (Dijkstra) or ``updateCellAstar(n)`` when ``astar_start`` is given: the
-    kernel :func:`kernels.cell_update` (``if (pot < potarr[n])``; an obstacle keeps its
-    potential), then, when it changed the cell, the pushes of its neighbours the potential
+def update_cell(st, n, astar: bool = False, start: tuple = (0, 0)) -> None:
+    """``updateCell(n)`` (Dijkstra) or, with ``astar``, ``updateCellAstar(n)`` toward the start
+    ``start``: the kernel :func:`kernels.cell_update` (``if (pot < potarr[n])``; an obstacle keeps
+    its potential), then, when it changed the cell, the pushes of its neighbours the potential
     wants, into the buffer ``kernels.to_low_buffer`` picks by the key (the potential, plus A*'s
     heuristic)."""
     D = st.D
     st.updates += 1
     around = update_neighbours(n, st.nx)
-    l, r, u, d = (st.potential[m] for m in around)
+    l, r, u, d = st.potential[around[0]], st.potential[around[1]], st.potential[around[2]], st.potential[around[3]]
     new, changed = K.cell_update(st.domain, st.potential[n], l, r, u, d, st.costs[n], st.cost_f32(n))
     changed = taken(D, changed)
     st.potential[n] = new  # the old potential unless changed
     if st.may(changed):  # the pushes want `changed`: where it is false they are no-ops
-        key = new if astar_start is None else D.add(new, st.heuristic(n, astar_start))
+        key = D.add(new, st.heuristic(n, start)) if astar else new
         low = taken(D, K.to_low_buffer(D, key, st.cur_t))
         for m, pm in zip(around, (l, r, u, d)):
             push(st, m, D.and_(changed, K.push_wanted(D, pm, key, st.edge(m))), low)
@@ -265,13 +279,14 @@ def end_of_cycle(st, inc) -> None:
     st.cur, st.nxt, st.over = cur.with_fill(fill_cur), st.cur.emptied(), over.with_fill(fill_over)
 
 
-def run_cycle(st, astar_start, inc) -> None:
+def run_cycle(st, astar, start, inc) -> None:
     """One cycle of ``propNavFn*``: clear the pending flags of the current buffer's cells, update
-    each of them in slot order, then :func:`end_of_cycle`."""
+    each of them in slot order (``updateCellAstar`` toward ``start`` with ``astar``), then
+    :func:`end_of_cycle`."""
     for k in st.loop("clear", st.cur.fill):
         st.pending[st.cur.cell(k)] = False
     for k in st.loop("update", st.cur.fill):
-        update_cell(st, st.cur.cell(k), astar_start)
+        update_cell(st, st.cur.cell(k), astar, start)
     end_of_cycle(st, inc)
 
 
@@ -313,15 +328,14 @@ def propagate(
     """
     D = st.D
     start_cell = start[1] * st.nx + start[0]
-    astar_start = start if astar else None
     if astar:
         st.cur_t = D.add(st.heuristic_between(goal, start), st.cur_t)
     inc = D.int_to_f32(pri_inc)
     check_start = astar or at_start
     cycle, going = 0, True
-    for _ in st.cycle_loop(lambda: D.and_(going, cycle_runs(D, cycle, cycles, st.cur.fill, st.nxt.fill))):
+    while st.next_cycle(D.and_(going, cycle_runs(D, cycle, cycles, st.cur.fill, st.nxt.fill))):
         st.record_cycle(cycle, cycles, trace_hook, record_trace)
-        run_cycle(st, astar_start, inc)
+        run_cycle(st, astar, start, inc)
         going = taken(D, D.not_(D.and_(check_start, call_ends_at_the_start(D, st.potential[start_cell]))))
         cycle = cycle + D.ite(going, 1, 0)  # the `break` leaves the counter where it was
     if astar:
