@@ -22,8 +22,8 @@ from ..spec import propagation as P
 from ..spec.constants import PATH_STEP, PRIORITYBUFSIZE
 from ..spec.extraction import EXIT_GRADIENT_UNDEFINED, EXIT_UNDEFINED, ExtractionExit, exit_code
 from ..spec.planner import path_cycle_limit
-from .jit_state import (CYCLES, DROPPED, NPATH, NTOUCHED, NX, NY, TLEN, UPDATES, clear_gradients, new_trail_work,
-                        new_work, state_of, trail_of)
+from .jit_state import (CYCLES, DROPPED, NPATH, NTOUCHED, NX, NY, TLEN, UPDATES, TrailWork, Work, clear_gradients,
+                        new_trail_work, new_work, state_of, trail_of)
 from .numba_domain import JIT_OPTIONS, jit, jit_inline, numba_domain
 
 # maps up to this many cells keep the A* heuristic of every (dx, dy) offset once computed
@@ -63,6 +63,27 @@ def _uncached_plan_call():
     return njit(**JIT_OPTIONS)(plan_call.py_func)
 
 
+def entry(test):
+    """The compiled planning call with the further-call test ``test`` built in, taking the work
+    arrays one by one: what Python calls per case.  numba types a function argument (several
+    microseconds a call) by the function object, which differs from process to process, so a
+    compilation taking one is never found in the disk cache: NavFn as shipped has an entry of its
+    own, cached; a fix's further-call test compiles in each process (about 5 s)."""
+    return plan_shipped if test is NEVER else _entry(test)
+
+
+@functools.lru_cache(maxsize=None)
+def _entry(test):
+    call = _call_for(test)
+
+    def plan(D, costs, potential, pending, slots, ints, cur_t, trace, memo, watch, newly, sx, sy, gx, gy, astar,
+             cycles, further_cycles, record_trace):
+        work = Work(costs, potential, pending, slots, ints, cur_t, trace, memo, watch, newly)
+        return call(D, work, sx, sy, gx, gy, astar, cycles, test, further_cycles, record_trace)
+
+    return njit(**JIT_OPTIONS)(plan)
+
+
 @jit_inline
 def start_call(st):
     """The counters of a planning call back to zero, no pause pending (``setupNavFn``'s arrays are
@@ -93,6 +114,14 @@ def plan_call(D, work, sx, sy, gx, gy, astar, cycles, further_test, further_cycl
     return call_on(state_of(D, work), sx, sy, gx, gy, astar, cycles, further_test, further_cycles, record_trace)
 
 
+@jit
+def plan_shipped(D, costs, potential, pending, slots, ints, cur_t, trace, memo, watch, newly, sx, sy, gx, gy, astar,
+                 cycles, further_cycles, record_trace):
+    """:func:`call_on` a state of these arrays, no further call (NavFn as shipped)."""
+    st = state_of(D, Work(costs, potential, pending, slots, ints, cur_t, trace, memo, watch, newly))
+    return call_on(st, sx, sy, gx, gy, astar, cycles, NEVER, further_cycles, record_trace)
+
+
 @jit_inline
 def follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, tr):
     """``calcPath(nmax)`` (:func:`navfn_smt.spec.extraction.follow`) into the trail ``tr`` viewing
@@ -112,6 +141,13 @@ def follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, tr):
 def extract_path(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail):
     """:func:`follow_on` a trail viewing ``trail``."""
     return follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, trail_of(D, trail))
+
+
+@jit
+def extract_into(D, pot, nx, ny, sx, sy, gx, gy, nmax, path, gradx, grady, touched, ints):
+    """:func:`extract_path` with the trail's arrays one by one (as Python calls it: numba types a
+    tuple of arrays on every call, at a microsecond)."""
+    return extract_path(D, pot, nx, ny, sx, sy, gx, gy, nmax, TrailWork(path, gradx, grady, touched, ints))
 
 
 class JitPlanner:
@@ -166,8 +202,8 @@ class JitPlanner:
         test = NEVER if further is None else compiled_test(further.test)
         extra = 0 if further is None else further.cycles(self.nx, self.ny)
         while True:
-            reached, self.calls = _call_for(test)(self.D, self.work, start[0], start[1], goal[0], goal[1], astar,
-                                                  cycles, test, extra, record_trace)
+            reached, self.calls = entry(test)(self.D, *self.work, start[0], start[1], goal[0], goal[1], astar, cycles,
+                                              extra, record_trace)
             wanted = int(self.work.ints[TLEN])
             if not record_trace or wanted <= self.work.trace.shape[0]:
                 return bool(reached)
@@ -177,8 +213,8 @@ class JitPlanner:
         """calcPath(nmax) on ``pot`` (default: the state's potentials): (exit code, points in
         :attr:`path`)."""
         self.fit_path(nmax)
-        code = extract_path(self.D, self.pot if pot is None else pot, self.nx, self.ny, start[0], start[1], goal[0],
-                            goal[1], nmax, self.trail)
+        code = extract_into(self.D, self.pot if pot is None else pot, self.nx, self.ny, start[0], start[1], goal[0],
+                            goal[1], nmax, *self.trail)
         return int(code), int(self.trail.ints[NPATH])
 
     def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True, further=None):
