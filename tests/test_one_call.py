@@ -115,8 +115,7 @@ def test_the_jit_compiles_the_specs_call_and_runs_the_fixs_hooks(name):
     # a fresh compilation of the JIT's entry points: every step of the call it compiles is the
     # spec's own function (numba's overload of it has the function itself as implementation)
     planner = J.JitPlanner(add_border(costs))
-    numba.njit(J.plan_call.py_func)(planner.D, planner.work, *s, *g, astar, 100, J.compiled_test(F.calls_again),
-                                     10, True)
+    numba.njit(J.plan_shipped.py_func)(planner.D, *planner.work, *s, *g, astar, 100, 10, True)
     numba.njit(J.extract_path.py_func)(planner.D, planner.pot, planner.nx, planner.ny, *s, *g, 20, planner.trail)
     steps = (PR.init_cost, PR.push_cur, PR.push, PR.admit, PR.update_cell, PR.run_cycle, PR.end_of_cycle,
              PR.propagate, PR.cycle_runs, PR.call_ends_at_the_start, PL.call, E.follow, E.gradient,

@@ -49,20 +49,6 @@ def compiled_test(test):
 NEVER = compiled_test(no_further_call)
 
 
-def _call_for(test):
-    """:func:`plan_call` for a compiled further-call test: cached on disk when the test is the
-    package's (a cache's index names every test it was compiled for, and must be readable by
-    every process), else compiled in this process only."""
-    if test.py_func.__module__.startswith(__package__.split(".")[0] + "."):
-        return plan_call
-    return _uncached_plan_call()
-
-
-@functools.lru_cache(maxsize=None)
-def _uncached_plan_call():
-    return njit(**JIT_OPTIONS)(plan_call.py_func)
-
-
 def entry(test):
     """The compiled planning call with the further-call test ``test`` built in, taking the work
     arrays one by one: what Python calls per case.  numba types a function argument (several
@@ -74,14 +60,12 @@ def entry(test):
 
 @functools.lru_cache(maxsize=None)
 def _entry(test):
-    call = _call_for(test)
-
     def plan(D, costs, potential, pending, slots, ints, cur_t, trace, memo, watch, newly, sx, sy, gx, gy, astar,
              cycles, further_cycles, record_trace):
-        work = Work(costs, potential, pending, slots, ints, cur_t, trace, memo, watch, newly)
-        return call(D, work, sx, sy, gx, gy, astar, cycles, test, further_cycles, record_trace)
+        st = state_of(D, Work(costs, potential, pending, slots, ints, cur_t, trace, memo, watch, newly))
+        return call_on(st, sx, sy, gx, gy, astar, cycles, test, further_cycles, record_trace)
 
-    return njit(**JIT_OPTIONS)(plan)
+    return njit(**JIT_OPTIONS)(plan)  # not cached: see entry
 
 
 @jit_inline
@@ -106,12 +90,6 @@ def call_on(st, sx, sy, gx, gy, astar, cycles, further_test, further_cycles, rec
     start_call(st)
     P.init_cost(st, gx + gy * st.nx)
     return PL.call(st, (sx, sy), (gx, gy), astar, cycles, further_test, further_cycles, True, None, record_trace)
-
-
-@jit
-def plan_call(D, work, sx, sy, gx, gy, astar, cycles, further_test, further_cycles, record_trace):
-    """:func:`call_on` the state of ``work``."""
-    return call_on(state_of(D, work), sx, sy, gx, gy, astar, cycles, further_test, further_cycles, record_trace)
 
 
 @jit

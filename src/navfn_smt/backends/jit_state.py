@@ -65,7 +65,7 @@ def _taken(D, c):
 NINTS = 18
 INT_FIELDS = {"cycles": CYCLES, "updates": UPDATES, "dropped": DROPPED, "tlen": TLEN, "nnew": NNEW, "budget": BUDGET,
               "last_n": LAST_N}
-ROLES = {"cur": ROLE_CUR, "nxt": ROLE_NXT, "over": ROLE_OVER, "last": LAST_ROW}
+ROLES = {"cur": ROLE_CUR, "nxt": ROLE_NXT, "over": ROLE_OVER}
 
 # what a state views, owned by the caller: the costs (border included), potentials, pending
 # flags, the three rows of slots (3, capacity), ``ints``, [curT], the trace, A*'s heuristic per
@@ -83,12 +83,13 @@ def new_work(costs: np.ndarray, nx: int, ny: int, capacity: int, trace: np.ndarr
     buffers ``capacity`` slots wide (at most ``nx * ny`` kept: the pending flags keep a buffer from
     holding more)."""
     ns = nx * ny
+    width = min(capacity, ns)
     ints = np.zeros(NINTS, np.int64)
-    ints[NX], ints[NY], ints[CAPACITY], ints[BUDGET], ints[LAST_N] = nx, ny, min(capacity, ns), -1, -1
+    ints[NX], ints[NY], ints[CAPACITY], ints[BUDGET], ints[LAST_N] = nx, ny, width, -1, -1
     ints[ROLE_CUR], ints[ROLE_NXT], ints[ROLE_OVER] = 0, 1, 2
     none = np.empty(0, np.int64)
-    return Work(costs, np.empty(ns, np.float32), np.zeros(ns, np.bool_), np.zeros((3, min(capacity, ns)), np.int64),
-                ints, np.zeros(1, np.float32), trace, memo, none, none)
+    return Work(costs, np.empty(ns, np.float32), np.zeros(ns, np.bool_), np.zeros((3, width), np.int64), ints,
+                np.zeros(1, np.float32), trace, memo, none, none)
 
 
 def new_trail_work(ns: int, nmax: int) -> TrailWork:

@@ -33,7 +33,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..backends.jit import EXIT_NEAR_GOAL, EXIT_UB, NEVER, extract_path, plan_call, start_call
+from ..backends.jit import EXIT_NEAR_GOAL, EXIT_UB, NEVER, call_on, extract_path, start_call
 from ..backends.jit_state import BUDGET as BUDGET_AT
 from ..backends.jit_state import NPATH as POINTS
 from ..backends.jit_state import CYCLES, NNEW, NX, NY, PAUSED, poke, state_of
@@ -205,6 +205,7 @@ def sweep_astar(D, work, rx, ry, cycles, goals, tcell, nmax, trail, out_i, out_f
     alone (NavFn start its cell, NavFn goal the robot's): the spec's planning call on the state of
     ``work``.  Returns ``pts``."""
     no_memo = np.empty(0, np.int64)
+    st = state_of(D, work)
     pot = work.potential
     nx = work.ints[NX]
     ny = work.ints[NY]
@@ -212,7 +213,7 @@ def sweep_astar(D, work, rx, ry, cycles, goals, tcell, nmax, trail, out_i, out_f
         g = goals[i]
         tx = tcell[g, 0]
         ty = tcell[g, 1]
-        plan_call(D, work, tx, ty, rx, ry, True, cycles, NEVER, 0, False)
+        call_on(st, tx, ty, rx, ry, True, cycles, NEVER, 0, False)
         out_i[g, CYCLE] = work.ints[CYCLES]
         pts = _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, trail, out_i, out_f, pts, sw, keep, tables, no_memo)
     return pts
