@@ -142,7 +142,7 @@ class JitPlanner:
         self.costs = c.ravel()
         ns = self.nx * self.ny
         self.capacity = int(capacity)
-        size = (2 * self.nx - 1) * (2 * self.ny - 1) if memo and ns <= HEURISTIC_MEMO_CELLS else 0
+        size = ns if memo and ns <= HEURISTIC_MEMO_CELLS else 0
         self.work = new_work(self.costs, self.nx, self.ny, self.capacity, np.empty(max(4 * ns, 1 << 12), np.int32),
                              np.full(size, np.nan, np.float32))
         self.pot = self.work.potential  # the potentials, as callers read them after a run

@@ -69,7 +69,7 @@ ROLES = {"cur": ROLE_CUR, "nxt": ROLE_NXT, "over": ROLE_OVER}
 
 # what a state views, owned by the caller: the costs (border included), potentials, pending
 # flags, the three rows of slots (3, capacity), ``ints``, [curT], the trace, A*'s heuristic per
-# offset (NaN: not computed; empty: none kept), the watched cells (empty: none) and the cells
+# offset |dx|, |dy| (nx * ny; NaN: not computed; empty: none kept), the watched cells (empty: none) and the cells
 # reported
 Work = namedtuple("Work", "costs potential pending slots ints cur_t trace memo watch newly")
 # what a trail views: the points (rows of x, y), gradCell's vectors, the cells whose vector was
@@ -288,7 +288,7 @@ def _heuristic(st, n, start):
     ddy = n // nx - start[1]
     if st.n_memo == 0:
         return K.astar_heuristic(st.D, ddx, ddy)
-    i = (ddy + st.ny - 1) * (2 * nx - 1) + ddx + nx - 1
+    i = abs(ddy) * nx + abs(ddx)  # hypot(x, y) is hypot(|x|, |y|) (C11 F.10.4.3): one entry per |offset|
     h = st.p_memo[i]
     if h != h:
         h = K.astar_heuristic(st.D, ddx, ddy)

@@ -265,8 +265,12 @@ def update_cell(st, n, astar: bool = False, start: tuple = (0, 0)) -> None:
     if st.may(changed):  # the pushes want `changed`: where it is false they are no-ops
         key = D.add(new, st.heuristic(n, start)) if astar else new
         low = taken(D, K.to_low_buffer(D, key, st.cur_t))
-        for m, pm in zip(around, (l, r, u, d)):
-            push(st, m, D.and_(changed, K.push_wanted(D, pm, key, st.edge(m))), low)
+        # updateCell's four pushes, written out as in the C++ (a loop over them is a loop, with a
+        # jump table, in compiled code: a tenth of the JIT's planning time)
+        push(st, around[0], D.and_(changed, K.push_wanted(D, l, key, st.edge(around[0]))), low)
+        push(st, around[1], D.and_(changed, K.push_wanted(D, r, key, st.edge(around[1]))), low)
+        push(st, around[2], D.and_(changed, K.push_wanted(D, u, key, st.edge(around[2]))), low)
+        push(st, around[3], D.and_(changed, K.push_wanted(D, d, key, st.edge(around[3]))), low)
 
 
 def end_of_cycle(st, inc) -> None:
