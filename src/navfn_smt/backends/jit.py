@@ -22,8 +22,8 @@ from ..spec import propagation as P
 from ..spec.constants import PATH_STEP, PRIORITYBUFSIZE
 from ..spec.extraction import EXIT_GRADIENT_UNDEFINED, EXIT_UNDEFINED, ExtractionExit, exit_code
 from ..spec.planner import path_cycle_limit
-from .jit_state import (CYCLES, DROPPED, NPATH, NTOUCHED, NX, NY, TLEN, UPDATES, TrailWork, Work, clear_gradients,
-                        new_trail_work, new_work, state_of, trail_of)
+from .jit_state import (CYCLES, DROPPED, NPATH, NTOUCHED, NX, NY, TLEN, UPDATES, TrailWork, Work, cells_of,
+                        clear_gradients, new_trail_work, new_work, state_of, trail_of)
 from .numba_domain import JIT_OPTIONS, jit, jit_inline, numba_domain
 
 # maps up to this many cells keep the A* heuristic of every (dx, dy) offset once computed
@@ -108,7 +108,7 @@ def follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, tr):
     potarr)."""
     trail.ints[NPATH] = 0
     trail.ints[NTOUCHED] = 0
-    code, _ = E.follow(D, pot, nx, ny, (sx, sy), (gx, gy), nmax, PATH_STEP, tr)
+    code, _ = E.follow(D, cells_of(pot), nx, ny, (sx, sy), (gx, gy), nmax, PATH_STEP, tr)
     clear_gradients(D, trail)
     if code == EXIT_GRADIENT_UNDEFINED:
         return EXIT_UB
