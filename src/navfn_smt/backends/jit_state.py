@@ -319,8 +319,9 @@ def _filled(st, array, value):
 def _heuristic(st, n, start):
     """A*'s heuristic from cell ``n`` to the start, kept per offset when the state has a memo."""
     nx = st.nx
-    ddx = n % nx - start[0]
-    ddy = n // nx - start[1]
+    y = np.int64(np.uint64(n) // np.uint64(nx))  # a cell of the map: one unsigned division
+    ddx = n - y * nx - start[0]
+    ddy = y - start[1]
     if st.n_memo == 0:
         return K.astar_heuristic(st.D, ddx, ddy)
     i = abs(ddy) * nx + abs(ddx)  # hypot(x, y) is hypot(|x|, |y|) (C11 F.10.4.3): one entry per |offset|
