@@ -26,8 +26,8 @@ from .jit_state import (CYCLES, DROPPED, NPATH, NTOUCHED, NX, NY, TLEN, UPDATES,
                         clear_gradients, new_trail_work, new_work, state_of, trail_of)
 from .numba_domain import JIT_OPTIONS, jit, jit_inline, numba_domain
 
-# maps up to this many cells keep the A* heuristic of every (dx, dy) offset once computed
-# (a float per offset: 4 * (2nx-1)(2ny-1) bytes, 16 MiB at the limit); larger maps call it
+# maps up to this many cells keep the A* heuristic of every (|dx|, |dy|) offset once computed
+# (a float per offset: 4 * nx * ny bytes, 4 MiB at the limit); larger maps call it
 HEURISTIC_MEMO_CELLS = 1 << 20
 
 # calcPath's exits as the compiled code returns them (spec.extraction.exit_code)
