@@ -43,11 +43,19 @@ class MapPlanner(Protocol):
     def run_batch(self, cases, astar: bool) -> dict: ...
 
 
-class Backend(Protocol):
-    name: str
-    fix: Fix
+class Backend:
+    """A planner implementation, registered by its ``name``: :meth:`prepare` gives its
+    ``map_planner`` for one map, computing in the build's arithmetic ``arith``
+    (spec.arithmetic; None: x86-64's) with the fix ``fix``."""
 
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> MapPlanner: ...
+    name: str
+    map_planner: type
+
+    def __init__(self, arith=None, fix: Fix = AS_SHIPPED):
+        self.arith, self.fix = arith, fix
+
+    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> MapPlanner:
+        return self.map_planner(costs, capacity, self.arith, self.fix)
 
 
 def _capacity(capacity: Optional[int]) -> int:
@@ -102,20 +110,13 @@ def _row(cols: dict, i: int) -> tuple:
     return tuple(cols[k][i] for k in _SCALARS) + (cols["path"][a:b],)
 
 
-_SCALARS = ("start_reached", "start_potential", "cycles", "updates", "dropped", "exit")
+_SCALARS = ("start_reached", "start_potential", "cycles", "updates", "dropped", "exit")  # jit.CASE_SCALARS
 
 
-class ReferenceBackend:
+class ReferenceBackend(Backend):
     """The executable specification itself (plain Python over the concrete domain)."""
 
-    name = "reference"
-
-    def __init__(self, arith=None, fix: Fix = AS_SHIPPED):
-        self.arith = arith  # the build's arithmetic (spec.arithmetic; None: x86-64's)
-        self.fix = fix
-
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> ReferenceMapPlanner:
-        return ReferenceMapPlanner(costs, capacity, self.arith, self.fix)
+    name, map_planner = "reference", ReferenceMapPlanner
 
 
 class JitMapPlanner:
@@ -200,18 +201,11 @@ class JitMapPlanner:
         return _again_where_failed(self, cols, cases, astar)
 
 
-class JitBackend:
+class JitBackend(Backend):
     """The spec's planning call compiled by numba (:mod:`.jit`), with any fix's further call; a
     fix's fallback runs in Python (the spec's) where calcPath returns no path."""
 
-    name = "jit"
-
-    def __init__(self, arith=None, fix: Fix = AS_SHIPPED):
-        self.arith = arith  # the build's arithmetic (spec.arithmetic; None: x86-64's)
-        self.fix = fix
-
-    def prepare(self, costs: np.ndarray, capacity: Optional[int] = None) -> JitMapPlanner:
-        return JitMapPlanner(costs, capacity, self.arith, self.fix)
+    name, map_planner = "jit", JitMapPlanner
 
 
 _BACKENDS: dict[str, type] = {b.name: b for b in (JitBackend, ReferenceBackend)}

@@ -26,10 +26,6 @@ from .jit_state import (CYCLES, DROPPED, NPATH, NTOUCHED, NX, NY, TLEN, UPDATES,
                         clear_gradients, new_trail_work, new_work, state_of, trail_of)
 from .numba_domain import JIT_OPTIONS, jit, jit_inline, numba_domain
 
-# maps up to this many cells keep the A* heuristic of every (|dx|, |dy|) offset once computed
-# (a float per offset: 4 * nx * ny bytes, 4 MiB at the limit); larger maps call it
-HEURISTIC_MEMO_CELLS = 1 << 20
-
 # calcPath's exits as the compiled code returns them (spec.extraction.exit_code)
 EXIT_NEAR_GOAL = exit_code(ExtractionExit.NEAR_GOAL)
 EXIT_UB = EXIT_UNDEFINED  # either read outside potarr
@@ -108,7 +104,7 @@ def follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, tr):
     potarr)."""
     trail.ints[NPATH] = 0
     trail.ints[NTOUCHED] = 0
-    code, _ = E.follow(D, cells_of(pot), nx, ny, (sx, sy), (gx, gy), nmax, PATH_STEP, tr)
+    code, _ = E.follow(D, cells_of(D, pot), nx, ny, (sx, sy), (gx, gy), nmax, PATH_STEP, tr)
     clear_gradients(D, trail)
     if code == EXIT_GRADIENT_UNDEFINED:
         return EXIT_UB
@@ -132,19 +128,17 @@ class JitPlanner:
     """Work arrays for one map size, reused across the cases of a map; ``capacity`` bounds
     each priority buffer (PRIORITYBUFSIZE, as in C++, unless given); ``arith``: the build's
     :class:`~navfn_smt.spec.arithmetic.Arithmetic` it computes in (None: x86-64's), carried to the
-    compiled code as its numeric domain ``D``; ``memo``: keep A*'s heuristic per offset (maps up
-    to :data:`HEURISTIC_MEMO_CELLS` cells; it assumes cells on the map)."""
+    compiled code as its numeric domain ``D``; A*'s heuristic is kept per offset once computed."""
 
-    def __init__(self, costs_with_border: np.ndarray, capacity: int = PRIORITYBUFSIZE, arith=None, memo: bool = True):
+    def __init__(self, costs_with_border: np.ndarray, capacity: int = PRIORITYBUFSIZE, arith=None):
         self.D = numba_domain(arith)
         c = np.ascontiguousarray(costs_with_border, dtype=np.uint8)
         self.ny, self.nx = c.shape
         self.costs = c.ravel()
         ns = self.nx * self.ny
         self.capacity = int(capacity)
-        size = ns if memo and ns <= HEURISTIC_MEMO_CELLS else 0
         self.work = new_work(self.costs, self.nx, self.ny, self.capacity, np.empty(max(4 * ns, 1 << 12), np.int32),
-                             np.full(size, np.nan, np.float32))
+                             np.full((self.nx + 1) * (self.ny + 1), np.nan, np.float32))
         self.pot = self.work.potential  # the potentials, as callers read them after a run
         self.calls = 0
         self.trail = new_trail_work(ns, path_cycle_limit(self.nx))
@@ -234,18 +228,15 @@ def plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, reached, 
         path_off[i + 1] = off
 
 
+# the scalar output columns of plan_cases_into, one entry a case (backends._SCALARS names them too)
+CASE_SCALARS = {"start_reached": np.bool_, "start_potential": np.float32, "cycles": np.int64, "updates": np.int64,
+                "dropped": np.int64, "exit": np.int64}
+
+
 def case_columns(n: int, path_cycles: int) -> dict:
     """Zeroed output columns of :func:`plan_cases_into` for ``n`` cases, in its argument order."""
-    return {
-        "start_reached": np.zeros(n, np.bool_),
-        "start_potential": np.zeros(n, np.float32),
-        "cycles": np.zeros(n, np.int64),
-        "updates": np.zeros(n, np.int64),
-        "dropped": np.zeros(n, np.int64),
-        "exit": np.zeros(n, np.int64),
-        "path_offsets": np.zeros(n + 1, np.int64),
-        "path": np.zeros((n * (path_cycles + 1), 2), np.float32),
-    }
+    return {**{k: np.zeros(n, t) for k, t in CASE_SCALARS.items()}, "path_offsets": np.zeros(n + 1, np.int64),
+            "path": np.zeros((n * (path_cycles + 1), 2), np.float32)}
 
 
 def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int, path_cycles: int) -> dict:

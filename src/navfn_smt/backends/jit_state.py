@@ -70,8 +70,8 @@ ROLES = {"cur": ROLE_CUR, "nxt": ROLE_NXT, "over": ROLE_OVER}
 
 # what a state views, owned by the caller: the costs (border included), potentials, pending
 # flags, the three rows of slots (3, capacity), ``ints``, [curT], the trace, A*'s heuristic per
-# offset |dx|, |dy| (nx * ny; NaN: not computed; empty: none kept), the watched cells (empty: none) and the cells
-# reported
+# offset |dx|, |dy| ((nx + 1) * (ny + 1); NaN: not computed), the watched cells (empty: none) and
+# the cells reported
 Work = namedtuple("Work", "costs potential pending slots ints cur_t trace memo watch newly")
 # what a trail views: the points (rows of x, y), gradCell's vectors, the cells whose vector was
 # written, and [npath, cells written]
@@ -127,42 +127,18 @@ BUFFER = BufferType()
 _I64 = types.CPointer(types.int64)
 
 
-class CellsType(types.Type):
-    """An array read by cell index through its data pointer (``cells[i]``): what calcPath reads the
-    potentials through, a value without a reference count (an array passed to a step pays an
-    update of its count per call, and gradCell is four calls a point)."""
-
-    def __init__(self, dtype):
-        self.dtype = dtype
-        super().__init__(name=f"Cells[{dtype}]")
+class CellsType(ViewType):
+    """A view of one array (:class:`Cells`) read by index, ``cells[i]``: what calcPath reads the
+    potentials through (an array passed to a step pays a reference-count update per call, and
+    gradCell is four calls a point)."""
 
 
-register_model(CellsType)(lambda dmm, fe_type: models.StructModel(dmm, fe_type, [
-    ("p", types.CPointer(fe_type.dtype)), ("n", types.int64)]))
-make_attribute_wrapper(CellsType, "p", "p")
-
-
-@overload(operator.getitem, jit_options=JIT_OPTIONS)
-def _cell(cells, i):
-    if isinstance(cells, CellsType) and isinstance(i, types.Integer):
-        return lambda cells, i: cells.p[i]
-
-
-@intrinsic
-def cells_of(typingctx, array):
-    """The cells of a one-dimensional array, which must outlive them."""
-
-    def codegen(context, builder, sig, args):
-        a = cgutils.create_struct_proxy(sig.args[0])(context, builder, value=args[0])
-        c = cgutils.create_struct_proxy(sig.return_type)(context, builder)
-        c.p, c.n = a.data, builder.extract_value(a.shape, 0)
-        return c._getvalue()
-
-    return CellsType(array.dtype)(array), codegen
+Cells = namedtuple("Cells", "a")
 
 
 @register_model(StateType)
 @register_model(TrailType)
+@register_model(CellsType)
 class _ViewModel(models.StructModel):
     def __init__(self, dmm, fe_type):
         arrays = zip(fe_type.work.instance_class._fields, fe_type.work.types)
@@ -174,7 +150,7 @@ class _ViewModel(models.StructModel):
 
 register_model(BufferType)(lambda dmm, fe_type: models.StructModel(dmm, fe_type, [
     ("p_slots", _I64), ("capacity", types.int64), ("p_ints", _I64), ("row", types.int64)]))
-for _typ, _work in ((StateType, Work), (TrailType, TrailWork)):
+for _typ, _work in ((StateType, Work), (TrailType, TrailWork), (CellsType, Cells)):
     for _name in ("D", "nx", "ny", "capacity", *(f"{k}_{f}" for f in _work._fields for k in "pn")):
         make_attribute_wrapper(_typ, _name, _name)
 for _name in ("p_slots", "capacity", "p_ints", "row"):
@@ -201,7 +177,9 @@ def _view(view_class):
     return intrinsic(typer)
 
 
-_state, _trail = _view(StateType), _view(TrailType)
+_state, _trail, _cells = _view(StateType), _view(TrailType), _view(CellsType)
+overload(operator.getitem, jit_options=JIT_OPTIONS)(
+    lambda cells, i: (lambda cells, i: cells.p_a[i]) if isinstance(cells, CellsType) else None)
 
 
 @intrinsic
@@ -219,6 +197,12 @@ def state_of(D, work):
     """The state viewing ``work`` (a :class:`Work`), computing in the domain ``D``; the arrays must
     outlive it (a compiled entry point makes it from its arguments)."""
     return _state(D, work, work.ints[NX], work.ints[NY], work.ints[CAPACITY])
+
+
+@jit_inline
+def cells_of(D, array):
+    """The cells of a one-dimensional ``array``, which must outlive them."""
+    return _cells(D, Cells(array), 0, 0, 0)
 
 
 @jit_inline
@@ -311,20 +295,19 @@ _methods(BufferType, cell=lambda b, k: b.p_slots[b.row * b.capacity + k], append
 # -------------------------------------------------------------------------- state's methods
 def _filled(st, array, value):
     """``array`` with every cell ``value``, written in place."""
-    for i in range(array.shape[0]):
-        array[i] = value
+    array[:] = value
     return array
 
 
 def _heuristic(st, n, start):
-    """A*'s heuristic from cell ``n`` to the start, kept per offset when the state has a memo."""
+    """A*'s heuristic from cell ``n`` to the start, kept per offset ``|dx|, |dy|`` (hypot(x, y) is
+    hypot(|x|, |y|), C11 F.10.4.3) up to a start one past the map's edge."""
     nx = st.nx
-    y = np.int64(np.uint64(n) // np.uint64(nx))  # a cell of the map: one unsigned division
-    ddx = n - y * nx - start[0]
-    ddy = y - start[1]
-    if st.n_memo == 0:
+    y = np.int64(np.uint64(n) // np.uint64(nx))  # one unsigned division: a cell of the map
+    ddx, ddy = n - y * nx - start[0], y - start[1]
+    if abs(ddx) > nx or abs(ddy) > st.ny:
         return K.astar_heuristic(st.D, ddx, ddy)
-    i = abs(ddy) * nx + abs(ddx)  # hypot(x, y) is hypot(|x|, |y|) (C11 F.10.4.3): one entry per |offset|
+    i = abs(ddy) * (nx + 1) + abs(ddx)
     h = st.p_memo[i]
     if h != h:
         h = K.astar_heuristic(st.D, ddx, ddy)

@@ -617,8 +617,7 @@ def _propagate(run: PluginRun, navfn_start: tuple[int, int], navfn_goal: tuple[i
 def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend: str = "jit",
                    fix: Fix = AS_SHIPPED) -> None:
     """Propagation with a cell one past the edge, its coordinates as they are: the spec's planning
-    call (:func:`~navfn_smt.spec.planner.calc_navfn`), on the reference spec or compiled (the JIT,
-    without its heuristic memo, which assumes cells on the map)."""
+    call (:func:`~navfn_smt.spec.planner.calc_navfn`), on the reference spec or compiled."""
     from ..spec.planner import calc_navfn
     from ..spec.propagation import setup
 
@@ -626,7 +625,7 @@ def _propagate_raw(run: PluginRun, navfn_start, navfn_goal, astar: bool, backend
     if backend == "jit":
         from ..backends.jit import JitPlanner
 
-        planner = JitPlanner(add_border(run.costs), arith=run.arith.navfn, memo=False)
+        planner = JitPlanner(add_border(run.costs), arith=run.arith.navfn)
         run.reached = planner.propagate(navfn_start, navfn_goal, astar, run.cycle_limit, False, fix.further)
         run.potential = planner.pot.reshape(ny, nx).copy()
         run.cycles, _, run.dropped, _ = planner.counts()
