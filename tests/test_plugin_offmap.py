@@ -107,3 +107,29 @@ def test_costmap_world_to_map_cast_out_of_range_is_undefined():
     assert create_plan(m, Pose(far, 0.11), Pose(0.11, 0.16)).error == "UndefinedBehaviour"
     assert create_plan(m, Pose(math.inf, 0.11), Pose(0.11, 0.16)).error == "UndefinedBehaviour"
     assert create_plan(m, Pose(math.nan, 0.11), Pose(0.11, 0.16)).error == "UndefinedBehaviour"
+
+
+
+
+def test_astar_from_one_past_the_edge_is_the_same_on_both_backends():
+    # A* from a NavFn start one past the right edge (x = nx), on the JIT with the heuristic memo an
+    # earlier plan of the map filled (a start in the first column), against the reference spec,
+    # which computes every heuristic anew: potentials, return value and trace (the heuristic
+    # chooses each push's buffer)
+    from navfn_smt.backends.jit import JitPlanner
+    from navfn_smt.spec.costs import add_border
+    from navfn_smt.spec.planner import calc_navfn
+    from navfn_smt.spec.propagation import cycle_limit, setup
+
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        ny, nx = (int(v) for v in rng.integers(4, 14, size=2))
+        costs = add_border(np.where(rng.random((ny, nx)) < 0.15, 254, rng.integers(0, 254, (ny, nx))).astype(np.uint8))
+        jit = JitPlanner(costs)
+        goal = (int(rng.integers(0, nx)), int(rng.integers(0, ny)))
+        for start in ((0, int(rng.integers(0, ny))), (nx, int(rng.integers(0, ny - 1)))):
+            st = setup(costs.ravel().tolist(), nx, ny, goal)
+            reached, _ = calc_navfn(st, start, goal, True)
+            got = jit.propagate(start, goal, True, cycle_limit(nx, ny), True)
+            want = (np.float32(st.potential).tobytes(), bool(reached), st.trace)
+            assert (jit.pot.tobytes(), got, jit.trace[:jit.counts()[3]].tolist()) == want, (nx, ny, start, goal)
