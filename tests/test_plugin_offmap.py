@@ -109,13 +109,12 @@ def test_costmap_world_to_map_cast_out_of_range_is_undefined():
     assert create_plan(m, Pose(math.nan, 0.11), Pose(0.11, 0.16)).error == "UndefinedBehaviour"
 
 
-
-
 def test_astar_from_one_past_the_edge_is_the_same_on_both_backends():
     # A* from a NavFn start one past the right edge (x = nx), on the JIT with the heuristic memo an
-    # earlier plan of the map filled (a start in the first column), against the reference spec,
-    # which computes every heuristic anew: potentials, return value and trace (the heuristic
-    # chooses each push's buffer)
+    # earlier plan of the map filled (a start in the first column), against the reference spec
+    # (its own heuristic table, keyed by the signed offset): potentials, return value and trace
+    # (the heuristic chooses each push's buffer).  A consistency test of the off-map path, which
+    # the JIT's memo now serves; the lethal border keeps every updated cell's |dx| below nx
     from navfn_smt.backends.jit import JitPlanner
     from navfn_smt.spec.costs import add_border
     from navfn_smt.spec.planner import calc_navfn
