@@ -85,32 +85,32 @@ class ReferenceMapPlanner:
 
     def run_batch(self, cases, astar: bool) -> dict:
         """The columns of :func:`.jit.run_cases`, planned one case at a time by the spec."""
-        return _columns([self.run((sx, sy), (gx, gy), astar, trace=False)
+        return _columns([_row_of(self.run((sx, sy), (gx, gy), astar, trace=False))
                          for sx, sy, gx, gy in np.asarray(cases).reshape(-1, 4).tolist()])
 
 
-def _columns(results: list) -> dict:
-    """Plan results as the columns of :func:`.jit.run_cases`."""
-    offsets = np.cumsum([0] + [len(r.path) for r in results])
-    return {
-        "start_reached": np.array([r.start_reached for r in results], np.bool_),
-        "start_potential": np.array([r.start_potential for r in results], np.float32),
-        "cycles": np.array([r.cycles for r in results], np.int64),
-        "updates": np.array([r.updates for r in results], np.int64),
-        "dropped": np.array([r.dropped for r in results], np.int64),
-        "exit": np.array([list(ExtractionExit).index(r.exit) for r in results], np.int64),
-        "path_offsets": offsets.astype(np.int64),
-        "path": np.concatenate([r.path for r in results] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2),
-    }
+# the scalar columns of a batch (as jit.case_columns makes them), one entry a case
+_SCALARS = {"start_reached": np.bool_, "start_potential": np.float32, "cycles": np.int64, "updates": np.int64,
+            "dropped": np.int64, "exit": np.int64}
+
+
+def _row_of(r: PlanResult) -> tuple:
+    """A plan's row: its scalar fields, then its path."""
+    return r.start_reached, r.start_potential, r.cycles, r.updates, r.dropped, EXIT_CODES.index(r.exit), r.path
 
 
 def _row(cols: dict, i: int) -> tuple:
-    """Row ``i`` of the columns: its scalar fields and its path."""
+    """Row ``i`` of the columns."""
     a, b = cols["path_offsets"][i], cols["path_offsets"][i + 1]
     return tuple(cols[k][i] for k in _SCALARS) + (cols["path"][a:b],)
 
 
-_SCALARS = ("start_reached", "start_potential", "cycles", "updates", "dropped", "exit")  # jit.CASE_SCALARS
+def _columns(rows: list) -> dict:
+    """Rows as the columns of :func:`.jit.run_cases`."""
+    out = {k: np.array([row[j] for row in rows], t) for j, (k, t) in enumerate(_SCALARS.items())}
+    out["path_offsets"] = np.cumsum([0] + [len(row[-1]) for row in rows]).astype(np.int64)
+    out["path"] = np.concatenate([row[-1] for row in rows] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2)
+    return out
 
 
 class ReferenceBackend(Backend):
@@ -224,12 +224,8 @@ def _again_where_failed(planner, cols: dict, cases: np.ndarray, astar: bool) -> 
     rows = [_row(cols, i) for i in range(len(cases))]
     for i in failed.tolist():
         sx, sy, gx, gy = cases[i].tolist()
-        r = planner.run((sx, sy), (gx, gy), astar, trace=False)
-        rows[i] = (r.start_reached, r.start_potential, r.cycles, r.updates, r.dropped, EXIT_CODES.index(r.exit), r.path)
-    out = {k: np.array([row[j] for row in rows], cols[k].dtype) for j, k in enumerate(_SCALARS)}
-    out["path_offsets"] = np.cumsum([0] + [len(row[-1]) for row in rows]).astype(np.int64)
-    out["path"] = np.concatenate([row[-1] for row in rows] or [np.zeros((0, 2), np.float32)]).reshape(-1, 2)
-    return out
+        rows[i] = _row_of(planner.run((sx, sy), (gx, gy), astar, trace=False))
+    return _columns(rows)
 
 
 def get_backend(name: str, planner=None) -> Backend:
