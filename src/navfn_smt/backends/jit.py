@@ -189,12 +189,6 @@ class JitPlanner:
                             goal[1], nmax, *self.trail)
         return int(code), int(self.trail.ints[NPATH])
 
-    def run(self, start, goal, astar: bool, cycles: int, path_cycles: int, record_trace: bool = True, further=None):
-        """Plan one case: (start reached, exit code, points)."""
-        reached = self.propagate(start, goal, astar, cycles, record_trace, further)
-        code, npath = self.extract(start, goal, path_cycles)
-        return reached, code, npath
-
 
 @jit
 def plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, reached, start_pot, ncycles, nupdates, ndropped,
@@ -240,7 +234,8 @@ def case_columns(n: int, path_cycles: int) -> dict:
 
 
 def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int, path_cycles: int) -> dict:
-    """Batch form of :meth:`JitPlanner.run` for benchmarks and bulk planning (no traces)."""
+    """Plan ``cases`` (rows of sx, sy, gx, gy) on the planner's map in one call, as shipped (no
+    traces): the columns of :func:`case_columns`, the path cut to its points."""
     cases = np.ascontiguousarray(cases, dtype=np.int64).reshape(-1, 4)
     out = case_columns(cases.shape[0], path_cycles)
     planner.fit_path(path_cycles)
