@@ -116,7 +116,7 @@ def test_the_jit_compiles_the_specs_call_and_runs_the_fixs_hooks(name):
     # spec's own function (numba's overload of it has the function itself as implementation)
     planner = J.JitPlanner(add_border(costs))
     numba.njit(J.plan_shipped.py_func)(planner.D, *planner.work, *s, *g, astar, 100, 10, True)
-    numba.njit(J.extract_path.py_func)(planner.D, planner.pot, planner.nx, planner.ny, *s, *g, 20, planner.trail)
+    numba.njit(J.extract_path.py_func)(planner.D, planner.pot, planner.nx, planner.ny, *s, *g, 20, planner.trail, False)
     steps = (PR.init_cost, PR.push_cur, PR.push, PR.admit, PR.update_cell, PR.run_cycle, PR.end_of_cycle,
              PR.propagate, PR.cycle_runs, PR.call_ends_at_the_start, PL.call, E.follow, E.gradient,
              E.iteration_test, E.follows_the_grid, E.grid_step, E.zero_gradient)

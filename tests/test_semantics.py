@@ -938,7 +938,7 @@ def test_calc_path_gradcell_reads_past_potarr_is_undefined(start):
     from navfn_smt.backends.jit_state import new_trail_work
     from navfn_smt.backends.numba_domain import ND
 
-    code = J.extract_path(ND, np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10, new_trail_work(25, 10))
+    code = J.extract_path(ND, np.array(pot, np.float32), 5, 5, start[0], start[1], 2, 2, 10, new_trail_work(25, 10), False)
     assert code == J.EXIT_UB
 
 

@@ -164,7 +164,7 @@ class JitMapPlanner:
         returns no path: (exit, path, whether the fallback gave it)."""
         from . import jit as J
 
-        code, npath = self.work.extract(start, goal, n, pot)
+        code, npath = self.work.extract(start, goal, n, pot, self.fix.inclusive)
         if code == J.EXIT_UB:
             raise UndefinedBehaviour("calcPath reads outside the potential array")
         exit_ = EXIT_CODES[code]
@@ -195,7 +195,8 @@ class JitMapPlanner:
         if off.any():
             sx, sy, gx, gy = cases[int(np.argmax(off))].tolist()
             check_inputs(self.costs, (sx, sy), (gx, gy))
-        cols = run_cases(self.work, cases, astar, self.fix.first_cycles(self.nx, self.ny), self.path_cycles)
+        cols = run_cases(self.work, cases, astar, self.fix.first_cycles(self.nx, self.ny), self.path_cycles,
+                         self.fix.inclusive)
         if self.fix.further is None and self.fix.fallback is None:
             return cols
         return _again_where_failed(self, cols, cases, astar)

@@ -97,14 +97,14 @@ def plan_shipped(D, costs, potential, pending, slots, ints, cur_t, trace, memo, 
 
 
 @jit_inline
-def follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, tr):
+def follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, tr, inclusive):
     """``calcPath(nmax)`` (:func:`navfn_smt.spec.extraction.follow`) into the trail ``tr`` viewing
     ``trail`` (a :class:`~.jit_state.TrailWork` of ``nmax + 1`` points at least); the gradient
     arrays are left all zero again.  Returns the exit code (:data:`EXIT_UB` for a read outside
-    potarr)."""
+    potarr); ``inclusive``: the near-goal test reads ``<=`` (a candidate fix's)."""
     trail.ints[NPATH] = 0
     trail.ints[NTOUCHED] = 0
-    code, _ = E.follow(D, cells_of(D, pot), nx, ny, (sx, sy), (gx, gy), nmax, PATH_STEP, tr)
+    code, _ = E.follow(D, cells_of(D, pot), nx, ny, (sx, sy), (gx, gy), nmax, PATH_STEP, tr, inclusive)
     clear_gradients(D, trail)
     if code == EXIT_GRADIENT_UNDEFINED:
         return EXIT_UB
@@ -112,16 +112,17 @@ def follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, tr):
 
 
 @jit
-def extract_path(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail):
+def extract_path(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, inclusive):
     """:func:`follow_on` a trail viewing ``trail``."""
-    return follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, trail_of(D, trail))
+    return follow_on(D, pot, nx, ny, sx, sy, gx, gy, nmax, trail, trail_of(D, trail), inclusive)
 
 
 @jit
-def extract_into(D, pot, nx, ny, sx, sy, gx, gy, nmax, path, gradx, grady, touched, ints):
+def extract_into(D, pot, nx, ny, sx, sy, gx, gy, nmax, inclusive, path, gradx, grady, touched, ints):
     """:func:`extract_path` with the trail's arrays one by one (as Python calls it: numba types a
     tuple of arrays on every call, at a microsecond)."""
-    return extract_path(D, pot, nx, ny, sx, sy, gx, gy, nmax, TrailWork(path, gradx, grady, touched, ints))
+    return extract_path(D, pot, nx, ny, sx, sy, gx, gy, nmax, TrailWork(path, gradx, grady, touched, ints),
+                        inclusive)
 
 
 class JitPlanner:
@@ -181,18 +182,18 @@ class JitPlanner:
                 return bool(reached)
             self.work = self.work._replace(trace=np.empty(wanted * 2, np.int32))
 
-    def extract(self, start, goal, nmax: int, pot=None) -> tuple[int, int]:
+    def extract(self, start, goal, nmax: int, pot=None, inclusive: bool = False) -> tuple[int, int]:
         """calcPath(nmax) on ``pot`` (default: the state's potentials): (exit code, points in
-        :attr:`path`)."""
+        :attr:`path`); ``inclusive``: the near-goal test reads ``<=``."""
         self.fit_path(nmax)
         code = extract_into(self.D, self.pot if pot is None else pot, self.nx, self.ny, start[0], start[1], goal[0],
-                            goal[1], nmax, *self.trail)
+                            goal[1], nmax, inclusive, *self.trail)
         return int(code), int(self.trail.ints[NPATH])
 
 
 @jit
-def plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, reached, start_pot, ncycles, nupdates, ndropped,
-                    exits, path_off, path_pts):
+def plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, inclusive, reached, start_pot, ncycles, nupdates,
+                    ndropped, exits, path_off, path_pts):
     """Plan every case of one map (``work.costs``) in one call, as shipped (no trace); results go
     to the output arrays.  ``trail`` holds ``path_cycles + 1`` points at least; ``path_pts`` must
     hold ``len(cases) * (path_cycles + 1)``; case ``i``'s path is
@@ -211,7 +212,7 @@ def plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, reached, 
         ncycles[i] = work.ints[CYCLES]
         nupdates[i] = work.ints[UPDATES]
         ndropped[i] = work.ints[DROPPED]
-        code = follow_on(D, work.potential, nx, ny, sx, sy, gx, gy, path_cycles, trail, tr)
+        code = follow_on(D, work.potential, nx, ny, sx, sy, gx, gy, path_cycles, trail, tr, inclusive)
         exits[i] = code
         if code == EXIT_NEAR_GOAL:
             npath = trail.ints[NPATH]
@@ -233,12 +234,14 @@ def case_columns(n: int, path_cycles: int) -> dict:
             "path": np.zeros((n * (path_cycles + 1), 2), np.float32)}
 
 
-def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int, path_cycles: int) -> dict:
-    """Plan ``cases`` (rows of sx, sy, gx, gy) on the planner's map in one call, as shipped (no
-    traces): the columns of :func:`case_columns`, the path cut to its points."""
+def run_cases(planner: "JitPlanner", cases: np.ndarray, astar: bool, cycles: int, path_cycles: int,
+              inclusive: bool = False) -> dict:
+    """Plan ``cases`` (rows of sx, sy, gx, gy) on the planner's map in one call, no further call
+    nor fallback (no traces; ``inclusive``: calcPath's near-goal test reads ``<=``): the columns
+    of :func:`case_columns`, the path cut to its points."""
     cases = np.ascontiguousarray(cases, dtype=np.int64).reshape(-1, 4)
     out = case_columns(cases.shape[0], path_cycles)
     planner.fit_path(path_cycles)
-    plan_cases_into(planner.D, planner.work, planner.trail, cases, astar, cycles, path_cycles, *out.values())
+    plan_cases_into(planner.D, planner.work, planner.trail, cases, astar, cycles, path_cycles, inclusive, *out.values())
     out["path"] = out["path"][: out["path_offsets"][-1]]
     return out

@@ -43,7 +43,8 @@ from .numba_domain import JIT_OPTIONS, NumbaDomainType, jit, jit_inline, returni
 # the spec's steps, callable from compiled code as they are (their globals resolve to these)
 SPEC_STEPS = (P.init_cost, P.admit, P.push_cur, P.push, P.update_neighbours, P.update_cell, P.end_of_cycle,
               P.run_cycle, P.cycle_runs, P.call_ends_at_the_start, P.propagate, PL.call, E.follow, E.gradient,
-              E.iteration_test, E.oscillates, E.follows_the_grid, E.zero_gradient, E.grid_step, E.goal_point)
+              E.near_goal_test, E.iteration_test, E.oscillates, E.follows_the_grid, E.zero_gradient, E.grid_step,
+              E.goal_point)
 # inlined where called: a call per update cost a quarter of the loop's time, one per gradCell about 15% of calcPath's
 INLINED = (P.update_cell, E.gradient)
 for _fn in SPEC_STEPS:

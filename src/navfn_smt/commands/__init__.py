@@ -7,4 +7,4 @@ name below, never a longer ``cli.py``.
 
 COMMANDS = ("plan", "difftest", "render", "metamorphic", "coverage", "suite", "prove", "mutate", "bench", "check",
             "search", "diagnose", "docs", "split", "oracle", "ci", "nav2_benchmark", "plugin_check", "path_quality",
-            "planner_tester")
+            "planner_tester", "fixes")

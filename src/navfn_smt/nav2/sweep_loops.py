@@ -118,7 +118,7 @@ def _finish_goal(D, pot, nx, ny, g, tx, ty, rx, ry, nmax, trail, out_i, out_f, p
             out_f[g, LENGTH] = out_f[h, LENGTH]
             return pts
         memo_cell[by * nx + bx] = g
-    code = extract_path(D, pot, nx, ny, bx, by, rx, ry, nmax, trail)
+    code = extract_path(D, pot, nx, ny, bx, by, rx, ry, nmax, trail, False)
     npath = trail.ints[POINTS]
     buf = trail.path
     out_i[g, EXIT] = code

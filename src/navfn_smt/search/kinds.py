@@ -25,7 +25,7 @@ from ..check import properties as P
 from ..maps.regions import reaches_all, regions
 from ..spec import extraction as _extraction
 from ..spec import kernels as _kernels
-from ..spec.constants import INT_MAX, INT_MIN, POT_HIGH
+from ..spec.constants import COST_NEUTRAL, INT_MAX, INT_MIN, POT_HIGH
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour, exit_code
 from ..spec.planner import path_cycle_limit
 from ..spec.propagation import cycle_limit
@@ -175,6 +175,42 @@ def _judge_incomplete(r: P.Run) -> Optional[dict]:
     return {"reason": why, "exit": r.exit, "start_potential": float(r.start_potential)}
 
 
+FAR = 500.0  # far-trap: the least start potential, ten free cells from the goal
+TRAP_FLOOR = 4 * COST_NEUTRAL  # far-trap: the gradient stays four free cells or more from the goal
+
+
+class _Cells:
+    """The cell of each iteration of a calcPath (a :class:`~navfn_smt.spec.extraction.Watch`)."""
+
+    def __init__(self):
+        self.cells: list[int] = []
+
+    def iteration(self, i, stc, dx, dy, xs, ys) -> None:
+        self.cells.append(int(stc))
+
+    def fallback(self, i, oscillation) -> None:
+        pass
+
+
+def _judge_far_trap(r: P.Run) -> Optional[dict]:
+    if P.complete(r) is None or r.exit != ExtractionExit.EXHAUSTED.value or r.start_potential < FAR:
+        return None
+    if not (P.passable(r.costs, r.start) and P.passable(r.costs, r.goal)):
+        return None
+    ny, nx = r.costs.shape
+    watch = _Cells()
+    _extraction.calc_path(r.potential.ravel().tolist(), nx, ny, r.start, r.goal, path_cycle_limit(nx), watch=watch)
+    pot = r.potential.ravel()
+    lowest = float(min(pot[c] for c in watch.cells))
+    if lowest < TRAP_FLOOR:
+        return None
+    loop = sorted(set(watch.cells[len(watch.cells) // 2:]))
+    return {"reason": f"the start's potential is {float(r.start_potential):g}, yet following the gradient circles "
+            f"cells {loop} (potentials {float(min(pot[loop])):g} to {float(max(pot[loop])):g}) until calcPath's "
+            f"{path_cycle_limit(nx)} iterations run out", "start_potential": float(r.start_potential),
+            "lowest_potential": lowest, "loop": loop}
+
+
 def _judge_unreached(r: P.Run) -> Optional[dict]:
     why = P.start_reached(r)
     if why is None:
@@ -227,6 +263,14 @@ def _screen_cost(b: Batch) -> np.ndarray:
 
 def _screen_incomplete(b: Batch) -> np.ndarray:
     return (b.finite() & (b.out["exit"] != exit_code(ExtractionExit.NEAR_GOAL))).astype(np.float64)
+
+
+def _screen_far_trap(b: Batch) -> np.ndarray:
+    far = b.finite() & (np.asarray(b.out["start_potential"], np.float32) >= np.float32(FAR))
+    ny, nx = b.costs.shape
+    cells = b.costs.ravel()
+    ends = (cells[b.cases[:, 1] * nx + b.cases[:, 0]] < 254) & (cells[b.cases[:, 3] * nx + b.cases[:, 2]] < 254)
+    return (far & ends & (b.out["exit"] == exit_code(ExtractionExit.EXHAUSTED))).astype(np.float64)
 
 
 def _screen_unreached(b: Batch) -> np.ndarray:
@@ -296,6 +340,11 @@ KINDS = {k.name: k for k in (
     Kind("incomplete", "the start's potential is finite (< 1e10) but calcPath returns no path "
          "(properties 'complete'); the detail names calcPath's exit",
          _judge_incomplete, _screen_incomplete),
+    Kind("far-trap", f"a gradient trap far from the goal (Nav2 #4655's shape): the start's potential is at least "
+         f"{FAR:g} and finite, start and goal passable, calcPath runs out of its 4*nx iterations (exit exhausted), and the cells the "
+         f"gradient visits all have potentials of at least {TRAP_FLOOR} (so it circles away from the goal's "
+         f"neighbourhood, where an inclusive near-goal test could stop it)",
+         _judge_far_trap, _screen_far_trap),
     Kind("unreached", "the start is 4-connected to the goal through passable cells (properties.connected) but "
          "its potential is still unreached (1e10) when propagation stops (properties 'start-reached')",
          _judge_unreached, _screen_unreached, guide=_guide_unreached),

@@ -90,8 +90,8 @@ def _best_gap(D, work, trail, cases, astar, cycles, path_cycles, reached, start_
     """The cost screen of the map ``work`` plans on (its costs view the candidate) on ``cases``:
     the largest gap (0 when none is positive) and the first case that has it, as ``np.argmax``
     of ``kinds._screen_cost`` picks it."""
-    plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, reached, start_pot, ncycles, nupdates, ndropped,
-                    exits, path_off, path_pts)
+    plan_cases_into(D, work, trail, cases, astar, cycles, path_cycles, False, reached, start_pot, ncycles, nupdates,
+                    ndropped, exits, path_off, path_pts)
     n = cases.shape[0]
     g, _ = gaps(work.costs, work.ints[NX], work.ints[NY], path_pts[: path_off[n]], path_off[: n + 1])
     best, at = 0, 0

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Optional, Protocol
 
 from . import kernels as K
-from .constants import PATH_STEP
+from .constants import COST_NEUTRAL, PATH_STEP
 from .numeric import CONCRETE as _D, taken
 
 
@@ -95,17 +95,23 @@ def ring_leaves_the_array(D, stc, nx, ns):
     return D.or_(D.lt(D.add_int(stc, -nx - 1), 0), D.le(ns, D.add_int(stc, nx + 1)))
 
 
-def iteration_test(D, pot, stc, dx, dy, nx, ns):
+def near_goal_test(D, pot, inclusive=False):
+    """calcPath's near-goal test (:func:`~.kernels.near_goal`), or with ``inclusive`` a candidate
+    fix's ``potarr[...] <= COST_NEUTRAL`` (``spec/candidates.py``)."""
+    return D.le(pot, D.f32const(COST_NEUTRAL)) if inclusive else K.near_goal(D, pot)
+
+
+def iteration_test(D, pot, stc, dx, dy, nx, ns, inclusive=False):
     """calcPath's tests at the top of an iteration, before it writes a point: the exit's
     :func:`exit_code` (``NEAR_GOAL``: the near-goal probe reads a potential below
     COST_NEUTRAL; ``OUT_OF_BOUNDS``: :func:`off_the_rows`), :data:`EXIT_UNDEFINED`
     (:func:`ring_leaves_the_array`) or :data:`ITERATION_GOES_ON`.  ``pot[i]`` is
     ``potarr[i]`` (a list, the JIT's array, or an SMT array in ``proofs/calcpath.py``); cells are
-    the domain's ints."""
+    the domain's ints; ``inclusive``: :func:`near_goal_test`'s."""
     near = K.nearest_cell(D, stc, dx, dy, nx, ns)
     code = D.ite(ring_leaves_the_array(D, stc, nx, ns), EXIT_UNDEFINED, ITERATION_GOES_ON)
     code = D.ite(off_the_rows(D, stc, nx, ns), _OUT_OF_BOUNDS, code)
-    return D.ite(K.near_goal(D, pot[near]), _NEAR_GOAL, code)
+    return D.ite(near_goal_test(D, pot[near], inclusive), _NEAR_GOAL, code)
 
 
 def oscillates(D, px, py, qx, qy):
@@ -213,10 +219,11 @@ def gradient(D, pot, trail, m, nx, ns):
     return trail.vector(m)
 
 
-def follow(D, pot, nx, ny, start, goal, n, path_step, trail):
+def follow(D, pot, nx, ny, start, goal, n, path_step, trail, inclusive=False):
     """The loop of ``calcPath(n)``: follow the gradient of ``pot`` from ``start``, writing the
-    points to ``trail``.  Returns (the exit's :func:`exit_code`, or :data:`EXIT_UNDEFINED` for a
-    read outside potarr; the cell ``stc`` at the exit)."""
+    points to ``trail`` (``inclusive``: :func:`iteration_test`'s).  Returns (the exit's
+    :func:`exit_code`, or :data:`EXIT_UNDEFINED` for a read outside potarr; the cell ``stc`` at
+    the exit)."""
     ns = nx * ny
     zero = D.f32const(0.0)
     step = D.f32const(path_step)
@@ -225,7 +232,7 @@ def follow(D, pot, nx, ny, start, goal, n, path_step, trail):
     dy = zero
     for i in range(n):
         trail.iteration(i, stc, dx, dy)
-        code = iteration_test(D, pot, stc, dx, dy, nx, ns)
+        code = iteration_test(D, pot, stc, dx, dy, nx, ns, inclusive)
         if code == _NEAR_GOAL:
             gx, gy = goal_point(D, goal)
             trail.append(gx, gy)
@@ -271,16 +278,18 @@ def calc_path(
     watch: Optional[Watch] = None,
     arith=None,
     domain=None,
+    inclusive: bool = False,
 ) -> Extraction:
     """``calcPath(n)`` on a propagated potential (``potential[i]`` is ``potarr[i]``: float32
     values), by :func:`follow` on a :class:`Trail`; ``watch`` is told each iteration and each
     grid-following step; ``arith``: the build's :class:`~.arithmetic.Arithmetic` (default
     x86-64's); ``domain``: the numeric domain to run in instead (its tests go through
     :func:`~.numeric.taken`: the check's encoding runs this function in its concolic domain).
-    A read outside potarr, which C++ leaves undefined, raises :class:`UndefinedBehaviour`."""
+    ``inclusive``: the near-goal test reads ``<=`` (a candidate fix's).  A read outside potarr,
+    which C++ leaves undefined, raises :class:`UndefinedBehaviour`."""
     D = domain if domain is not None else _D if arith is None else _D.with_arithmetic(arith)
     trail = Trail(watch)
-    code, stc = follow(D, potential, nx, ny, start, goal, n, path_step, trail)
+    code, stc = follow(D, potential, nx, ny, start, goal, n, path_step, trail, inclusive)
     if code == EXIT_UNDEFINED:
         raise UndefinedBehaviour(f"calcPath reads outside the potential array around cell {stc}")
     if code == EXIT_GRADIENT_UNDEFINED:

@@ -122,7 +122,14 @@ def descend(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
         stc = nxt
 
 
-FIX = Fix("fixed", "with the fix of docs/fix.md: propagate on once past the cycle limit, descend the potential "
-          "where calcPath fails", patches="navfn-fix", further=FurtherCall(calls_again, extra_cycles),
+PROPAGATION = Fix("propagation", "the fix's first half alone (the first pull request): propagate on once past the "
+                  "cycle limit while the start is unreached", patches="navfn-propagation",
+                  further=FurtherCall(calls_again, extra_cycles),
+                  proved=(("start-reached", ("ConnectedStartReached",)),))
+DESCENT = Fix("descent", "the fix's second half alone (the second pull request): descend the potential where "
+              "calcPath fails", patches="navfn-descent", fallback=Fallback(descend),
+              proved=(("complete", ("DescentPath",)),))
+FIX = Fix("fixed", "with the fix of docs/fix.md, both pull requests: propagate on once past the cycle limit, "
+          "descend the potential where calcPath fails", patches="navfn-fix", further=FurtherCall(calls_again, extra_cycles),
           fallback=Fallback(descend),
           proved=(("complete", ("DescentPath",)), ("start-reached", ("ConnectedStartReached",))))

@@ -6,14 +6,15 @@ and nothing else in the package names one."""
 from __future__ import annotations
 
 from ..errors import NavfnInputError
-from . import cycles_only, fix
+from . import candidates, cycles_only, fix
 from .planner import AS_SHIPPED, Fix
 
 __all__ = ["AS_SHIPPED", "DEFAULT", "FIXES", "HELP", "NAMES", "PATCHED", "named"]
 
-FIXES: dict[str, Fix] = {f.name: f for f in (AS_SHIPPED, fix.FIX, cycles_only.FIX)}
+FIXES: dict[str, Fix] = {f.name: f for f in (AS_SHIPPED, fix.FIX, cycles_only.FIX, fix.PROPAGATION, fix.DESCENT,
+                                              candidates.INCLUSIVE, candidates.RESUME)}
 NAMES = tuple(FIXES)
-PATCHED = tuple(f for f in FIXES.values() if not f.shipped)
+PATCHED = tuple(f for f in FIXES.values() if f.patches is not None)  # those with a C++ patch
 DEFAULT = AS_SHIPPED
 HELP = "; ".join(f"{f.name}: {f.summary}" for f in FIXES.values()) + f"; default: {DEFAULT.name}"
 

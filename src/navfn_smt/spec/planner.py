@@ -53,10 +53,10 @@ class Fix:
     """NavFn as shipped (no hook) or changed by a patch of ``navfn.cpp``, stated as hooks of the
     planning call: ``cycles(nx, ny)``, the cycles ``calcNavFn*`` gives its ``propNavFn*`` call;
     ``further``, a :class:`FurtherCall`; ``fallback``, a :class:`Fallback` where ``calcPath(n)``
-    returns no path; ``proved``, the
+    returns no path; ``inclusive``, calcPath's near-goal test made ``<=``; ``proved``, the
     properties of ``check`` its proofs carry for every map size.  ``name`` is how the
     command line and reports name it; ``patches``: the folder of ``patches/`` holding its
-    ``<distribution>.patch`` (None: NavFn as shipped)."""
+    ``<distribution>.patch`` (None: no C++ patch, a candidate compared in the spec only)."""
 
     name: str
     summary: str
@@ -64,12 +64,13 @@ class Fix:
     cycles: Callable[[int, int], int] = cycle_limit
     further: Optional[FurtherCall] = None
     fallback: Optional[Fallback] = None
+    inclusive: bool = False  # calcPath's near-goal test reads potarr <= COST_NEUTRAL, not <
     proved: tuple = ()  # (property of check, the predicates of proofs/ that carry it for every map size) pairs
 
     @property
     def shipped(self) -> bool:
-        """NavFn as Nav2 ships it (no patch)."""
-        return self.patches is None
+        """NavFn as Nav2 ships it (no hook)."""
+        return self == AS_SHIPPED
 
     def first_cycles(self, nx: int, ny: int, cycles: Optional[int] = None) -> int:
         """The first call's cycles: ``cycles`` when a caller replaces the budget, else the fix's."""
@@ -115,7 +116,7 @@ def extract(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tup
     """``calcPath(n)`` and, where it returns no path, the fix's fallback: the extraction, and
     whether the fallback gave the path.  ``domain``: the numeric domain to run in (default: the
     concrete one in ``arith``, the build's arithmetic)."""
-    ext = calc_path(potential, nx, ny, start, goal, n, arith=arith, domain=domain)
+    ext = calc_path(potential, nx, ny, start, goal, n, arith=arith, domain=domain, inclusive=fix.inclusive)
     if fix.fallback is None or ext.exit is ExtractionExit.NEAR_GOAL:
         return ext, False
     ext = fix.fallback.walk(potential, nx, ny, start, goal, n, *(() if domain is None else (domain,)))
