@@ -13,20 +13,24 @@ from conftest import DISTROS
 
 # what Nav2's tests say today, per distribution: (program, case) -> (original, fixed).  Rolling's
 # and Lyrical's test_max_cycles (Nav2 #6308) expects calcPath(1) == 0 on a free 20x20 map: the
-# fix's descent keeps calcPath's budget, so it passes patched too (it failed with the descent of
-# the patch's first revision, which ignored the budget).  The patch's own tests (test_navfn_fix)
-# (test_navfn_fix on NavFn, test_navfn_planner_fix on the planner plugin with a stubbed node)
-# fail as shipped where the fix acts, and pass patched; the disconnected start is a guard (no
-# path either way, and the fix's propagation ends).
+# descent keeps calcPath's budget, so it passes patched too.  The tests the two pull requests add
+# (patches/navfn-propagation/: test_navfn_propagation_limit on NavFn and
+# test_navfn_planner_propagation_limit on the planner plugin with a stubbed node;
+# patches/navfn-descent/: test_navfn_descent) all fail as shipped and pass patched.
 DYNAMIC = ("test_dynamic_parameters", "NavfnTest.testDynamicParameter")
 MAX_CYCLES = ("test_max_cycles", "NavFnMaxCyclesTest.PathExtractionRespectsCycleLimit")
-FIX_TESTS = {("test_navfn_fix", "NavFnFixTest.AstarPlansWhereTheGradientFails"): ("failed", "passed"),
-             ("test_navfn_fix", "NavFnFixTest.DijkstraReachesTheEndOfALongCorridor"): ("failed", "passed"),
-             ("test_navfn_fix", "NavFnFixTest.DisconnectedStartGivesNoPath"): ("passed", "passed"),
-             ("test_navfn_fix", "NavFnFixTest.DescentKeepsCalcPathsBudget"): ("failed", "passed"),
-             ("test_navfn_planner_fix", "NavfnPlannerFixTest.PlansTheLengthOfALongCorridor"): ("failed", "passed")}
+PROPAGATION = "test_navfn_propagation_limit"
+PLUGIN = "test_navfn_planner_propagation_limit"
+DESCENT = "test_navfn_descent"
+FIX_TESTS = {(PROPAGATION, "NavFnPropagationLimitTest.DijkstraReachesTheStartAtTheEndOfALongCorridor"): ("failed", "passed"),
+             (PROPAGATION, "NavFnPropagationLimitTest.AstarReachesTheStartAtTheEndOfALongCorridor"): ("failed", "passed"),
+             (PLUGIN, "NavfnPlannerPropagationLimitTest.PlansTheLengthOfALongCorridor"): ("failed", "passed"),
+             (PLUGIN, "NavfnPlannerPropagationLimitTest.PlanWithToleranceEndsAtTheGoalNotAcrossTheWall"): ("failed", "passed"),
+             (DESCENT, "NavFnDescentTest.DijkstraPlansWhereTheGradientCirclesBesideTheGoal"): ("failed", "passed"),
+             (DESCENT, "NavFnDescentTest.AstarPlansWhereTheGradientFailsNearTheGoal"): ("failed", "passed"),
+             (DESCENT, "NavFnDescentTest.DescentKeepsCalcPathsBudget"): ("failed", "passed")}
 # the further propagation call polls the cancel checker (Jazzy on: Humble's NavFn takes none)
-CANCEL = {("test_navfn_fix", "NavFnFixTest.FurtherPropagationHonoursTheCancelChecker"): ("failed", "passed")}
+CANCEL = {(PROPAGATION, "NavFnPropagationLimitTest.FurtherPropagationStopsWhenCancelled"): ("failed", "passed")}
 KNOWN = {d: {DYNAMIC: ("passed", "passed"), **({MAX_CYCLES: ("passed", "passed")} if d in ("lyrical", "rolling") else {}),
              **FIX_TESTS, **(CANCEL if d != "humble" else {})} for d in DISTROS}
 
@@ -52,16 +56,16 @@ def test_nav2s_own_tests_pass_as_shipped_and_say_what_the_fix_changes(builds, tm
     for r in doc["results"]:
         got.setdefault((r["program"], r["case"]), {})[r["variant"]] = r["status"]
     assert {k: (v["original"], v["fixed"]) for k, v in got.items()} == KNOWN[distro]
-    assert doc["programs"]["test_navfn_fix"]["from"] == "the fix's patch"
-    assert doc["programs"]["test_navfn_planner_fix"] == {"sources": ["test_navfn_planner_fix.cpp"], "plugin": True,
-                                                         "from": "the fix's patch", "fix": "fixed"}
+    assert doc["programs"][PROPAGATION]["from"] == doc["programs"][DESCENT]["from"] == "the fix's patch"
+    assert doc["programs"][PLUGIN] == {"sources": [f"{PLUGIN}.cpp"], "plugin": True, "from": "the fix's patch",
+                                       "fix": "fixed"}
     assert doc["programs"][DYNAMIC[0]]["from"] == "the sources"
     # a failure counts only where a pass is due: the patch's tests as shipped do not
     assert rc == 0
     assert doc["distribution"] == distro and doc["fix_patch"]["file"] == f"{distro}.patch"
     out = capsys.readouterr().out
     fixes = sum(1 for k in KNOWN[distro] if k[0].startswith("test_navfn"))
-    assert f"the fix's own tests as shipped: {fixes - 1} of {fixes} fail" in out  # all but the disconnected start
+    assert f"the fix's own tests as shipped: {fixes} of {fixes} fail" in out
     if distro in ("lyrical", "rolling"):
         assert ("| test_max_cycles | the sources | NavFnMaxCyclesTest.PathExtractionRespectsCycleLimit | passed | passed |"
                 in out)
@@ -118,8 +122,7 @@ def test_the_fix_adds_no_finding_of_nav2s_linters(nav2_src, distro):
     doc = lint_fix(nav2_src / distro)
     assert [(r["file"].rsplit("/", 1)[1], r["tool"]) for r in doc["files"]] == [
         ("navfn.hpp", "uncrustify"), ("navfn.hpp", "cpplint"), ("navfn.cpp", "uncrustify"), ("navfn.cpp", "cpplint"),
-        ("test_navfn_fix.cpp", "uncrustify"), ("test_navfn_fix.cpp", "cpplint"),  # the patch's tests: all their own
-        ("test_navfn_planner_fix.cpp", "uncrustify"), ("test_navfn_planner_fix.cpp", "cpplint")]
+        *((f"{t}.cpp", tool) for t in (DESCENT, PLUGIN, PROPAGATION) for tool in ("uncrustify", "cpplint"))]
     assert all(r["added"] == [] for r in doc["files"]), doc["files"]
 
 

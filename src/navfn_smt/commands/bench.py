@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..errors import NavfnInputError
-from .common import MODE_HELP, TARGET_HELP, check_files, planner_of, suite_or_example
+from .common import MODE_HELP, TARGET_HELP, check_files, planner_of, suite_or_example, with_patch
 
 
 def cmd_bench(args) -> int:
@@ -103,7 +103,7 @@ def _fix_of(args):
     """The fix ``--variant`` names (:mod:`navfn_smt.spec.fixes`)."""
     from ..spec import fixes
 
-    return fixes.named(args.variant)
+    return with_patch(fixes.named(args.variant), "bench")
 
 
 def register(sub) -> None:

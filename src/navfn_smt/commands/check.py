@@ -115,6 +115,11 @@ def cmd_check(args) -> int:
             print(f"  condition: {c}")
         for k in ind["contradicted"]:
             print(f"CONTRADICTION: {k} decided against what is known")
+    from ..spec.fix import FIX
+    from ..spec.fixes import GUARANTEE
+
+    if planner.fix == FIX and induction:
+        print(f"the guarantee (docs/fix.md): {GUARANTEE}")
     if skipped:
         print(f"sizes not reached within --budget {args.budget:g} s: " + ", ".join(f"{w}x{h}" for w, h in skipped))
     for n, path in saved.items():

@@ -97,6 +97,15 @@ def add_planner_arguments(parser, arithmetic: bool = True, variant_help: str = "
         parser.add_argument("--oracle", metavar="DIR", help=oracle_help)
 
 
+def with_patch(fix, command: str):
+    """``fix`` when the C++ can be built with it (NavFn as shipped, or a fix with patches); a
+    clear error for a candidate stated in the spec alone."""
+    if not fix.shipped and fix.patches is None:
+        raise NavfnInputError(f"{command} --variant {fix.name}: this candidate has no C++ patch, so no build plans "
+                              f"as it does (it is compared in the spec alone: navfn-smt fixes)")
+    return fix
+
+
 def planner_of(args, variant=None):
     """The planner under test (:class:`~navfn_smt.under_test.PlannerUnderTest`) a command's
     options name, made once: ``--variant`` (or ``variant``), ``--target NAME`` or ``--oracle DIR``

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from ..errors import NavfnInputError
-from .common import BACKEND_HELP, MODE_HELP, add_planner_arguments, check_files, planner_of, suite_or_example
+from .common import BACKEND_HELP, MODE_HELP, add_planner_arguments, check_files, planner_of, suite_or_example, with_patch
 
 
 def cmd_difftest(args) -> int:
@@ -16,7 +16,7 @@ def cmd_difftest(args) -> int:
     from ..spec import fixes
 
     check_files(args.json)
-    fix = fixes.named(args.variant)
+    fix = with_patch(fixes.named(args.variant), "difftest")
     if not fix.shipped and args.level == "costmap":
         raise NavfnInputError("--variant is for NavFn and the planner plugin; a fix does not touch the costmap")
     if args.level != "navfn":

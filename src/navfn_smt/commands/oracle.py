@@ -135,7 +135,8 @@ def register(sub) -> None:
                         "shipped).")
     _sources_argument(t)
     t.add_argument("--out", metavar="DIR", default=DEFAULT_TESTS_OUT, help="the build folder (default: %(default)s)")
-    t.add_argument("--variant", choices=(*fixes.NAMES, *_variant_groups()), default="both",
+    t.add_argument("--variant", choices=(fixes.AS_SHIPPED.name, *(f.name for f in fixes.PATCHED), *_variant_groups()),
+                   default="both",
                    help=f"NavFn as shipped ({fixes.AS_SHIPPED.name}), with one fix's patch (patches/<fix>/: "
                    f"{', '.join(f'{f.name}: patches/{f.patches}/' for f in fixes.PATCHED)}), both ({fixes.AS_SHIPPED.name} "
                    f"and {THE_FIX.name}) or all (default: %(default)s)")

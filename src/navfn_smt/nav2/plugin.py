@@ -31,7 +31,8 @@ for the robot or the goal; the equal-positions case first looks up the start's c
 empty path when lethal); a failed plan is a WARN and an empty path (``error == "EmptyPath"``).
 Its ``smoothApproachToGoal`` lacks the same-position branch.  ``max_cycles_factor`` is Rolling's
 alone (the others run ``4 * max(size_x, size_y)`` cycles), and so is the WARN of Rolling's
-``calcPath`` when it runs out of cycles.  The log (:attr:`PluginRun.lines`)
+``calcPath`` when it runs out of cycles (a fix's fallback keeps it: the gradient logs it, then
+the fallback runs).  The log (:attr:`PluginRun.lines`)
 holds every WARN and ERROR line in order, as Nav2 prints them.
 
 Where the C++ has undefined behaviour (an index past an array, a signed overflow) the result
@@ -41,7 +42,7 @@ says so (``error == "UndefinedBehaviour"``) instead of guessing.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import numpy as np
@@ -68,8 +69,6 @@ GOAL_OFF_MAP = "The goal sent to the planner is off the global costmap. Planning
 UNIQUE_POSE_LETHAL = "Failed to create a unique pose path because of obstacles"
 
 
-# the patched calcPath's one WARN (patches/navfn-fix/): neither calcPathGradient nor the descent found a path
-FIXED_NO_PATH_WARNING = "[PathCalc] No path: neither the gradient nor the descent reached the goal"
 
 
 def flavour_of(name: str) -> Distro:
@@ -546,12 +545,11 @@ def get_plan_from_potential(cm: Costmap, pose: Pose, params: PlannerParams, run:
     try:
         planner = get_backend(backend, PlannerUnderTest(params.fix, run.arith.navfn)).prepare(run.costs)
         run.extraction, path = planner.extract(run.potential, cell, run.robot_cell, n)
-        if params.fix.fallback is not None:
-            # the patched calcPath: calcPathGradient (its exhaustion logged at DEBUG only), then
-            # calcPathDescent, and one WARN when that fails too
-            if run.extraction is not ExtractionExit.NEAR_GOAL:
-                run.lines.append((WARN, FIXED_NO_PATH_WARNING))
-        elif run.extraction is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
+        gradient = run.extraction
+        if params.fix.fallback is not None:  # calcPath's gradient as shipped first, its log unchanged
+            alone = PlannerUnderTest(replace(params.fix, fallback=None), run.arith.navfn)
+            gradient, _ = get_backend(backend, alone).prepare(run.costs).extract(run.potential, cell, run.robot_cell, n)
+        if gradient is ExtractionExit.EXHAUSTED and flavour_of(params.distro).exhausted_warning:
             run.lines.append((WARN, f"[PathCalc] Path extraction exhausted: npath = {max(n, 0)}, max_cycles = {n}"))
     except UndefinedBehaviour as e:
         _fail(run, "UndefinedBehaviour", str(e))

@@ -6,7 +6,7 @@
   4-neighbours on free space) without reading a potential below it; this stops there.  A one
   character patch (``patches/navfn-inclusive/``); it does nothing for a trap away from the goal.
 * ``resume``: where the gradient fails, keep its points up to the cell where it got stuck (the
-  first cell it comes back to after leaving it, else the cell where it stopped) and descend the
+  last cell it had not visited before: from there it only circles cells it knows) and descend the
   potential from there (:func:`.fix.descend`), the whole path within calcPath's ``n`` points.  No
   C++ patch: compared in the spec only.
 """
@@ -37,14 +37,15 @@ class _Cells:
 
 
 def stuck_at(cells: list[int]) -> int:
-    """The iteration at which the gradient first entered the cell it later comes back to after
-    leaving it (the loop's entry), else the last iteration; -1 for no iteration."""
-    seen: dict[int, int] = {}
+    """The iteration at which the gradient entered the last cell it had not visited before: from
+    there on it only comes back to cells it knows (-1 for no iteration)."""
+    seen: set[int] = set()
+    last = -1
     for i, c in enumerate(cells):
-        if c in seen and cells[i - 1] != c:
-            return seen[c]
-        seen.setdefault(c, i)
-    return len(cells) - 1
+        if c not in seen:
+            seen.add(c)
+            last = i
+    return last
 
 
 def resume(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tuple[int, int], n: int,
