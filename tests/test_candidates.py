@@ -99,7 +99,7 @@ def test_resume_keeps_the_gradients_points_before_it_got_stuck():
     costs, s, g = _trap()
     ny, nx = costs.shape
     r = plan(costs, s, g, False)
-    watch = C._Cells()
+    watch = C.CellWatch()
     from navfn_smt.spec.extraction import calc_path
 
     calc_path(r.potential.ravel().tolist(), nx, ny, s, g, 4 * nx, watch=watch)

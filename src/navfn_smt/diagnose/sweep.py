@@ -295,11 +295,12 @@ def sweep(cm: Costmap, start: Pose, params: PlannerParams = PlannerParams(),
         res.path_length[p] = out_f[p, S.LENGTH] * cm.resolution
     offsets = out_i[:, S.PATH_OFF].copy()
     pts = pts[:st[S.NPTS]] if keep_paths else None
-    if not params.fix.shipped:  # the compiled loops plan as the original; a fix acts only where it fails
-        # (each registered fix changes the propagation only where the first call leaves the start
-        # unreached with cells buffered, and calcPath only where it returns no path)
+    if not params.fix.shipped:  # the compiled loops plan as the original
+        # a fix's further call and fallback act only where the first call leaves the start
+        # unreached with cells buffered and where calcPath returns no path; an inclusive
+        # near-goal test may change any path, so then every goal is planned alone
         failed = [_CODE[o] for o in ("ok_tolerance", "no_legal", "legal_no_plan")]
-        fallback += [k for k in planned.tolist() if res.outcome[k] in failed]
+        fallback += [k for k in planned.tolist() if params.fix.inclusive or res.outcome[k] in failed]
     if fallback:
         pts, offsets = _plan_alone(cm, start, params, res, fallback, pts, offsets, keep_paths, report, G - len(fallback))
     if keep_paths:

@@ -25,6 +25,7 @@ from ..check import properties as P
 from ..maps.regions import reaches_all, regions
 from ..spec import extraction as _extraction
 from ..spec import kernels as _kernels
+from ..spec.candidates import CellWatch
 from ..spec.constants import COST_NEUTRAL, INT_MAX, INT_MIN, POT_HIGH
 from ..spec.extraction import ExtractionExit, UndefinedBehaviour, exit_code
 from ..spec.planner import path_cycle_limit
@@ -179,26 +180,13 @@ FAR = 500.0  # far-trap: the least start potential, ten free cells from the goal
 TRAP_FLOOR = 4 * COST_NEUTRAL  # far-trap: the gradient stays four free cells or more from the goal
 
 
-class _Cells:
-    """The cell of each iteration of a calcPath (a :class:`~navfn_smt.spec.extraction.Watch`)."""
-
-    def __init__(self):
-        self.cells: list[int] = []
-
-    def iteration(self, i, stc, dx, dy, xs, ys) -> None:
-        self.cells.append(int(stc))
-
-    def fallback(self, i, oscillation) -> None:
-        pass
-
-
 def _judge_far_trap(r: P.Run) -> Optional[dict]:
     if P.complete(r) is None or r.exit != ExtractionExit.EXHAUSTED.value or r.start_potential < FAR:
         return None
     if not (P.passable(r.costs, r.start) and P.passable(r.costs, r.goal)):
         return None
     ny, nx = r.costs.shape
-    watch = _Cells()
+    watch = CellWatch()
     _extraction.calc_path(r.potential.ravel().tolist(), nx, ny, r.start, r.goal, path_cycle_limit(nx), watch=watch)
     pot = r.potential.ravel()
     lowest = float(min(pot[c] for c in watch.cells))

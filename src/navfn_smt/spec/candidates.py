@@ -19,7 +19,7 @@ from .numeric import CONCRETE
 from .planner import Fallback, Fix
 
 
-class _Cells:
+class CellWatch:
     """The cell ``stc`` of each iteration of a calcPath, and its points (a
     :class:`~.extraction.Watch`); iteration ``i`` writes point ``i``."""
 
@@ -53,7 +53,7 @@ def resume(potential: list, nx: int, ny: int, start: tuple[int, int], goal: tupl
     """The ``resume`` candidate's fallback: the gradient's points before the iteration
     :func:`stuck_at` names, then :func:`.fix.descend` from that iteration's cell with the points
     left of ``n``."""
-    watch = _Cells()
+    watch = CellWatch()
     ext = calc_path(potential, nx, ny, start, goal, n, watch=watch, domain=D)
     at = stuck_at(watch.cells)
     if at < 0 or ext.exit is ExtractionExit.HIGH_POTENTIAL:
