@@ -230,3 +230,37 @@ def test_the_two_pull_requests_apply_alone_and_in_turn_and_make_the_fix(nav2_src
     for patch in (one, two, both):
         text = patch.read_text().lower()
         assert "navfn-smt" not in text and "navfn_smt" not in text and "generated with the assistance of ai" in text
+
+
+# --------------------------------------------------------------------------- evidence where the fix acts
+@pytest.mark.fast
+def test_the_check_counts_the_control_paths_that_take_each_branch_of_the_fix():
+    """fix_branches plans each explored path's seed map again: on the far trap's map the fallback
+    gives the path, on a corridor the further call runs, and NavFn as shipped takes neither."""
+    from types import SimpleNamespace
+
+    from navfn_smt.check.bounded import Case
+    from navfn_smt.check.encoding import interior
+    from navfn_smt.check.runner import fix_branches
+    from navfn_smt.under_test import FIXED
+
+    costs, s, g = _trap()
+    ny, nx = costs.shape
+    lethal = frozenset(k for k in interior(nx, ny) if costs.flat[k] == 254)
+    case = Case(nx, ny, lethal, s, g, False)
+    seed = [int(costs.flat[k]) for k in interior(nx, ny) if k not in lethal]
+    cr = SimpleNamespace(case=case, log=[[seed, None, "", ""], [seed, None, "", ""]])
+    assert fix_branches(cr, FIXED) == {"paths": 2, "further_call": 0, "fallback_path": 2}
+    # a U-shaped corridor of 27 cells on a 15x5 map: the wave needs 26 cycles, the limit is 20
+    w, h = 15, 5
+    maze = np.full((h, w), 254, np.uint8)
+    maze[1, 1:w - 1] = 50
+    maze[2, w - 2] = 50
+    maze[3, 1:w - 1] = 50
+    lethal = frozenset(k for k in interior(w, h) if maze.flat[k] == 254)
+    case = Case(w, h, lethal, (1, 3), (1, 1), False)
+    seed = [50] * (len(interior(w, h)) - len(lethal))
+    got = fix_branches(SimpleNamespace(case=case, log=[[seed, None, "", ""]]), FIXED)
+    assert got["further_call"] == 1, got
+    shipped = fix_branches(SimpleNamespace(case=case, log=[[seed, None, "", ""]]), PlannerUnderTest())
+    assert shipped == {"paths": 1, "further_call": 0, "fallback_path": 0}

@@ -77,6 +77,9 @@ class SizeResult:
     counterexample: Optional[dict] = None
     unknown_cases: list = field(default_factory=list)
     method: str = "exploration"  # or "induction: P (fp32 status)": decided for every map of the size without exploring
+    # with a fix: of the explored control paths, those on which its further call ran and those
+    # whose path its fallback gave (each path's seed map planned again on the spec)
+    fix_paths: Optional[dict] = None
 
 
 SLOWEST = 10  # explored cases a size's report lists with their times
@@ -232,12 +235,37 @@ def _collect(batches, out: dict, todo: list, progress, planner: PlannerUnderTest
             certificate.append([case_key(cr.case), w, cr.log])
 
 
+def fix_branches(cr, planner: PlannerUnderTest) -> dict:
+    """Of the explored case ``cr``'s control paths, how many took each branch of ``planner``'s
+    fix: each path's seed map (its log's first entry, the passable interior cells' costs) planned
+    on the spec, whose fix's parts that acted (:func:`~navfn_smt.spec.planner.acted`) are the
+    path's, the branches being the same for every map of the path."""
+    from ..spec.planner import plan
+    from .encoding import interior
+
+    case = cr.case
+    inner = [k for k in interior(case.nx, case.ny) if k not in case.lethal]
+    out = {"paths": 0, "further_call": 0, "fallback_path": 0}
+    for seed, *_ in cr.log:
+        run = plan(case.costs_array(dict(zip(inner, seed))), case.start, case.goal, case.astar, record_trace=False,
+                   fix=planner.fix, arith=planner.navfn_arithmetic())
+        parts = run.extra.get("fix", [])
+        out["paths"] += 1
+        out["further_call"] += "propagation" in parts
+        out["fallback_path"] += "descent" in parts
+    return out
+
+
 def _fold(cr, out: dict, planner: PlannerUnderTest = ORIGINAL, weight: int = 1) -> None:
     """One explored case's results added to ``out``, counting the ``weight`` enumerated cases it
-    stands for (the counterexample replayed on the spec first)."""
+    stands for (the counterexample replayed on the spec first); with a fix, the control paths
+    that took its branches (:func:`fix_branches`)."""
     case = cr.case
+    branches = None if planner.fix.shipped else fix_branches(cr, planner)
     for name, pr in cr.results.items():
         r = out[name]
+        if branches is not None:
+            r.fix_paths = {k: (r.fix_paths or {}).get(k, 0) + v for k, v in branches.items()}
         r.paths += cr.paths
         r.case_seconds += cr.seconds
         r.queries += pr.queries + cr.flip_queries - cr.cached_unsat - cr.sampled_sat

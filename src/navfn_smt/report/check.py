@@ -107,19 +107,33 @@ def row(r) -> dict:
         "unknown_cases": r.unknown_cases[:20],
         "counterexample": r.counterexample, "seconds": round(r.seconds, 2),
         "case_seconds": round(r.case_seconds, 2), "cases_from_journal": r.from_journal,
+        **({"fix_branches": r.fix_paths} if r.fix_paths is not None else {}),
     }
+
+
+def _acted(branches) -> str:
+    """How many explored control paths took the fix's branches; none: the verdict is no evidence
+    for the fix at that size."""
+    if not branches:
+        return "-"
+    text = f"{branches['further_call']}, {branches['fallback_path']} of {branches['paths']} paths"
+    if branches["further_call"] == branches["fallback_path"] == 0:
+        text += ": never, so no evidence for the fix here"
+    return text
 
 
 def table(results: list) -> None:
     t = Table(title="check: whole-planner properties over every map of a size")
-    for col in ("property", "size", "status", "cases", "explored", "paths", "queries", "time", "counterexample"):
+    fixed = any(r.fix_paths is not None for r in results)
+    for col in ("property", "size", "status", "cases", "explored", "paths", "queries", "time", "counterexample",
+                *(("the fix acted (further call, fallback path)",) if fixed else ())):
         t.add_column(col)
     for r in results:
         cx = r.counterexample
         what = (f"{cx['mode']} start {tuple(cx['start'])} goal {tuple(cx['goal'])}: {cx['reason']}" if cx else "")
         t.add_row(r.property, f"{r.size[0]}x{r.size[1]}", verdict_text(r.status, r.method), str(r.cases), str(r.representatives), str(r.paths), str(r.queries),
                   f"{r.seconds:.1f} s" + (f" ({r.from_journal} cases journaled before)" if r.from_journal else ""),
-                  what)
+                  what, *((_acted(r.fix_paths),) if fixed else ()))
     _console.print(t)
 
 
