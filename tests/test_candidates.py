@@ -264,3 +264,27 @@ def test_the_check_counts_the_control_paths_that_take_each_branch_of_the_fix():
     assert got["further_call"] == 1, got
     shipped = fix_branches(SimpleNamespace(case=case, log=[[seed, None, "", ""]]), PlannerUnderTest())
     assert shipped == {"paths": 1, "further_call": 0, "fallback_path": 0}
+
+
+@pytest.mark.fast
+def test_the_comparison_reads_nav2s_test_reports_and_refuses_what_is_not_one(tmp_path, capsys):
+    report = {"distribution": "rolling", "variants": ["original", "propagation"],
+              "programs": {"own": {"from": "the sources"}, "added": {"from": "the fix's patch", "fix": "propagation"}},
+              "results": [{"program": "own", "case": "A.a", "variant": "original", "status": "passed"},
+                          {"program": "own", "case": "A.a", "variant": "propagation", "status": "passed"},
+                          {"program": "added", "case": "B.b", "variant": "original", "status": "failed"},
+                          {"program": "added", "case": "B.b", "variant": "propagation", "status": "failed"}]}
+    good = tmp_path / "r.json"
+    good.write_text(json.dumps(report))
+    out = tmp_path / "f.json"
+    assert main(["fixes", "--variant", "propagation", "--targets", "x86-64", "--search-seconds", "0", "--configs", "1",
+                 "--quiet", "--nav2-tests", str(good), "--json", str(out)]) == 0
+    (row,) = json.loads(out.read_text())["rows"]
+    assert row["nav2_tests"]["rolling"] == {"own": 1, "own_passed_shipped": 1, "own_passed_patched": 1, "added": 1,
+                                            "added_failed_shipped": 1, "added_passed_patched": 0}
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"results": []}))
+    assert main(["fixes", "--nav2-tests", str(bad)]) == 2
+    assert main(["fixes", "--worst-cases", "100"]) == 2
+    err = capsys.readouterr().err
+    assert "not a report of" in err and "give --oracle DIR" in err and "Traceback" not in err

@@ -26,6 +26,47 @@ def _row(name: str, arith: str, r: dict, seeds: int) -> list[str]:
             f"{p['0']['differ']:,}, {p['2 cells']['differ']:,} of {p['0']['plans']:,}"]
 
 
+def _report(path) -> dict:
+    """An ``oracle nav2-tests --json`` report; a clear error for anything else."""
+    from pathlib import Path
+
+    try:
+        doc = json.loads(Path(path).read_text())
+    except (OSError, ValueError) as e:
+        raise NavfnInputError(f"--nav2-tests {path}: not a readable JSON report ({e})") from None
+    if not isinstance(doc, dict) or not {"results", "programs", "variants", "distribution"} <= set(doc):
+        raise NavfnInputError(f"--nav2-tests {path}: not a report of `navfn-smt oracle nav2-tests --json`")
+    return doc
+
+
+def _worst_table(rows) -> None:
+    worst = [r for r in rows if r.get("worst")]
+    if not worst:
+        return
+    print("\n| candidate | size | case | mode | as shipped | patched | path points: shipped, patched | peak memory: shipped, "
+          "patched |")
+    print("|---" * 8 + "|")
+    for r in worst:
+        for w in r["worst"]:
+            o, f = w["original"], w["fixed"]
+            print(f"| {r['variant']} | {w['size']} | {w['case']} | {w['mode']} | {1000 * o['seconds']:.0f} ms | "
+                  f"{1000 * f['seconds']:.0f} ms | {o['path_points']:,}, {f['path_points']:,} | "
+                  f"{o['peak_memory_bytes'] / 2**20:.1f}, {f['peak_memory_bytes'] / 2**20:.1f} MiB |")
+
+
+def _nav2_table(rows) -> None:
+    tested = [r for r in rows if r.get("nav2_tests")]
+    if not tested:
+        return
+    print("\n| candidate | distribution | Nav2's tests passed: shipped, patched | its tests: failed shipped, passed "
+          "patched |")
+    print("|---" * 4 + "|")
+    for r in tested:
+        for distro, n in r["nav2_tests"].items():
+            print(f"| {r['variant']} | {distro} | {n['own_passed_shipped']}, {n['own_passed_patched']} of {n['own']} | "
+                  f"{n['added_failed_shipped']}, {n['added_passed_patched']} of {n['added']} |")
+
+
 def cmd_fixes(args) -> int:
     from ..fileio import atomic_write_text
     from ..maps.suite import discover, load_map
@@ -37,6 +78,13 @@ def cmd_fixes(args) -> int:
     check_positive("--search-seconds", args.search_seconds, allow_zero=True)
     check_positive("--seeds", args.seeds)
     check_positive("--configs", args.configs)
+    if args.worst_cases and not args.oracle:
+        raise NavfnInputError("--worst-cases times the C++ as shipped and patched: give --oracle DIR")
+    if args.worst_cases:
+        from ..bench import check_sizes
+
+        check_sizes(args.worst_cases, 1)
+    reports = [_report(f) for f in args.nav2_tests or ()]
     names = args.variant or [f.name for f in fixes.FIXES.values()]
     chosen = [fixes.named(n) for n in names]
     root = suite_or_example(args.suite)
@@ -64,6 +112,11 @@ def cmd_fixes(args) -> int:
             r["plugin"] = C.plugin_effects(planner, args.configs)
             r["search"] = (C.search_counts(planner, C.FAILURE_KINDS, args.search_seconds, seeds, progress)
                            if args.search_seconds > 0 else {})
+            if args.worst_cases and fix.patches is not None and target == args.targets[0]:
+                progress(f"{fix.name}: the worst cases on {args.oracle}")
+                r["worst"] = C.worst_cases(args.oracle, fix, args.worst_cases)
+            if reports and fix.patches is not None:
+                r["nav2_tests"] = C.nav2_tests(reports, fix)
             rows.append(r)
     print(f"{root}: {len(maps)} maps, both modes; search: {args.search_seconds:g} s a kind and seed, "
           f"{len(seeds)} seed(s), maps up to 7x7; plugin: {args.configs} generated configurations of 12 pose pairs")
@@ -71,6 +124,8 @@ def cmd_fixes(args) -> int:
     print("|---" * len(COLUMNS) + "|")
     for r in rows:
         print("| " + " | ".join(_row(r["variant"], r["arithmetic"], r, len(seeds))) + " |")
+    _worst_table(rows)
+    _nav2_table(rows)
     if args.json:
         atomic_write_text(args.json, json.dumps({"command": "fixes", "arguments": vars_of(args),
                                                  "suite": str(root), "rows": rows}, indent=1) + "\n")
@@ -99,6 +154,13 @@ def register(sub) -> None:
     p.add_argument("--seeds", type=int, default=3, metavar="N", help="searches per kind, seeds 0..N-1 (default 3)")
     p.add_argument("--configs", type=int, default=300, metavar="N",
                    help="generated plugin configurations (12 pose pairs each; default 300)")
+    p.add_argument("--oracle", metavar="DIR", help="a build of the C++ (navfn-smt oracle build) with each "
+                   "candidate's patch, for --worst-cases")
+    p.add_argument("--worst-cases", nargs="+", type=int, metavar="N",
+                   help="with --oracle: each patched candidate's worst cases on generated NxN maps, as in bench "
+                   "--worst-cases, the best time of two runs")
+    p.add_argument("--nav2-tests", nargs="+", metavar="REPORT",
+                   help="reports of `oracle nav2-tests --variant all --json` to read each candidate's Nav2 tests from")
     p.add_argument("--quiet", action="store_true", help="no progress lines")
     p.add_argument("--json", metavar="FILE", help="write every figure as JSON")
     p.set_defaults(func=cmd_fixes)

@@ -15,7 +15,12 @@ at a time, NavFn as shipped beside each candidate of :data:`navfn_smt.spec.fixes
 - ``quality``: the candidate's paths where it plans and NavFn as shipped does not, their length
   over the grid optimum (:mod:`.path_quality`);
 - ``plugin``: the planner plugin's model on generated configurations, tolerance 0 and 2 cells:
-  plans that differ from the shipped plugin's, and plans where it threw.
+  plans that differ from the shipped plugin's, and plans where it threw;
+- with a build of the C++ (``--oracle DIR``): ``worst``, the fix's worst cases
+  (:func:`navfn_smt.bench.bench_worst_cases`: time, path points, peak memory, as shipped and
+  patched, each case in a fresh process, the best of ``repeat`` runs); with reports of
+  ``oracle nav2-tests``: ``nav2_tests``, per distribution the sources' own tests and the tests
+  the candidate's patch adds, as shipped and patched.
 """
 
 from __future__ import annotations
@@ -157,4 +162,41 @@ def plugin_effects(planner, configs: int = 60, seed: int = 0, distro: str = "rol
                 n["planned_where_shipped_threw"] += a.error is not None and b.error is None
                 n["threw_where_shipped_planned"] += a.error is None and b.error is not None
         out[label] = n
+    return out
+
+
+def worst_cases(folder, fix, sizes, repeat: int = 2) -> list[dict]:
+    """:func:`navfn_smt.bench.bench_worst_cases` for ``fix`` on the build ``folder``, ``repeat``
+    times, each figure of time the best of the runs (the other figures are the first run's)."""
+    from ..bench import bench_worst_cases
+
+    runs = [bench_worst_cases(sizes, folder, fix) for _ in range(repeat)]
+    out = runs[0]
+    for row, *again in zip(out, *runs[1:]):
+        for key in ("original", "fixed"):
+            row[key]["seconds"] = min([row[key]["seconds"], *(a[key]["seconds"] for a in again)])
+    return out
+
+
+def nav2_tests(reports: list[dict], fix) -> dict:
+    """From ``oracle nav2-tests`` reports (their JSON), per distribution: the sources' own tests
+    passed as shipped and with ``fix``, and the tests ``fix``'s patch adds (or, for a fix made of
+    several, those of any patch), failed as shipped and passed with ``fix``; {} where a report
+    did not run ``fix``."""
+    out = {}
+    for doc in reports:
+        if fix.name not in doc.get("variants", ()):
+            continue
+        res: dict = {}
+        for r in doc["results"]:
+            res.setdefault((r["program"], r["case"]), {})[r["variant"]] = r["status"]
+        progs = doc["programs"]
+        own = [k for k in res if progs[k[0]]["from"] == "the sources"]
+        added = [k for k in res if progs[k[0]]["from"] != "the sources" and
+                 (progs[k[0]].get("fix") == fix.name or fix.further is not None and fix.fallback is not None)]
+        out[doc["distribution"]] = {
+            "own": len(own), "own_passed_shipped": sum(res[k].get("original") == "passed" for k in own),
+            "own_passed_patched": sum(res[k].get(fix.name) == "passed" for k in own),
+            "added": len(added), "added_failed_shipped": sum(res[k].get("original") == "failed" for k in added),
+            "added_passed_patched": sum(res[k].get(fix.name) == "passed" for k in added)}
     return out
