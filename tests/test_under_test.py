@@ -97,6 +97,9 @@ def test_commands_make_the_planner_once_from_the_shared_options():
         text = f.read_text()
         if f.name in ("common.py", "oracle.py", "ci.py", "plugin_check.py"):  # build toolchains; both variants
             continue
+        if f.name == "fixes.py":  # every candidate in several arithmetics: commands.common.planners_of
+            assert "planners_of(args" in text and "PlannerUnderTest" not in text
+            continue
         planning = [line for line in text.splitlines() if ("get_backend(" in line or "variant=args." in line)]
         assert planning == [], (f.name, planning)
         if "--variant" in text or "planner_of" in text:

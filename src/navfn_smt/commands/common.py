@@ -106,6 +106,18 @@ def with_patch(fix, command: str):
     return fix
 
 
+def planners_of(args) -> list:
+    """The planners under test a comparison's options name: ``(target, NavFn as shipped there,
+    [a planner per --variant])`` for each of ``--targets``, every registered fix when no
+    --variant is given."""
+    from ..spec import fixes
+    from ..under_test import PlannerUnderTest
+
+    chosen = [fixes.named(n) for n in (args.variant or fixes.NAMES)]
+    return [(t, PlannerUnderTest.of_target(t), [PlannerUnderTest.of_target(t, f) for f in chosen])
+            for t in args.targets]
+
+
 def planner_of(args, variant=None):
     """The planner under test (:class:`~navfn_smt.under_test.PlannerUnderTest`) a command's
     options name, made once: ``--variant`` (or ``variant``), ``--target NAME`` or ``--oracle DIR``

@@ -7,7 +7,7 @@ import json
 import sys
 
 from ..errors import NavfnInputError
-from .common import check_files, check_positive, suite_or_example, vars_of
+from .common import check_files, check_positive, planners_of, suite_or_example, vars_of
 
 COLUMNS = ("candidate", "arithmetic", "search: kinds found (seeds)", "committed counterexamples still failing (of)",
            "paths changed where shipped plans", "planned where shipped fails", "still fails from a reached start",
@@ -71,9 +71,6 @@ def cmd_fixes(args) -> int:
     from ..fileio import atomic_write_text
     from ..maps.suite import discover, load_map
     from ..report import candidates as C
-    from ..spec import fixes
-    from ..under_test import PlannerUnderTest
-
     check_files(args.json)
     check_positive("--search-seconds", args.search_seconds, allow_zero=True)
     check_positive("--seeds", args.seeds)
@@ -85,8 +82,6 @@ def cmd_fixes(args) -> int:
 
         check_sizes(args.worst_cases, 1)
     reports = [_report(f) for f in args.nav2_tests or ()]
-    names = args.variant or [f.name for f in fixes.FIXES.values()]
-    chosen = [fixes.named(n) for n in names]
     root = suite_or_example(args.suite)
     maps = [load_map(d, root) for d in discover(root)]
     if not maps:
@@ -98,12 +93,11 @@ def cmd_fixes(args) -> int:
             print(f"[fixes] {text}", file=sys.stderr, flush=True)
 
     rows = []
-    for target in args.targets:
-        original = PlannerUnderTest.of_target(target)
+    for target, original, planners in planners_of(args):
         committed = [d for d in C.committed_counterexamples(C.FAILURE_KINDS)
                      if json.loads((d / "counterexample.json").read_text()).get("arithmetic", "x86-64") == target]
-        for fix in chosen:
-            planner = PlannerUnderTest.of_target(target, fix)
+        for planner in planners:
+            fix = planner.fix
             progress(f"{planner.label}: the suite")
             r = {"variant": fix.name, "arithmetic": target, "summary": fix.summary,
                  "suite": C.suite_effects(maps, planner, original),
@@ -113,8 +107,10 @@ def cmd_fixes(args) -> int:
             r["search"] = (C.search_counts(planner, C.FAILURE_KINDS, args.search_seconds, seeds, progress)
                            if args.search_seconds > 0 else {})
             if args.worst_cases and fix.patches is not None and target == args.targets[0]:
+                from ..bench import bench_worst_cases
+
                 progress(f"{fix.name}: the worst cases on {args.oracle}")
-                r["worst"] = C.worst_cases(args.oracle, fix, args.worst_cases)
+                r["worst"] = bench_worst_cases(args.worst_cases, args.oracle, fix, repeat=2)
             if reports and fix.patches is not None:
                 r["nav2_tests"] = C.nav2_tests(reports, fix)
             rows.append(r)

@@ -18,7 +18,7 @@ at a time, NavFn as shipped beside each candidate of :data:`navfn_smt.spec.fixes
   plans that differ from the shipped plugin's, and plans where it threw;
 - with a build of the C++ (``--oracle DIR``): ``worst``, the fix's worst cases
   (:func:`navfn_smt.bench.bench_worst_cases`: time, path points, peak memory, as shipped and
-  patched, each case in a fresh process, the best of ``repeat`` runs); with reports of
+  patched, each case in a fresh process, the best of two runs); with reports of
   ``oracle nav2-tests``: ``nav2_tests``, per distribution the sources' own tests and the tests
   the candidate's patch adds, as shipped and patched.
 """
@@ -162,19 +162,6 @@ def plugin_effects(planner, configs: int = 60, seed: int = 0, distro: str = "rol
                 n["planned_where_shipped_threw"] += a.error is not None and b.error is None
                 n["threw_where_shipped_planned"] += a.error is None and b.error is not None
         out[label] = n
-    return out
-
-
-def worst_cases(folder, fix, sizes, repeat: int = 2) -> list[dict]:
-    """:func:`navfn_smt.bench.bench_worst_cases` for ``fix`` on the build ``folder``, ``repeat``
-    times, each figure of time the best of the runs (the other figures are the first run's)."""
-    from ..bench import bench_worst_cases
-
-    runs = [bench_worst_cases(sizes, folder, fix) for _ in range(repeat)]
-    out = runs[0]
-    for row, *again in zip(out, *runs[1:]):
-        for key in ("original", "fixed"):
-            row[key]["seconds"] = min([row[key]["seconds"], *(a[key]["seconds"] for a in again)])
     return out
 
 
