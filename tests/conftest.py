@@ -113,16 +113,22 @@ def builds(nav2_src, tmp_path_factory) -> dict:
     return out
 
 
-# the distributions whose session builds hold every registered fix's programs; the others hold
-# NavFn as shipped and the fix of docs/fix.md (each candidate's C++ is tested live on these two,
-# the oldest and the newest, to keep the run's time: tests/test_cycles_only.py)
+# the distributions whose session builds hold the candidate cycles-only's programs beside NavFn as
+# shipped and the fix of docs/fix.md (tests/test_cycles_only.py tests that candidate's C++ on the
+# oldest and the newest); Rolling's holds every registered fix's (tests/test_candidates.py tests
+# the others' C++ there), the rest as shipped and with the fix, to keep the run's time
 CANDIDATE_DISTROS = ("humble", "rolling")
 
 
 def programs_for(distro: str) -> tuple:
-    from navfn_smt.oracle.build import FIXED_PROGRAMS, PROGRAMS, SHIPPED_PROGRAMS
+    from navfn_smt.oracle.build import FIXED_PROGRAMS, PROGRAMS, SHIPPED_PROGRAMS, fix_programs
+    from navfn_smt.spec import fixes
 
-    return PROGRAMS if distro in CANDIDATE_DISTROS else (*SHIPPED_PROGRAMS, *FIXED_PROGRAMS)
+    if distro == "rolling":
+        return PROGRAMS
+    if distro in CANDIDATE_DISTROS:
+        return (*SHIPPED_PROGRAMS, *FIXED_PROGRAMS, *fix_programs(fixes.named("cycles-only")))
+    return (*SHIPPED_PROGRAMS, *FIXED_PROGRAMS)
 
 
 @pytest.fixture
