@@ -39,32 +39,34 @@ def _report(path) -> dict:
     return doc
 
 
-def _worst_table(rows) -> None:
-    worst = [r for r in rows if r.get("worst")]
-    if not worst:
-        return
-    print("\n| candidate | size | case | mode | as shipped | patched | path points: shipped, patched | peak memory: shipped, "
-          "patched |")
-    print("|---" * 8 + "|")
-    for r in worst:
-        for w in r["worst"]:
+def _table(columns, rows) -> None:
+    """A markdown table (docs/fix.md takes them as they are)."""
+    print("| " + " | ".join(columns) + " |")
+    print("|---" * len(columns) + "|")
+    for row in rows:
+        print("| " + " | ".join(str(c) for c in row) + " |")
+
+
+def _worst_rows(rows):
+    for r in rows:
+        for w in r.get("worst") or ():
             o, f = w["original"], w["fixed"]
-            print(f"| {r['variant']} | {w['size']} | {w['case']} | {w['mode']} | {1000 * o['seconds']:.0f} ms | "
-                  f"{1000 * f['seconds']:.0f} ms | {o['path_points']:,}, {f['path_points']:,} | "
-                  f"{o['peak_memory_bytes'] / 2**20:.1f}, {f['peak_memory_bytes'] / 2**20:.1f} MiB |")
+            yield (r["variant"], w["size"], w["case"], w["mode"], f"{1000 * o['seconds']:.0f} ms",
+                   f"{1000 * f['seconds']:.0f} ms", f"{o['path_points']:,}, {f['path_points']:,}",
+                   f"{o['peak_memory_bytes'] / 2**20:.1f}, {f['peak_memory_bytes'] / 2**20:.1f} MiB")
 
 
-def _nav2_table(rows) -> None:
-    tested = [r for r in rows if r.get("nav2_tests")]
-    if not tested:
-        return
-    print("\n| candidate | distribution | Nav2's tests passed: shipped, patched | its tests: failed shipped, passed "
-          "patched |")
-    print("|---" * 4 + "|")
-    for r in tested:
-        for distro, n in r["nav2_tests"].items():
-            print(f"| {r['variant']} | {distro} | {n['own_passed_shipped']}, {n['own_passed_patched']} of {n['own']} | "
-                  f"{n['added_failed_shipped']}, {n['added_passed_patched']} of {n['added']} |")
+def _nav2_rows(rows):
+    for r in rows:
+        for distro, n in (r.get("nav2_tests") or {}).items():
+            yield (r["variant"], distro, f"{n['own_passed_shipped']}, {n['own_passed_patched']} of {n['own']}",
+                   f"{n['added_failed_shipped']}, {n['added_passed_patched']} of {n['added']}")
+
+
+WORST_COLUMNS = ("candidate", "size", "case", "mode", "as shipped", "patched", "path points: shipped, patched",
+                 "peak memory: shipped, patched")
+NAV2_COLUMNS = ("candidate", "distribution", "Nav2's tests passed: shipped, patched",
+                "its tests: failed shipped, passed patched")
 
 
 def cmd_fixes(args) -> int:
@@ -94,8 +96,7 @@ def cmd_fixes(args) -> int:
 
     rows = []
     for target, original, planners in planners_of(args):
-        committed = [d for d in C.committed_counterexamples(C.FAILURE_KINDS)
-                     if json.loads((d / "counterexample.json").read_text()).get("arithmetic", "x86-64") == target]
+        committed = C.committed_counterexamples(C.FAILURE_KINDS, target)
         for planner in planners:
             fix = planner.fix
             progress(f"{planner.label}: the suite")
@@ -116,12 +117,11 @@ def cmd_fixes(args) -> int:
             rows.append(r)
     print(f"{root}: {len(maps)} maps, both modes; search: {args.search_seconds:g} s a kind and seed, "
           f"{len(seeds)} seed(s), maps up to 7x7; plugin: {args.configs} generated configurations of 12 pose pairs")
-    print("| " + " | ".join(COLUMNS) + " |")
-    print("|---" * len(COLUMNS) + "|")
-    for r in rows:
-        print("| " + " | ".join(_row(r["variant"], r["arithmetic"], r, len(seeds))) + " |")
-    _worst_table(rows)
-    _nav2_table(rows)
+    _table(COLUMNS, [_row(r["variant"], r["arithmetic"], r, len(seeds)) for r in rows])
+    for columns, extra in ((WORST_COLUMNS, list(_worst_rows(rows))), (NAV2_COLUMNS, list(_nav2_rows(rows)))):
+        if extra:
+            print()
+            _table(columns, extra)
     if args.json:
         atomic_write_text(args.json, json.dumps({"command": "fixes", "arguments": vars_of(args),
                                                  "suite": str(root), "rows": rows}, indent=1) + "\n")

@@ -56,8 +56,9 @@ def search_counts(planner, kinds, seconds: float, seeds, progress=None) -> dict:
     return out
 
 
-def committed_counterexamples(kinds, root: Path = COMMITTED) -> list[Path]:
-    """The committed counterexample directories of ``kinds`` (NavFn as shipped or any variant)."""
+def committed_counterexamples(kinds, arithmetic: str, root: Path = COMMITTED) -> list[tuple[Path, dict]]:
+    """The committed counterexample directories of ``kinds`` found in ``arithmetic`` (NavFn as
+    shipped or any variant), each with its counterexample.json."""
     import json
 
     if not root.is_dir():
@@ -65,23 +66,23 @@ def committed_counterexamples(kinds, root: Path = COMMITTED) -> list[Path]:
     out = []
     for d in sorted(root.iterdir()):
         f = d / "counterexample.json"
-        if f.is_file() and json.loads(f.read_text()).get("kind") in kinds:
-            out.append(d)
+        if not f.is_file():
+            continue
+        doc = json.loads(f.read_text())
+        if doc.get("kind") in kinds and doc.get("arithmetic", "x86-64") == arithmetic:
+            out.append((d, doc))
     return out
 
 
-def still_failing(planner, dirs) -> dict:
-    """``{kind: [still failing, of]}``: the counterexamples of ``dirs`` whose kind's judge still
-    holds with ``planner``, by kind."""
-    import json
-
+def still_failing(planner, committed) -> dict:
+    """``{kind: [still failing, of]}``: the counterexamples of ``committed`` (:func:`committed_counterexamples`)
+    whose kind's judge still holds with ``planner``, by kind."""
     from ..check import properties as P
     from ..maps.suite import load_map
     from ..search.counterexamples import judge_kind
 
     out: dict = {}
-    for d in dirs:
-        doc = json.loads((d / "counterexample.json").read_text())
+    for d, doc in committed:
         counts = out.setdefault(doc["kind"], [0, 0])
         counts[1] += 1
         sm = load_map(d)
