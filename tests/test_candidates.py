@@ -185,8 +185,23 @@ def test_the_guarantee_is_stated_once_in_the_same_words_everywhere():
 
     for page in (REPO / "README.md", REPO / "docs" / "fix.md"):
         assert words(GUARANTEE) in words(page.read_text()), page.name
-    for hypothesis in ("2^30", "dropped", "nx*ny cycles", "budget of n points", "IEEE float32"):
-        assert hypothesis in GUARANTEE
+    # every run-time condition on the chains of the predicates that carry the fix's properties is named in
+    # it, and its count of trusted steps is theirs
+    from navfn_smt.check.runner import conditions, induction_status, inductive
+    from navfn_smt.check.common import _verdict_of
+    from navfn_smt.under_test import PlannerUnderTest
+
+    from navfn_smt.spec.fix import FIX
+
+    fixed = PlannerUnderTest(fix=FIX)
+    for name in inductive(fixed):
+        if name in dict(FIX.proved):
+            for c in conditions(name, fixed):
+                assert c.split(": ", 1)[0] in GUARANTEE, c[:60]
+    both = induction_status("complete", _verdict_of(), fixed)["trusted"] + \
+        induction_status("start-reached", _verdict_of(), fixed)["trusted"]
+    assert f"conditional, with {len(set(both))} trusted steps" in GUARANTEE
+    assert "IEEE float32" in GUARANTEE
     pages = [REPO / "README.md", *(REPO / "docs").rglob("*.md")]
     shorter = "a start 4-connected to the goal gets a path, for every map size"
     assert [p.name for p in pages if shorter in words(p.read_text())] == []

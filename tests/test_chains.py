@@ -7,33 +7,43 @@ from types import SimpleNamespace as NS
 import pytest
 
 from navfn_smt.proofs import PREDICATES
-from navfn_smt.smt.chains import Predicate, Verdict, check_chains, declared_verdicts, derive
+from navfn_smt.smt.chains import Condition, Predicate, Verdict, check_chains, declared_verdicts, derive, qualified
 from navfn_smt.smt.obligation import load_obligations
 from navfn_smt.smt.runner import default_proof_files
 
 pytestmark = pytest.mark.fast
 
 # the status each predicate's chain gets from the verdicts its obligations are expected to get
+BELOW = "potentials below 2**30"
+COSTS = "costs as setCostmap makes them"
 EXPECTED = {
-    "PositionSafe": ("proved", "proved"),
-    "Monotone": ("proved", "proved"),
-    "Progress": ("proved", "bounded"),
+    "PositionSafe": ("proved", f"conditional ({BELOW})"),
+    "Monotone": ("proved", f"conditional ({BELOW})"),
+    "Progress": (f"conditional ({COSTS})", f"conditional (bounded; {COSTS}; {BELOW})"),
     "ObstacleFreeQueue": ("proved", "proved"),
     "PendingMatchesBuffers": ("proved", "proved"),
     "NoPathWithoutFinitePotential": ("refuted", "proved"),
-    "Gradient": ("refuted", "proved"),
+    "Gradient": ("refuted", "proved (1 trusted step)"),
     "FinitePotentialPath": ("refuted", "open"),
     "ValidPath": ("refuted", "open"),
-    "FallbackPath": ("proved", "bounded"),  # complete on narrow maps: below Progress's bound 2**30 as well
-    "DescentPath": ("proved", "bounded"),  # the fix: Progress's float32 bound 2**30 carries over
-    "ConnectedStartReached": ("proved", "proved"),
-    "ReachedWithinComponent": ("proved", "proved"),
-    "QueuedStartReached": ("proved", "proved"),
-    "PositionSafeAndProgressInductive": ("proved", "proved"),  # float32: under the run-time bound 2**30
+    # complete on narrow maps: below Progress's bound 2**30 as well
+    "FallbackPath": (f"conditional ({COSTS}; 2 trusted steps)", f"conditional (bounded; {COSTS}; {BELOW}; 2 trusted steps)"),
+    # the fix: Progress's float32 bound 2**30 carries over
+    "DescentPath": (f"conditional (the descent fits calcPath's budget; {COSTS}; 1 trusted step)",
+                    f"conditional (bounded; {BELOW}; the descent fits calcPath's budget; {COSTS}; 1 trusted step)"),
+    "ConnectedStartReached": (
+        "conditional (no push dropped; the further call's nx*ny cycles suffice; push keys below 2**31; "
+        f"{COSTS}; 1 trusted step)",
+        f"conditional (no push dropped; {BELOW}; the further call's nx*ny cycles suffice; push keys below 2**31; "
+        f"{COSTS}; 1 trusted step)"),
+    "ReachedWithinComponent": ("proved (2 trusted steps)", f"conditional ({BELOW}; 2 trusted steps)"),
+    "QueuedStartReached": ("proved (2 trusted steps)", f"conditional ({BELOW}; 2 trusted steps)"),
+    "PositionSafeAndProgressInductive": ("proved", f"conditional ({BELOW})"),
     "BuffersInductive": ("proved", "proved"),
-    "ReachedAndBufferedInductive": ("proved", "proved"),
-    "FrontierInductive": ("proved", "proved"),
-    "DescentInductive": ("proved", "proved"),  # float32: under the run-time bound 2**30
+    "ReachedAndBufferedInductive": ("proved", f"conditional ({BELOW})"),
+    "FrontierInductive": (f"conditional (push keys below 2**31; {COSTS})",
+                          f"conditional (push keys below 2**31; {COSTS}; {BELOW})"),
+    "DescentInductive": ("proved", f"conditional ({BELOW})"),
 }
 
 
@@ -140,3 +150,45 @@ def test_assumptions_and_whole_obligations_are_the_predicates_own():
     assert check_chains([C], obs) == []
     bad = Predicate("D", "d", "here", lemmas=("d0",), assumes=("C.c1",))
     assert any("assumption C.c1 is borrowed" in p for p in check_chains([C, bad], obs + [_ob("d0", "D")]))
+
+
+# --------------------------------------------------------------------------- statuses that carry their trust
+T = Predicate("T", "t", "here", lemmas=("t0",), trusted=("a counting step, argued",))
+U = Predicate("U", "u", "here", lemmas=("u0",), rests_on=("T",),
+              conditions=(Condition("no push dropped", "a run-time condition"),))
+R = Predicate("R", "r", "here", lemmas=("r0",), conditions=(Condition("below 2**30", "float32's", float32=True),))
+
+
+def test_a_trusted_step_or_a_condition_on_the_chain_qualifies_proved():
+    every = _verdicts({"t0": Verdict("proved"), "u0": Verdict("proved"), "r0": Verdict("proved")})
+    t = derive(T, "fp32", every, [T, U])
+    assert (t["rank"], t["status"], t["trusted"]) == ("proved", "proved (1 trusted step)", ["T: a counting step, argued"])
+    u = derive(U, "fp32", every, [T, U])  # the trusted step beneath, through rests_on, and its own condition
+    assert u["status"] == "conditional (no push dropped; 1 trusted step)" and u["conditions"] == ["no push dropped"]
+    assert derive(R, "fp32", every, [R])["status"] == "conditional (below 2**30)"
+    assert derive(R, "real", every, [R])["status"] == "proved"  # a float32 condition is not the reals'
+    # a chain that is not proved says so, whatever lies beneath
+    assert derive(U, "fp32", _verdicts({"t0": Verdict("proved"), "u0": Verdict("unknown")}), [T, U])["status"] == "open"
+    assert qualified("bounded", 2, ["c"]) == "conditional (bounded; c; 2 trusted steps)"
+
+
+def test_no_shipped_status_says_proved_over_a_trusted_step_or_a_condition(obligations):
+    verdict_of = declared_verdicts(obligations)
+    for p in PREDICATES:
+        for s in ("real", "fp32"):
+            d = derive(p, s, verdict_of, PREDICATES)
+            if d["status"] == "proved":
+                assert not d["trusted"] and not d["conditions"], p.name
+            if d["trusted"] or d["conditions"]:
+                assert d["status"] not in ("proved", "bounded"), (p.name, s)
+
+
+def test_the_setcostmap_condition_holds_for_every_costmap_value():
+    """costs as setCostmap makes them: every one of the 256 values, with unknown allowed or not,
+    translates to COST_OBS or a passable cost in [COST_NEUTRAL, COST_OBS)."""
+    from navfn_smt.spec.constants import COST_NEUTRAL, COST_OBS
+    from navfn_smt.spec.costs import translate_cost
+
+    got = {translate_cost(v, unknown, ros) for v in range(256) for unknown in (True, False) for ros in (True, False)}
+    assert COST_OBS in got and min(got) == COST_NEUTRAL
+    assert all(c == COST_OBS or COST_NEUTRAL <= c < COST_OBS for c in got)

@@ -77,11 +77,13 @@ def _verdict_of():
 
 
 def _derived(name: str, semantics: str) -> str:
-    """The status of the predicate ``name`` in ``semantics``, derived from what is known."""
+    """The rank of the predicate ``name``'s status in ``semantics`` (proved, bounded, open or
+    refuted, without the trusted steps and conditions that qualify it), derived from what is known:
+    what a bounded check may decide by (its report names the induction, whose status says the rest)."""
     from ..proofs import PREDICATES
     from ..smt.chains import derive
 
-    return derive(next(p for p in PREDICATES if p.name == name), semantics, _verdict_of(), PREDICATES)["status"]
+    return derive(next(p for p in PREDICATES if p.name == name), semantics, _verdict_of(), PREDICATES)["rank"]
 
 
 def outside_decided(planner: PlannerUnderTest = ORIGINAL) -> bool:

@@ -114,7 +114,6 @@ FIXED_PLUGIN_INDUCTION = {
             "finite potential when there is one (makePlan's loop, `potential < POT_HIGH`)",
             "getPlanFromPotential runs the fixed calcPath from that point's cell, which returns a path from a "
             "finite potential (DescentPath); a path of at least one point gives poses",
-            "passable cells' NavFn costs are setCostmap's COST_NEUTRAL..COST_OBS-1 (the predicates' cost range)",
         ),
     },
 }
@@ -127,7 +126,8 @@ def induction_known(name: str) -> Optional[dict]:
     if name not in FIXED_PLUGIN_INDUCTION:
         return None
     from ..proofs import PREDICATES
-    from ..smt.chains import STATUS_RANK, declared_verdicts, derive
+    from ..smt.chains import combined, declared_verdicts, derive, qualified
+    from .runner import _chain_conditions
     from ..smt.obligation import load_obligations
     from ..smt.runner import default_proof_files
     from ..smt.split import load_splits
@@ -135,10 +135,13 @@ def induction_known(name: str) -> Optional[dict]:
     files = default_proof_files()
     verdict_of = declared_verdicts(load_obligations(files), load_splits(files), PREDICATES)
     carriers = FIXED_PLUGIN_INDUCTION[name]["predicates"]
-    statuses = {p.name: derive(p, "fp32", verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers}
-    return {"status": max(statuses.values(), key=STATUS_RANK.index), "predicates": statuses,
-            "trusted": list(FIXED_PLUGIN_INDUCTION[name]["trusted"]),
-            "conditions": [o for p in PREDICATES if p.name in carriers for o in p.open]}
+    derived = {p.name: derive(p, "fp32", verdict_of, PREDICATES) for p in PREDICATES if p.name in carriers}
+    whole = combined(list(derived.values()))
+    trusted = list(FIXED_PLUGIN_INDUCTION[name]["trusted"])
+    return {"status": qualified(whole["rank"], len(whole["trusted"]) + len(trusted), whole["conditions"]),
+            "predicates": {n: d["status"] for n, d in derived.items()},
+            "trusted": whole["trusted"] + trusted,
+            "conditions": [f"{c.name}: {c.text}" for c in _chain_conditions(carriers, "fp32")]}
 
 
 PLUGIN_PROPERTIES = {p.name: p for p in (

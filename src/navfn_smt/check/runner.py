@@ -33,15 +33,27 @@ INDUCTION = {
 }
 # ... and with a fix, those its value names (Fix.proved: with the fix of docs/fix.md, complete
 # and start-reached become inductive too)
-# ... each under the run-time conditions its predicate lists as open (proofs/__init__.py): said
+# ... each under the run-time conditions on its predicates' chains (proofs/__init__.py): said
 # with the every-size verdict, which holds only where they do
 def conditions(name: str, planner: PlannerUnderTest = ORIGINAL) -> list[str]:
-    """The run-time conditions under which an inductive property's every-size verdict holds:
-    the open items of the predicates that carry it."""
+    """The run-time conditions under which an inductive property's every-size verdict holds, in
+    the float32 semantics of ``planner``: those on the chains of the predicates that carry it
+    (their own and those of the predicates they rest on), each once, as ``name: text``."""
+    return [f"{c.name}: {c.text}" for c in _chain_conditions(inductive(planner).get(name, ()),
+                                                             planner.fp32_semantics())]
+
+
+def _chain_conditions(carriers, semantics: str) -> list:
+    """The :class:`~navfn_smt.smt.chains.Condition` objects on the chains of ``carriers``, once each."""
     from ..proofs import PREDICATES
 
-    carriers = inductive(planner).get(name, ())
-    return [o for p in PREDICATES if p.name in carriers for o in p.open]
+    preds = {p.name: p for p in PREDICATES}
+    seen, todo = {}, list(carriers)
+    while todo:
+        p = preds[todo.pop(0)]
+        seen.update({c.name: c for c in p.conditions if c.applies(semantics) and c.name not in seen})
+        todo += [r for r in p.rests_on if r in preds]
+    return list(seen.values())
 
 # ... and on a narrow size, NavFn as shipped: complete, by FallbackPath (.common.INDUCTION_NARROW,
 # carried_at: shared with a certificate's replay)
@@ -364,16 +376,16 @@ def inductive(planner: PlannerUnderTest = ORIGINAL) -> dict:
 
 def induction_status(name: str, verdict_of, planner: PlannerUnderTest = ORIGINAL) -> str:
     """The every-size status of an inductive property: the worst status, in the float32 semantics
-    of ``planner``'s arithmetic, of the predicates
-    that carry it (:func:`~navfn_smt.smt.chains.derive`, from ``verdict_of``), the one status
-    ``check``, ``prove`` and the invariants page give those predicates."""
+    of ``planner``'s arithmetic, of the predicates that carry it (:func:`~navfn_smt.smt.chains.derive`,
+    from ``verdict_of``), qualified by every trusted step and run-time condition on their chains
+    (:func:`~navfn_smt.smt.chains.combined`): ``{"status", "rank", "trusted", "conditions"}``,
+    the one status ``check``, ``prove`` and the invariants page give those predicates."""
     from ..proofs import PREDICATES
-    from ..smt.chains import STATUS_RANK, derive
+    from ..smt.chains import combined, derive
 
     carriers = inductive(planner)[name]
     semantics = planner.fp32_semantics()
-    statuses = [derive(p, semantics, verdict_of, PREDICATES)["status"] for p in PREDICATES if p.name in carriers]
-    return max(statuses, key=STATUS_RANK.index) if statuses else "open"
+    return combined([derive(p, semantics, verdict_of, PREDICATES) for p in PREDICATES if p.name in carriers])
 
 
 def induction(name: str, timeout: float = 30.0, planner: PlannerUnderTest = ORIGINAL) -> Optional[dict]:
@@ -404,10 +416,11 @@ def induction(name: str, timeout: float = 30.0, planner: PlannerUnderTest = ORIG
     slow = [w for w in wanted if semantics in obligations[w].slow]
     runs = [check(obligations[w], semantics, timeout, solve_query(SOLVERS), known=known[(w, semantics)])
             for w in wanted if w not in slow]
+    status = induction_status(name, outcome_verdicts(runs, known), planner)
     return {"predicates": [p.name for p in preds],
-            "status": induction_status(name, outcome_verdicts(runs, known), planner), "semantics": semantics,
+            "status": status["status"], "rank": status["rank"], "semantics": semantics,
             "obligations": {**{o.name: o.standing for o in runs}, **{w: known[(w, semantics)].status for w in slow}},
             "this_run": {**{o.name: o.status for o in runs}, **{w: "slow, not asked (prove --all)" for w in slow}},
             "contradicted": [o.name for o in runs if o.fails],
-            "trusted": [t for p in preds for t in p.trusted],
+            "trusted": status["trusted"],
             "conditions": conditions(name, planner)}

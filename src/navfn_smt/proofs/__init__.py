@@ -13,7 +13,47 @@ from another predicate's chain.  :func:`navfn_smt.smt.chains.check_chains` holds
 and the declarations consistent, and the proof run derives each predicate's status.
 """
 
-from ..smt.chains import Predicate
+from ..smt.chains import Condition, Predicate
+
+# The run-time conditions: hypotheses of the claims below, each stated once, shown in a status as
+# "conditional (NAME)" and in the fix's guarantee (spec/fixes.py GUARANTEE) where it rests on them
+BELOW_2_30 = Condition(
+    "potentials below 2**30",
+    "every finite potential stays below 2**30 in float32: the largest finite potential of the run, which the "
+    "spec reports; argued to hold on every map of fewer than 2**22 = 4,194,304 passable cells, every 2000 x 2000 "
+    "map (FallbackPath's bound, a trusted step), and a longer way can exceed it", float32=True)
+PUSH_KEY_BELOW_2_31 = Condition(
+    "push keys below 2**31",
+    "a changed cell's push key (its potential, plus A*'s heuristic) below 2**31, so that its (int) is the "
+    "truncation: true when the potentials are below 2**30 and the heuristic below 2**30 (maps under 2**22 cells "
+    "a side)")
+PASSABLE_COSTS = Condition(
+    "costs as setCostmap makes them",
+    "every passable cell's cost in [COST_NEUTRAL, COST_OBS): what setCostmap's translation gives for every one "
+    "of the 256 costmap values (tests/test_chains.py enumerates them on the spec's setCostmap, which difftest "
+    "holds to the C++'s); a caller that writes costarr itself must keep it")
+NO_DROP = Condition(
+    "no push dropped",
+    "no push dropped for want of room (PRIORITYBUFSIZE): the spec counts the drops (PlanResult.dropped), the C++ "
+    "does not report them; overflow maps break it (docs/overflow.md); argued to hold on every map whose goal "
+    "component has at most PRIORITYBUFSIZE = 10,000 cells (every 100 x 100 map): a push is of a cell in no buffer "
+    "it may enter, and each buffer holds distinct cells of the component (BuffersInductive), so fewer than the "
+    "component's count; tested with buffers the component's size (tests/test_invariants_runtime.py)")
+CYCLES_SUFFICE = Condition(
+    "the further call's nx*ny cycles suffice",
+    "the wave empties its buffers or reaches the start within the further call's cap of nx*ny cycles: each cycle "
+    "updates at least one buffered cell, but a cell can be buffered more than once, so nx*ny cycles are not shown "
+    "to suffice; the bounded checks explore it on every map of their sizes, and the suites never exceed it")
+DESCENT_FITS = Condition(
+    "the descent fits calcPath's budget",
+    "the descent's walk fits in calcPath's budget of n points (4 * nx, or max_cycles_factor times the larger side "
+    "on Rolling and Lyrical): a longer descent fails, as the gradient does")
+GRADIENT_NOT_TINY = Condition(
+    "the interpolated gradient is zero or not tiny",
+    "the interpolated gradient is exactly zero (calcPath then fails) or has a component of at least 2**-100: a "
+    "precondition of step_keeps_offset_in_unit_box and of the step bound, refuted for one step "
+    "(interpolated_gradient_is_zero_or_not_tiny: a subnormal offset beside a cell with a zero gradient); whether "
+    "calcPath's own offsets get that small is not known", float32=True)
 
 PositionSafe = Predicate(
     "PositionSafe",
@@ -41,9 +81,7 @@ Progress = Predicate(
     lemmas=("update_keeps_a_lower_neighbour", "Monotone.update_never_raises"),
     # the base case, and the step at every cell with all four neighbours read as the kernel reads them
     rests_on=("PositionSafeAndProgressInductive",),
-    open=("that every passable cell's cost is in [COST_NEUTRAL, COST_OBS) (what setCostmap produces, the "
-          "precondition of update_keeps_a_lower_neighbour) rests on the spec's setCostmap, tested by difftest, "
-          "not on an obligation",),
+    conditions=(PASSABLE_COSTS,),  # the precondition of update_keeps_a_lower_neighbour
 )
 
 ObstacleFreeQueue = Predicate(
@@ -87,18 +125,17 @@ Gradient = Predicate(
     "Gradient",
     statement="gradCell stores a unit vector (squared length within 2**-20 of 1) or the zero vector, on "
               "every potential NavFn produces.",
-    applies="path extraction: the gradient gradCell caches per cell, which calcPath interpolates",
-    lemmas=("grad_differences_are_not_tiny", "grad_is_unit_or_zero"),
+    applies="path extraction: the gradient gradCell caches per cell, which calcPath interpolates; in float32 only "
+            "(over the reals differences of potentials can be arbitrarily small, and no obligation normalises an "
+            "arbitrary real vector: grad_is_unit_or_zero_any_float only one along an axis)",
+    # potentials 0 or at least 1/2: the goal's 0 and POT_HIGH from setup, then every update (as Monotone)
+    lemmas=("update_keeps_potentials_zero_or_at_least_half", "grad_differences_are_not_tiny",
+            "grad_is_unit_or_zero"),
     limits=("grad_is_unit_or_zero_any_float",),
     trusted=("grad_is_unit_or_zero is decided by its split (navfn-smt split): nine sign cases whose cover is "
              "proved, the zero vector bit-precisely, every other part in the standard rounding-error model "
              "(IEEE 754 rounds each operation to within half an ulp, relative, when the result is normal, which "
              "the same queries prove); not machine-checked: no solver decides those parts bit-precisely",),
-    open=("that every potential propagation produces is 0 or at least 1/2 (the precondition of "
-          "grad_differences_are_not_tiny) is argued in gradient.py, not an obligation",
-          "over the reals the chain is float32's: differences of real potentials can be arbitrarily small, and "
-          "no obligation normalises an arbitrary real vector (grad_is_unit_or_zero_any_float only one along "
-          "an axis)"),
 )
 
 FinitePotentialPath = Predicate(
@@ -108,7 +145,8 @@ FinitePotentialPath = Predicate(
     applies="path extraction (calcPath), by induction over its iterations, for every map size up to the "
             "coordinate bounds of the links; the paper's FinitePotentialPath",
     base=("ValidPath.first_point_is_the_start", "NoPathWithoutFinitePotential.unreached_cell_stays_put"),
-    lemmas=("Gradient.grad_differences_are_not_tiny", "stored_gradient_is_bounded", "interpolated_gradient_is_bounded",
+    lemmas=("Gradient.update_keeps_potentials_zero_or_at_least_half", "Gradient.grad_differences_are_not_tiny",
+            "stored_gradient_is_bounded", "interpolated_gradient_is_bounded",
             "step_keeps_offset_in_unit_box", "step_along_an_axis_moves_at_most_half",
             "half_step_keeps_the_point_near_the_cell", "near_goal_probe_reads_a_neighbour",
             "grid_step_goes_on_only_at_a_reached_cell_with_offsets_zero", "gradient_step_runs_only_among_nine_reached_cells",
@@ -122,12 +160,7 @@ FinitePotentialPath = Predicate(
              "|x| < 2**-100 at most |x| * 2**99 <= 1/2; with half_step_keeps_the_point_near_the_cell this gives "
              "next_point_stays_near_the_cell; not machine-checked: the monotonicity of float32 division and "
              "multiplication in two free operands is left undecided by bitwuzla, cvc5 and z3 at 300 s",),
-    open=("the interpolated gradient is exactly zero (calcPath then fails) or has a component of at least "
-          "2**-100: a precondition of step_keeps_offset_in_unit_box and of the step bound, refuted for one step "
-          "(interpolated_gradient_is_zero_or_not_tiny: a subnormal offset beside a cell with a zero gradient); "
-          "whether calcPath's own offsets get that small is open",
-          "the precondition of the borrowed grad_differences_are_not_tiny (potentials 0 or at least 1/2) is "
-          "argued, not an obligation (see Gradient)"),
+    conditions=(GRADIENT_NOT_TINY,),
 )
 
 ValidPath = Predicate(
@@ -156,12 +189,7 @@ DescentPath = Predicate(
              "with at most n - 1 passable cells besides the goal (every map of up to 6 interior cells, whose "
              "n = 4*nx is at least 12); a counting (pigeonhole) step, which the quantifier-free obligations "
              "over arrays cannot state",),
-    open=("that every potential stays below 2**30 is a run-time condition (the largest finite potential of the "
-          "run), not an obligation: argued as for FallbackPath on every map of fewer than 2**22 = 4,194,304 "
-          "passable cells (every 2000 x 2000 map), and a longer way can exceed it",
-          "that the walk fits in n points is a run-time condition: a descent longer than calcPath's budget "
-          "(4 * nx, or max_cycles_factor times the larger side on Rolling and Lyrical) fails, as the gradient "
-          "does"),
+    conditions=(BELOW_2_30, DESCENT_FITS),
 )
 
 ConnectedStartReached = Predicate(
@@ -182,16 +210,7 @@ ConnectedStartReached = Predicate(
              "(empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one), so they include the "
              "component and the start, in it, is reached (an induction over the chain of cells from the goal to the "
              "start, which the quantifier-free obligations over arrays cannot state)",),
-    open=("no push dropped for want of room (PRIORITYBUFSIZE): a run-time condition the spec counts "
-          "(PlanResult.dropped) and the C++ does not report; overflow maps break it (docs/overflow.md); "
-          "argued to hold on every map whose goal component has at most PRIORITYBUFSIZE = 10,000 cells (every "
-          "100 x 100 map): a push is of a cell in no buffer it may enter, and each buffer holds distinct cells "
-          "of the component (BuffersInductive), so fewer than the component's count, a counting step; tested "
-          "with buffers the component's size (tests/test_invariants_runtime.py)",
-          "every potential below 2**30: a run-time condition, as for DescentPath",
-          "the wave empties its buffers or reaches the start within the cap of nx*ny more cycles: a run-time "
-          "condition (each cycle updates at least one buffered cell, but a cell can be buffered more than once, "
-          "so nx*ny cycles are not shown to suffice; the bounded checks explore it on every map of their sizes)"),
+    conditions=(NO_DROP, BELOW_2_30, CYCLES_SUFFICE),
 )
 
 FallbackPath = Predicate(
@@ -273,8 +292,7 @@ QueuedStartReached = Predicate(
              "tests/test_check_bounded.py: on every saved map whose connected start stays unreached the run never "
              "queues the start so, and on seeded maps of six sizes every run that does reaches it (the spec's "
              "run); tested, not proved",),
-    open=("every potential below 2**30: as for FallbackPath, argued on every map of fewer than 4,194,304 passable "
-          "cells (every 2000 x 2000 map)",),
+    conditions=(BELOW_2_30,),
 )
 
 PositionSafeAndProgressInductive = Predicate(
@@ -287,8 +305,7 @@ PositionSafeAndProgressInductive = Predicate(
     base=("setup_and_init_cost_establish_the_invariant",),
     lemmas=("the_steps_around_the_updates_keep_the_invariant", "update_keeps_the_invariant_at_the_updated_cell",
             "update_keeps_the_invariant_at_every_other_cell"),
-    open=("in float32, that every potential an update writes stays below 2**30 is a run-time condition, as for "
-          "Progress",),
+    conditions=(BELOW_2_30,),
 )
 
 BuffersInductive = Predicate(
@@ -334,8 +351,7 @@ FrontierInductive = Predicate(
             "astar_heuristic_is_not_negative",
             "empty_buffers_without_a_drop_leave_no_reached_cell_beside_an_unreached_one"),
     rests_on=("BuffersInductive", "PositionSafeAndProgressInductive"),
-    open=("a changed cell's push key (its potential, plus A*'s heuristic) below 2**31 and every passable cost in "
-          "[COST_NEUTRAL, COST_OBS): run-time conditions, as for ConnectedStartReached and Progress",),
+    conditions=(PUSH_KEY_BELOW_2_31, PASSABLE_COSTS),
 )
 
 DescentInductive = Predicate(
@@ -350,7 +366,7 @@ DescentInductive = Predicate(
     base=("descent_begins_at_a_reached_start",),
     lemmas=("descent_iteration_moves_strictly_down_or_stops_at_the_goal_or_the_budget",),
     rests_on=("PositionSafeAndProgressInductive",),
-    open=("every potential below 2**30 in float32: the run-time condition of PositionSafeAndProgressInductive",),
+    conditions=(BELOW_2_30,),
 )
 
 # in the order the invariants page lists them: propagation, then path extraction, then the fix

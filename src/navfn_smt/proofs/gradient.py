@@ -13,7 +13,7 @@ under that precondition the claim is proved.
 
 from navfn_smt.proofs import Gradient
 from navfn_smt.smt.obligation import obligation
-from navfn_smt.smt.predicates import GradDifference, ValidPotential, all_of
+from navfn_smt.smt.predicates import GradDifference, TranslatedCost, ValidPotential, all_of
 from navfn_smt.smt.split import f32_interval, product, split
 from navfn_smt.spec import kernels as K
 
@@ -30,6 +30,24 @@ def _unit_or_zero_of(D, gx, gy):
     tol = D.f64const(2.0**-20)
     unit = D.and_(D.le(err, tol), D.ge(err, D.sub64(D.f64const(0.0), tol)))
     return D.or_(D.and_(D.eq(gx, zero), D.eq(gy, zero)), unit)
+
+
+@obligation(Gradient, expect={"real": "proved", "fp32": "proved",
+                              "fp32@x86-64-v3": "proved", "fp32@aarch64": "proved"},
+            scope="one update of any cell with any neighbours and a cost setCostmap makes: every map size")
+def update_keeps_potentials_zero_or_at_least_half(D):
+    """An update keeps every potential 0 or at least 1/2: the precondition of
+    grad_differences_are_not_tiny, by induction over the run (setup writes the goal's 0 and
+    POT_HIGH elsewhere; every later write to the potentials is an update, as for Monotone).
+
+    cost in [50, 253], valid potentials each 0 or >= 1/2  ==>  updateCell(n) is 0 or >= 1/2
+    """
+    old, l, r, u, d = (D.f32(v) for v in ("old", "l", "r", "u", "d"))
+    c = D.cost("cost")
+    new, _ = K.cell_update(D, old, l, r, u, d, D.cost_int(c), D.cost_as_f32(c))
+    pre = all_of(D, TranslatedCost(D, D.cost_int(c)),
+                 *(D.and_(ValidPotential(D, p), _navfn_potential(D, p)) for p in (old, l, r, u, d)))
+    return pre, _navfn_potential(D, new)
 
 
 @obligation(Gradient, expect={"real": "refuted", "fp32": "proved",

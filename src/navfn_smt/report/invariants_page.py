@@ -502,8 +502,8 @@ def check_status(prop: str, by_size: dict, induction: dict) -> str:
     unknown = [s for s in sizes if by_size[s][0]["status"] not in ("proved", "refuted")]
     parts = []
     ind = induction.get(prop)
-    if ind and ind.get("status") == "proved":
-        parts.append("proved for every size (induction)")
+    if ind and ind.get("rank", ind.get("status")) == "proved":
+        parts.append(f"{ind['status']} for every size (induction)")
     if refuted:
         parts.append(f"refuted at {_size(refuted[0])}")
     if proved:
@@ -524,7 +524,7 @@ def check_section(checks: list, images: Optional[Path], verdict_of=None) -> list
 
     rows, induction, not_inductive = _merge_checks(checks)
     if verdict_of is not None:
-        induction = {n: {**ind, "status": induction_status(n, verdict_of)} for n, ind in induction.items()}
+        induction = {n: {**ind, **induction_status(n, verdict_of)} for n, ind in induction.items()}
     out = ["## Whole-planner properties (`navfn-smt check`)", "",
            "Each property below is about the whole planner (setup, propagation with its bounded buffers, "
            "cycle limit, then `calcPath` with every exit) and is decided for every map of a size: lethal "

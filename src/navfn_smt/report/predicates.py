@@ -96,7 +96,8 @@ def summary(outcomes, known: dict, predicates=None) -> dict:
         before = {s: derive(p, s, wanted, preds)["status"] for s in sems}
         out.append({"name": p.name, "statement": p.statement, "applies": p.applies,
                     "chain": _chain_rows(p, by_key, sems, known), "rests_on": list(p.rests_on),
-                    "trusted": list(p.trusted), "open": list(p.open), "status": status,
+                    "trusted": list(p.trusted),
+                    "conditions": [{"name": c.name, "text": c.text} for c in p.conditions], "status": status,
                     "known_status": before,
                     "changed": [s for s in sems if status[s]["status"] != before[s]]})
     chained = [o for o in outcomes if o.predicate in names]
@@ -139,7 +140,11 @@ STATUS_NOTE = ("A predicate's status in a semantics is derived from its chain: *
                "**refuted** when a link has a confirmed counterexample, so that the chain does not establish the "
                "predicate in that semantics. A link written `Owner.name` is borrowed from another predicate's "
                "chain; a *limit* is a stronger variant expected to fail, which shows why a precondition is "
-               "needed; the steps the argument takes from the planner's control flow are listed as such.")
+               "needed. A status carries what lies beneath it: **proved** alone means every link is machine-checked "
+               "and no trusted step and no run-time condition lies on the chain (its own or that of a predicate it "
+               "rests on); **proved (N trusted steps)** counts the argued or tested steps beneath it; "
+               "**conditional (C; ...)** names the run-time conditions it holds under (hypotheses, listed once in "
+               "the section on conditions below), and its trusted steps.")
 
 
 def markdown_summary(outcomes, known: dict) -> list:
@@ -159,11 +164,34 @@ def markdown_summary(outcomes, known: dict) -> list:
         statuses = " | ".join(p["status"][s]["status"] for s in sems)
         lines.append(f"| {p['name']} | {statuses} | {base} | {step or '-'} |")
     lines.append("")
+    lines += trust_lines(preds_of(doc))
     if doc["unchained_obligations"]:
         lines += ["Obligations of no chain: " + ", ".join(f"`{n}`" for n in doc["unchained_obligations"]) + ".", ""]
     if doc["chain_problems"]:
         lines += ["Chain problems:", ""] + [f"- {x}" for x in doc["chain_problems"]] + [""]
     return lines
+
+
+def preds_of(doc: dict) -> list:
+    """The predicates (:class:`~navfn_smt.smt.chains.Predicate`) a summary is about."""
+    names = {p["name"] for p in doc["predicates"]}
+    return [p for p in registry() if p.name in names]
+
+
+def trust_lines(preds) -> list:
+    """What the chains take without a machine check, counted: the trusted steps (argued or
+    tested), and each run-time condition once, with the predicates that state it."""
+    steps = sum(len(p.trusted) for p in preds)
+    conds: dict = {}
+    for p in preds:
+        for c in p.conditions:
+            conds.setdefault(c.name, (c, []))[1].append(p.name)
+    lines = [f"The chains take {steps} trusted steps (argued or tested, not machine-checked; each is listed under "
+             f"its predicate below) and {len(conds)} run-time conditions, hypotheses under which a conditional "
+             "status holds:", ""]
+    lines += [f"- **{c.name}** ({', '.join(names)}; float32 only)" if c.float32 else
+              f"- **{c.name}** ({', '.join(names)})" for c, names in conds.values()]
+    return lines + [""]
 
 
 def markdown_chain(name: str, outcomes, known: dict) -> list:
@@ -189,13 +217,21 @@ def markdown_chain(name: str, outcomes, known: dict) -> list:
                  for r in p["rests_on"]]
         lines += ["*Rests on:* " + ", ".join(rests) + ".", ""]
     if p["trusted"]:
-        lines += ["*Trusted: taken from the planner's control flow or from tests, not machine-checked (each says why):*", ""]
+        lines += ["*Trusted: argued from the planner's code or tested, not machine-checked (each says why):*", ""]
         lines += [f"- {t}" for t in p["trusted"]] + [""]
+    if p["conditions"]:
+        lines += ["*Conditions: run-time hypotheses of the claim, not proved:*", ""]
+        lines += [f"- **{c['name']}**: {c['text']}" for c in p["conditions"]] + [""]
     lines.append("*Status:* " + "; ".join(
         f"{s} **{p['status'][s]['status']}**" + (f" ({not_proved(p['status'][s])})" if not_proved(p["status"][s]) else "")
         for s in sems) + ".")
     lines.append("")
     still = [f"{s}: " + ", ".join(f"`{x}`" for x in p["status"][s]["open"]) + " undecided"
-             for s in sems if p["status"][s]["open"]] + list(p["open"])
-    lines += ["*Still open:*", ""] + ([f"- {x}" for x in still] if still else ["- nothing"]) + [""]
+             for s in sems if p["status"][s]["open"]]
+    beneath = sorted({t for s in sems for t in p["status"][s]["trusted"]} - {f"{p['name']}: {t}" for t in p["trusted"]})
+    if beneath:
+        owners = sorted({x.split(": ", 1)[0] for x in beneath})
+        lines += [f"*Trusted steps beneath it, of the predicates it rests on:* {len(beneath)} (of "
+                  + ", ".join(owners) + ").", ""]
+    lines += ["*Still open:*", ""] + ([f"- {x}" for x in still] if still else ["- no link undecided"]) + [""]
     return lines

@@ -6,12 +6,15 @@ establish it, in order: the base case, then the lemmas of the inductive step (fo
 predicate that is not an induction, the lemmas that give it).  A link is the name of an
 obligation declared for the predicate itself, or ``Owner.name`` for one borrowed from
 another predicate's chain.  What the argument takes from the planner's control flow
-without a solver is listed as *trusted*; stronger variants expected to fail, which show
-why a precondition is needed, are its *limits*; what no obligation covers is *open*.
+without a solver (argued or tested, not machine-checked) is listed as *trusted*; what must
+hold of the run for the argument to apply is a *condition* (:class:`Condition`: a hypothesis
+of the claim, checked at run time where it can be, never proved); stronger variants expected
+to fail, which show why a precondition is needed, are its *limits*.
 
 The chains are data, checked (:func:`check_chains`): every link names an obligation
 declared for the predicate it says, every obligation belongs to some chain.  A predicate's
-status in a semantics is derived from its links' verdicts (:func:`derive`).
+status in a semantics is derived from its links' verdicts (:func:`derive`) and carries the
+trusted steps and conditions that lie on its chain: ``proved`` alone means neither does.
 """
 
 from __future__ import annotations
@@ -21,6 +24,19 @@ from typing import Callable, Iterable, Optional
 
 # a predicate's status, best first; a chain takes the worst of its links
 STATUS_RANK = ("proved", "bounded", "open", "refuted")
+
+
+@dataclass(frozen=True)
+class Condition:
+    """A run-time condition: a hypothesis under which a chain's claim holds, stated where the
+    claim is; one object shared by every predicate that needs it."""
+
+    name: str  # short, as a status shows it: "conditional (potentials below 2**30)"
+    text: str  # what it says, where it is checked, and when it is argued to hold
+    float32: bool = False  # a hypothesis of the float32 semantics only (the reals need no bound)
+
+    def applies(self, semantics: str) -> bool:
+        return not self.float32 or semantics != "real"
 
 
 @dataclass(frozen=True)
@@ -34,8 +50,8 @@ class Predicate:
     lemmas: tuple = ()  # links of the inductive step (or the lemmas that give it), in order
     limits: tuple = ()  # own obligations expected to fail: where the chain's preconditions are needed
     rests_on: tuple = ()  # other predicates the argument needs whole
-    trusted: tuple = ()  # steps taken from the planner's control flow, not checked by a solver
-    open: tuple = ()  # what the chain leaves open beyond its links' verdicts
+    trusted: tuple = ()  # steps argued or tested, not checked by a solver
+    conditions: tuple = ()  # Condition objects: run-time hypotheses of the claim
     whole: tuple = ()  # own obligations no solver decides whole, which finer links of the chain decide instead
     assumes: tuple = ()  # own obligations stating a precondition the links assume: unless proved, the chain is open
 
@@ -156,17 +172,34 @@ def link_status(v: Optional[Verdict]) -> str:
     return "proved"
 
 
+def qualified(rank: str, trusted: int, conditions) -> str:
+    """A status as it is shown: ``proved`` or ``bounded`` only when no trusted step and no
+    condition lies on the chain; else ``proved (2 trusted steps)``, or ``conditional (bounded;
+    no push dropped; 1 trusted step)`` when a run-time condition does.  ``open`` and ``refuted``
+    are shown as they are."""
+    if rank not in ("proved", "bounded"):
+        return rank
+    steps = [f"{trusted} trusted step{'s' if trusted != 1 else ''}"] if trusted else []
+    if conditions:
+        return "conditional (" + "; ".join([rank] * (rank == "bounded") + list(conditions) + steps) + ")"
+    return f"{rank} ({steps[0]})" if steps else rank
+
+
 def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Optional[Verdict]],
            predicates: Iterable[Predicate] = ()) -> dict:
     """The predicate's status in one semantics from its links' verdicts (and those of the
-    predicates it rests on): ``proved`` only when every link is; ``bounded`` when the only
-    failures are refutations below which a bound holds; ``open`` when a link is unknown (or
-    was not checked) and none is refuted, or an assumption is not proved (``x (assumed)``);
-    ``refuted`` when a link has a counterexample.
-    Returns the status and, for each status but proved, the links behind it (``link (via
-    Owner)`` for those of a predicate it rests on)."""
+    predicates it rests on).  Its ``rank``: ``proved`` only when every link is; ``bounded`` when
+    the only failures are refutations below which a bound holds; ``open`` when a link is unknown
+    (or was not checked) and none is refuted, or an assumption is not proved (``x (assumed)``);
+    ``refuted`` when a link has a counterexample.  Its ``status``: the rank :func:`qualified` by
+    the trusted steps and conditions on the chain (its own and those of the predicates it rests
+    on, each once), listed as ``trusted`` (``Owner: step``) and ``conditions`` (names).
+    Returns those and, for each rank but proved, the links behind it (``link (via Owner)`` for
+    those of a predicate it rests on)."""
     preds = {p.name: p for p in predicates}
     by_status: dict = {s: [] for s in STATUS_RANK}
+    trusted = {(pred.name, t): None for t in pred.trusted}
+    conditions = {c.name: None for c in pred.conditions if c.applies(semantics)}
     for x in pred.links:
         v = verdict_of(split_link(x)[1], semantics)
         by_status[link_status(v)].append(x if v is None or not v.bound else f"{x} ({v.bound})")
@@ -178,8 +211,25 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
             sub = derive(preds[r], semantics, verdict_of, predicates)
             for s in STATUS_RANK[1:]:
                 by_status[s] += [f"{y} (via {r})" for y in sub[s]]
-    status = max((s for s in STATUS_RANK if by_status[s] or s == "proved"), key=STATUS_RANK.index)
-    return {"status": status, **{s: by_status[s] for s in STATUS_RANK[1:]}}
+            trusted.update(dict.fromkeys(tuple(t.split(": ", 1)) for t in sub["trusted"]))
+            conditions.update(dict.fromkeys(sub["conditions"]))
+    rank = max((s for s in STATUS_RANK if by_status[s] or s == "proved"), key=STATUS_RANK.index)
+    return {"status": qualified(rank, len(trusted), list(conditions)), "rank": rank,
+            "trusted": [f"{o}: {t}" for o, t in trusted], "conditions": list(conditions),
+            **{s: by_status[s] for s in STATUS_RANK[1:]}}
+
+
+def combined(derived: list) -> dict:
+    """Several predicates' derivations (:func:`derive`) as one status: the worst rank, qualified
+    by every trusted step and condition of any of them, each once (what an induction carried by
+    those predicates rests on)."""
+    if not derived:
+        return {"status": "open", "rank": "open", "trusted": [], "conditions": []}
+    rank = max((d["rank"] for d in derived), key=STATUS_RANK.index)
+    trusted = list(dict.fromkeys(t for d in derived for t in d["trusted"]))
+    conditions = list(dict.fromkeys(c for d in derived for c in d["conditions"]))
+    return {"status": qualified(rank, len(trusted), conditions), "rank": rank, "trusted": trusted,
+            "conditions": conditions}
 
 
 def declared_verdicts(obligations, splits=(), predicates=()) -> Callable[[str, str], Optional[Verdict]]:

@@ -34,11 +34,13 @@ def named(name) -> Fix:
 GUARANTEE = (
     "With both changes (the further propagation call and the descent), a start 4-connected to the goal "
     "through passable cells gets a path from the start to the goal, each point on a passable cell the wave "
-    "reached, provided that every potential stays below 2^30 (true on every map of fewer than 2^22 passable "
-    "cells), no push is dropped for want of buffer room (true when the goal's component has at most 10,000 "
-    "cells), the wave empties its buffers within the further call's nx*ny cycles, the descent fits in "
-    "calcPath's budget of n points, and the build computes in IEEE float32 as the x86-64, x86-64-v3 and "
-    "aarch64 builds checked here do. Strength: argued from machine-checked steps and inductions over arrays "
-    "of any size; tested on the suites; not bounded-checked where it acts: the bounded checks of the fixed "
-    "planner reach 6 interior cells, and NavFn's smallest failing map found has 9.")
+    "reached, under these run-time conditions: no push dropped (argued to hold when the goal's component has at "
+    "most 10,000 cells); potentials below 2**30 (argued to hold on every map of fewer than 2**22 passable "
+    "cells); push keys below 2**31 (which the bound on potentials gives on maps under 2**22 cells a side); the "
+    "further call's nx*ny cycles suffice; the descent fits calcPath's budget; costs as setCostmap makes them "
+    "(true of every one of its 256 inputs); and a build that computes in IEEE float32 as the x86-64, x86-64-v3 "
+    "and aarch64 builds checked here do. Strength: conditional, with 2 trusted steps (argued, not "
+    "machine-checked: docs/invariants.md); the rest machine-checked steps and inductions over arrays of any "
+    "size; tested on the suites; not bounded-checked where it acts: the bounded checks of the fixed planner "
+    "reach 6 interior cells, and NavFn's smallest failing map found has 9.")
 
