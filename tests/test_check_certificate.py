@@ -62,7 +62,7 @@ def test_start_reached_alone_records_flips_up_to_the_queued_start(cert):
     for key, _, log in doc["cases"]:
         case = C.case_of(key)
         inner = [k for k in B.interior(case.nx, case.ny) if k not in case.lethal]
-        for seed, bound, _, flips in log:
+        for seed, bound, _, flips, _ in log:
             D, _, sp, _ = B.run_of(doc["properties"])(case, dict(zip(inner, seed)), lo, hi, FPDomain)
             last = B.flippable(doc["properties"], D.branches, sp, lo)
             assert bound + len(flips) == last or (not flips and bound >= last)
@@ -91,6 +91,52 @@ def test_a_sat_flip_recorded_unsat_is_refused(cert, tmp_path):
         p = next(p for _, _, log in doc["cases"] for p in log if "s" in p[3])
         p[3] = p[3].replace("s", "u", 1)
     assert C.replay(_edit(cert, tmp_path / "c.gz", lie), order=FAST)["status"] == "refused"
+
+
+def test_the_branches_the_box_decided_are_recorded_and_asked(cert):
+    """Every path records the value of each branch its box decided (no flip was asked there), and
+    the replay asks a solver that each holds on the whole box."""
+    doc = C.read(cert)
+    assert doc["format"] == C.FORMAT
+    decided = [p[4] for _, _, log in doc["cases"] for p in log]
+    assert sum(map(len, decided)) > 0 and all(set(d) <= {"t", "f"} for d in decided)
+    got = C.replay(cert, order=FAST)
+    assert got["status"] == "replayed" and got["evidence"]["interval_decisions_asked"] == sum(map(len, decided))
+
+
+def _flip_a_decision(doc):
+    p = next(p for _, _, log in doc["cases"] for p in log if p[4])
+    p[4] = ("f" if p[4][0] == "t" else "t") + p[4][1:]
+
+
+def test_a_flipped_interval_decision_is_refused(cert, tmp_path):
+    """The mutation of #35's kind for the intervals: one recorded decision flipped, and the replay's
+    solver finds a map of the box where the recorded value is false (the seed itself)."""
+    got = C.replay(_edit(cert, tmp_path / "c.gz", _flip_a_decision), order=FAST)
+    assert got["status"] == "refused" and "the branches the box decided" in got["problems"][0], got["problems"]
+
+
+def test_a_missing_interval_decision_is_refused(cert, tmp_path):
+    def drop(doc):
+        p = next(p for _, _, log in doc["cases"] for p in log if p[4])
+        p[4] = p[4][1:]
+    got = C.replay(_edit(cert, tmp_path / "c.gz", drop), order=FAST)
+    assert got["status"] == "refused" and "branches decided by the box" in got["problems"][0], got["problems"]
+
+
+def test_a_certificate_of_format_1_replays_with_the_decisions_trusted(cert, tmp_path):
+    """Certificates written before the decisions were recorded keep their paths of four entries:
+    they replay as before, and the report says the box's decisions were not asked."""
+    def old(doc):
+        doc["format"] = C.FORMAT_1
+        for _, _, log in doc["cases"]:
+            for p in log:
+                p.pop()
+    got = C.replay(_edit(cert, tmp_path / "c.gz", old), order=FAST)
+    assert got["status"] == "replayed" and got["interval_decisions_recorded"] is False
+    assert "interval_decisions_asked" not in got["evidence"]
+    mixed = _edit(cert, tmp_path / "m.gz", lambda d: d.update(format=C.FORMAT_1))  # five entries under format 1
+    assert C.replay(mixed, order=FAST)["status"] == "refused"
 
 
 def test_a_missing_path_is_refused(cert, tmp_path):

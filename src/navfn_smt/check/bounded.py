@@ -533,7 +533,8 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
                 r.status, r.counterexample = "refuted", model
             elif status != "unsat" and r.status == "holds":
                 r.status, r.reason = "unknown", f"solver: {model}"
-        out.log.append([[conc[k] for k in inner], bound, marks, flips])
+        out.log.append([[conc[k] for k in inner], bound, marks, flips,
+                        "".join("t" if v else "f" for _, v in D.by_intervals)])
         if all(r.status == "refuted" for r in results.values()):
             break  # nothing left to prove in this case
         last = flippable(names, pc, sp, lo)

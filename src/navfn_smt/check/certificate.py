@@ -54,7 +54,9 @@ from . import bounded as B
 from .common import BATCH, PARALLEL_FROM, carried_at, carried_status, outside_decided, symbolic_domain
 from .common import replay as spec_replay
 
-FORMAT = "navfn-smt check certificate 1"
+FORMAT = "navfn-smt check certificate 2"  # each path also records the branches its box decided
+FORMAT_1 = "navfn-smt check certificate 1"  # written before: those branches not recorded, so trusted
+FORMATS = (FORMAT, FORMAT_1)
 SOURCES = ("spec/kernels.py", "spec/constants.py", "spec/numeric.py", "spec/extraction.py", "spec/fix.py",
            "spec/propagation.py", "spec/planner.py", "smt/domains.py", "check/encoding.py", "check/concolic.py")
 # ... and of check/bounded.py the functions that build a path's terms and its properties
@@ -154,7 +156,7 @@ def read(path) -> dict:
         raise NavfnInputError(f"{path}: no such certificate") from None
     except (OSError, ValueError, EOFError) as e:
         raise NavfnInputError(f"{path}: not a check certificate ({e})") from None
-    if not isinstance(doc, dict) or doc.get("format") != FORMAT:
+    if not isinstance(doc, dict) or doc.get("format") not in FORMATS:
         raise NavfnInputError(f"{path}: not a check certificate (format {doc.get('format') if isinstance(doc, dict) else None!r})")
     return doc
 
@@ -286,21 +288,25 @@ def _add(total: dict, part: dict) -> None:
             for s, n in v.items():
                 total[k][s] = total[k].get(s, 0) + n
         else:
-            total[k] += v
+            total[k] = total.get(k, 0) + v
 
 
-def _log_problem(log, cells: int, properties: int, lo: int, hi: int) -> Optional[str]:
+def _log_problem(log, cells: int, properties: int, lo: int, hi: int, recorded: bool = True) -> Optional[str]:
     """What is wrong with the shape of a case's path log, if anything: each path ``[seed, bound,
-    marks, flips]`` (a cost in ``lo..hi`` per passable cell, a branch index, a mark per property,
-    a mark per flip), one root (bound 0), first."""
+    marks, flips, decided]`` (a cost in ``lo..hi`` per passable cell, a branch index, a mark per
+    property, a mark per flip, the value ``t`` or ``f`` of each branch the box decided; without
+    ``decided`` when not ``recorded``: format 1), one root (bound 0), first."""
     if not isinstance(log, list):
         return f"its path log {type(log).__name__} is not a list of paths"
     if not log:
         return "no control path is recorded (the case has no root path)"
+    shape = "[seed, bound, marks, flips, decided]" if recorded else "[seed, bound, marks, flips]"
     for i, p in enumerate(log):
-        if not (isinstance(p, list) and len(p) == 4):
-            return f"path {i} is not [seed, bound, marks, flips]"
-        seed, bound, marks, flips = p
+        if not (isinstance(p, list) and len(p) == 4 + recorded):
+            return f"path {i} is not {shape}"
+        seed, bound, marks, flips = p[:4]
+        if recorded and not (isinstance(p[4], str) and set(p[4]) <= {"t", "f"}):
+            return f"path {i}'s decided branches {p[4]!r} are not a value t or f per branch"
         if not (isinstance(seed, list) and len(seed) == cells and all(_is_int(c) and lo <= c <= hi for c in seed)):
             return f"path {i}'s seed {seed!r} is not {cells} costs in {lo}..{hi}"
         if not (_is_int(bound) and bound >= 0):
@@ -349,9 +355,21 @@ def _marks_problem(names, marks: str, verdicts: dict, run: tuple, conc: dict, pl
     return None
 
 
+def _decided_problem(by_intervals: list, record: str, unsat: dict) -> Optional[str]:
+    """The branches the box decided on a path (``(condition, value)`` of the run) against the
+    certificate's record of their values (what is wrong, if anything); the query that they hold
+    on the whole box, as the record says, is added to ``unsat`` (its negation must be unsat)."""
+    if len(record) != len(by_intervals):
+        return f": it records {len(record)} branches decided by the box, and the run has {len(by_intervals)}"
+    if record:
+        held = [c if v == "t" else z3.Not(c) for (c, _), v in zip(by_intervals, record)]
+        unsat["the branches the box decided"] = [z3.Not(z3.And(held) if len(held) > 1 else held[0])]
+    return None
+
+
 def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, planner,
                verdicts: Optional[dict] = None, order: tuple = DEFAULT_SOLVERS, check_intervals: bool = False,
-               memo: Optional[dict] = None) -> dict:
+               memo: Optional[dict] = None, recorded: bool = True) -> dict:
     """One case's path log re-checked (the module docstring) as ``planner`` plans (a
     :class:`~navfn_smt.under_test.PlannerUnderTest`: its variant, in its arithmetic):
     ``{"problems": [...], "evidence": {...}, "witnesses": [properties refuted at some path's seed
@@ -368,13 +386,13 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, plann
         out["problems"].append(f"case {where}: {msg}")
         return out
 
-    wrong = _log_problem(log, len(inner), len(names), lo, hi)
+    wrong = _log_problem(log, len(inner), len(names), lo, hi, recorded)
     if wrong:
         return refuse(wrong)
     run = B.run_of(names)
     runs = []  # per path: (branches, box, variables)
     open_sat: dict = {}  # flip index -> paths whose flip there is recorded sat and has no child yet
-    for i, (seed, bound, marks, flips) in enumerate(log):
+    for i, (seed, bound, marks, flips, *decided) in enumerate(log):
         conc = dict(zip(inner, seed))
         D, costs, sp, ex = run(case, conc, lo, hi, symbolic_domain(planner.fp32_semantics()), planner.fix)
         variables = {k: costs[k].term for k in inner}
@@ -394,6 +412,11 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, plann
                 return refuse(f"{at}: its seed does not satisfy flip {j} of path {parent} (evaluated by Z3)")
             ev["sat_flips_witnessed"] += 1
         unsat = {}  # what the certificate says is unsat on this path: name -> conditions
+        if recorded:  # every branch the box decided, with the value recorded: box => each, asked
+            wrong = _decided_problem(D.by_intervals, decided[0], unsat)
+            if wrong:
+                return refuse(f"{at}{wrong}")
+            ev["interval_decisions_asked"] = ev.get("interval_decisions_asked", 0) + len(decided[0])
         wrong = _marks_problem(names, marks, verdicts, (D, case, costs, sp, ex), conc, planner, unsat, out,
                                check_intervals)
         if wrong:
@@ -527,17 +550,17 @@ def _case_entries(doc: dict, memo: Optional[dict] = None) -> tuple[list, list]:
 
 
 def _replay_job(args):
-    entries, names, verdicts, lo, hi, timeout, planner, order, check_intervals = args
-    return [check_case(case_of(key), names, lo, hi, log, timeout, planner, verdicts, order, check_intervals)
-            for key, _, log in entries]
+    entries, names, verdicts, lo, hi, timeout, planner, order, check_intervals, recorded = args
+    return [check_case(case_of(key), names, lo, hi, log, timeout, planner, verdicts, order, check_intervals,
+                       recorded=recorded) for key, _, log in entries]
 
 
 def _transcript_job(args):
-    entries, names, verdicts, lo, hi, planner = args
+    entries, names, verdicts, lo, hi, planner, recorded = args
     out = []
     for key, _, log in entries:
         _ASKED.clear()
-        got = check_case(case_of(key), names, lo, hi, log, 1.0, planner, verdicts, TRANSCRIBE)
+        got = check_case(case_of(key), names, lo, hi, log, 1.0, planner, verdicts, TRANSCRIBE, recorded=recorded)
         out.append([key, list(_ASKED), got])
     return out
 
@@ -565,7 +588,7 @@ def transcript(doc: dict, jobs=1, progress=None) -> dict:
     h.update(json.dumps([problems, induction_problems(doc),
                          [[case_key(c), w] for c, w, _ in entries]]).encode())
     lo, hi = doc["costs"]
-    args = (doc["properties"], doc["verdicts"], lo, hi, planner_of(doc))
+    args = (doc["properties"], doc["verdicts"], lo, hi, planner_of(doc), doc["format"] == FORMAT)
     work = [(tuple([case_key(c), w, log] for c, w, log in entries[k:k + BATCH]), *args)
             for k in range(0, len(entries), BATCH)]
     done = queries = 0
@@ -677,7 +700,8 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
     lo, hi = doc["costs"]
     names, verdicts = doc["properties"], doc["verdicts"]
     planner = planner_of(doc)
-    args = (names, verdicts, lo, hi, timeout, planner, order, check_intervals)
+    recorded = doc["format"] == FORMAT
+    args = (names, verdicts, lo, hi, timeout, planner, order, check_intervals, recorded)
     evidence = new_evidence()
     witnessed: set = set()
     problems = []
@@ -690,7 +714,7 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
                             order, check_intervals])
             if k not in known:
                 known[k] = check_case(case, names, lo, hi, log, timeout, planner, verdicts, order,
-                                      check_intervals, unsat)
+                                      check_intervals, unsat, recorded)
             results.append(known[k])
             if known[k]["problems"]:
                 break
@@ -711,7 +735,7 @@ def replay(path, jobs=1, timeout: float = 60.0, progress=None, order: tuple = DE
         problems += _witness_problems(doc, witnessed)
     got = {**head, "status": "refused" if problems else "replayed", "problems": problems, "solvers": list(order),
            "cases": len(entries), "paths": sum(len(log) for _, _, log in entries), "evidence": evidence,
-           "trusted": _trusted(doc, evidence, whole)}
+           "trusted": _trusted(doc, evidence, whole), "interval_decisions_recorded": recorded}
     if part != (1, 1):  # the witnesses are judged when the parts are combined
         got.update(part=list(part), case_range=[first, last], witnessed=sorted(witnessed))
     return got

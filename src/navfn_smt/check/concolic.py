@@ -67,13 +67,16 @@ class ConcolicDomain:
     """The operations of the concrete domain over :class:`V` values (see the module docstring).
 
     ``S`` is the symbolic domain that builds the terms.  ``branches`` collects the recorded
-    branch terms of the run, in program order."""
+    branch terms of the run, in program order; ``by_intervals`` the branches the box decided
+    (no flip possible), each once, as ``(condition term, its value on the whole box)``, in program
+    order: what a certificate records and its replay asks a solver again."""
 
     name = "concolic"
 
     def __init__(self, S):
         self.S = S
         self.branches: list = []
+        self.by_intervals: list = []
         self._seen: set = set()
         self.assumptions = S.assumptions
         self._int32 = C.with_arithmetic(getattr(S, "arith", None)).to_int32  # the build's (int)
@@ -314,6 +317,9 @@ class ConcolicDomain:
             if key not in self._seen:
                 self._seen.add(key)
                 self.branches.append(t)
+        elif -c.term.get_id() - 1 not in self._seen:  # a negative key: a decided condition, once
+            self._seen.add(-c.term.get_id() - 1)
+            self.by_intervals.append((c.term, bool(c.lo)))
         return bool(c.conc)
 
     def ite(self, c, a, b):
