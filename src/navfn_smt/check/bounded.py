@@ -480,6 +480,17 @@ def takes_flip(branches: list, parent: list, j: int) -> bool:
     return (z3.is_not(a) and a.arg(0).eq(b)) or (z3.is_not(b) and b.arg(0).eq(a))
 
 
+def recording(make_domain: Callable) -> Callable:
+    """``make_domain`` whose domains have the concolic run keep the branches the box decided
+    (:attr:`~.concolic.ConcolicDomain.by_intervals`): what a path's log records, and a replay of
+    a certificate that records them asks again."""
+    def make():
+        S = make_domain()
+        S.record_intervals = True
+        return S
+    return make
+
+
 def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout: float = 60.0,
             solve=solve_bitwuzla, initial: Optional[dict] = None,
             exhaustive_limit: int = EXHAUSTIVE_LIMIT, fix: Fix = AS_SHIPPED,
@@ -498,6 +509,7 @@ def explore(case: Case, names, lo: int, hi: int, make_domain: Callable, timeout:
     out = CaseResult(case, results)
     todo = [(initial or {k: lo for k in inner}, 0, None)]
     run = run_of(names)
+    make_domain = recording(make_domain)
     cores = UnsatCores()
     sampled = Samples(lo, hi)
     while todo:

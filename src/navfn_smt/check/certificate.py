@@ -391,10 +391,12 @@ def check_case(case: B.Case, names, lo: int, hi: int, log, timeout: float, plann
         return refuse(wrong)
     run = B.run_of(names)
     runs = []  # per path: (branches, box, variables)
+    make = symbolic_domain(planner.fp32_semantics())
+    make = B.recording(make) if recorded else make  # format 1: the run as it was when the certificate was written
     open_sat: dict = {}  # flip index -> paths whose flip there is recorded sat and has no child yet
     for i, (seed, bound, marks, flips, *decided) in enumerate(log):
         conc = dict(zip(inner, seed))
-        D, costs, sp, ex = run(case, conc, lo, hi, symbolic_domain(planner.fp32_semantics()), planner.fix)
+        D, costs, sp, ex = run(case, conc, lo, hi, make, planner.fix)
         variables = {k: costs[k].term for k in inner}
         box = [z3.And(z3.UGE(v, lo), z3.ULE(v, hi)) for v in variables.values()] + list(D.assumptions)
         pc = D.branches

@@ -67,16 +67,18 @@ class ConcolicDomain:
     """The operations of the concrete domain over :class:`V` values (see the module docstring).
 
     ``S`` is the symbolic domain that builds the terms.  ``branches`` collects the recorded
-    branch terms of the run, in program order; ``by_intervals`` the branches the box decided
-    (no flip possible), each once, as ``(condition term, its value on the whole box)``, in program
-    order: what a certificate records and its replay asks a solver again."""
+    branch terms of the run, in program order; ``by_intervals``, when ``S.record_intervals`` is
+    set (None otherwise: no term is kept, so the run builds its queries exactly as before), the
+    branches the box decided (no flip possible), each once, as ``(condition term, its value on
+    the whole box)``, in program order: what a certificate records and its replay asks a solver
+    again."""
 
     name = "concolic"
 
     def __init__(self, S):
         self.S = S
         self.branches: list = []
-        self.by_intervals: list = []
+        self.by_intervals: Optional[list] = [] if getattr(S, "record_intervals", False) else None
         self._seen: set = set()
         self.assumptions = S.assumptions
         self._int32 = C.with_arithmetic(getattr(S, "arith", None)).to_int32  # the build's (int)
@@ -317,7 +319,7 @@ class ConcolicDomain:
             if key not in self._seen:
                 self._seen.add(key)
                 self.branches.append(t)
-        elif -c.term.get_id() - 1 not in self._seen:  # a negative key: a decided condition, once
+        elif self.by_intervals is not None and -c.term.get_id() - 1 not in self._seen:  # decided, once
             self._seen.add(-c.term.get_id() - 1)
             self.by_intervals.append((c.term, bool(c.lo)))
         return bool(c.conc)
