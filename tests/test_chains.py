@@ -14,7 +14,7 @@ from navfn_smt.smt.runner import default_proof_files
 pytestmark = pytest.mark.fast
 
 # the status each predicate's chain gets from the verdicts its obligations are expected to get
-BELOW = "potentials below 2**30"
+BELOW = "potentials below 2^30"
 COSTS = "costs as setCostmap makes them"
 EXPECTED = {
     "PositionSafe": ("proved", f"conditional ({BELOW})"),
@@ -32,17 +32,17 @@ EXPECTED = {
     "DescentPath": (f"conditional (the descent fits calcPath's budget; {COSTS}; 1 trusted step)",
                     f"conditional (bounded; {BELOW}; the descent fits calcPath's budget; {COSTS}; 1 trusted step)"),
     "ConnectedStartReached": (
-        "conditional (no push dropped; the further call's nx*ny cycles suffice; push keys below 2**31; "
+        "conditional (no push dropped; the further call's nx*ny cycles suffice; push keys below 2^31; "
         f"{COSTS}; 1 trusted step)",
-        f"conditional (no push dropped; {BELOW}; the further call's nx*ny cycles suffice; push keys below 2**31; "
+        f"conditional (no push dropped; {BELOW}; the further call's nx*ny cycles suffice; push keys below 2^31; "
         f"{COSTS}; 1 trusted step)"),
     "ReachedWithinComponent": ("proved (2 trusted steps)", f"conditional ({BELOW}; 2 trusted steps)"),
     "QueuedStartReached": ("proved (2 trusted steps)", f"conditional ({BELOW}; 2 trusted steps)"),
     "PositionSafeAndProgressInductive": ("proved", f"conditional ({BELOW})"),
     "BuffersInductive": ("proved", "proved"),
     "ReachedAndBufferedInductive": ("proved", f"conditional ({BELOW})"),
-    "FrontierInductive": (f"conditional (push keys below 2**31; {COSTS})",
-                          f"conditional (push keys below 2**31; {COSTS}; {BELOW})"),
+    "FrontierInductive": (f"conditional (push keys below 2^31; {COSTS})",
+                          f"conditional (push keys below 2^31; {COSTS}; {BELOW})"),
     "DescentInductive": ("proved", f"conditional ({BELOW})"),
 }
 

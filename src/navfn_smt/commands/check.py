@@ -114,7 +114,8 @@ def cmd_check(args) -> int:
         for c in ind.get("conditions", []) if ind["status"] != "refuted" else []:
             print(f"  condition: {c}")
         if ind.get("trusted") and ind["status"] != "refuted":
-            print(f"  trusted: {len(ind['trusted'])} steps argued or tested, not machine-checked "
+            n = len(ind["trusted"])
+            print(f"  trusted: {n} step{'s' if n != 1 else ''} argued or tested, not machine-checked "
                   "(docs/invariants.md lists them): " + "; ".join(t.split(": ", 1)[0] for t in ind["trusted"]))
         for k in ind["contradicted"]:
             print(f"CONTRADICTION: {k} decided against what is known")

@@ -18,12 +18,12 @@ from ..smt.chains import Condition, Predicate
 # The run-time conditions: hypotheses of the claims below, each stated once, shown in a status as
 # "conditional (NAME)" and in the fix's guarantee (spec/fixes.py GUARANTEE) where it rests on them
 BELOW_2_30 = Condition(
-    "potentials below 2**30",
+    "potentials below 2^30",
     "every finite potential stays below 2**30 in float32: the largest finite potential of the run, which the "
     "spec reports; argued to hold on every map of fewer than 2**22 = 4,194,304 passable cells, every 2000 x 2000 "
     "map (FallbackPath's bound, a trusted step), and a longer way can exceed it", float32=True)
 PUSH_KEY_BELOW_2_31 = Condition(
-    "push keys below 2**31",
+    "push keys below 2^31",
     "a changed cell's push key (its potential, plus A*'s heuristic) below 2**31, so that its (int) is the "
     "truncation: true when the potentials are below 2**30 and the heuristic below 2**30 (maps under 2**22 cells "
     "a side)")
@@ -43,7 +43,7 @@ CYCLES_SUFFICE = Condition(
     "the further call's nx*ny cycles suffice",
     "the wave empties its buffers or reaches the start within the further call's cap of nx*ny cycles: each cycle "
     "updates at least one buffered cell, but a cell can be buffered more than once, so nx*ny cycles are not shown "
-    "to suffice; the bounded checks explore it on every map of their sizes, and the suites never exceed it")
+    "to suffice; the bounded checks explore it on every map of their sizes")
 DESCENT_FITS = Condition(
     "the descent fits calcPath's budget",
     "the descent's walk fits in calcPath's budget of n points (4 * nx, or max_cycles_factor times the larger side "

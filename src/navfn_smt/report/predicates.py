@@ -189,8 +189,8 @@ def trust_lines(preds) -> list:
     lines = [f"The chains take {steps} trusted steps (argued or tested, not machine-checked; each is listed under "
              f"its predicate below) and {len(conds)} run-time conditions, hypotheses under which a conditional "
              "status holds:", ""]
-    lines += [f"- **{c.name}** ({', '.join(names)}; float32 only)" if c.float32 else
-              f"- **{c.name}** ({', '.join(names)})" for c, names in conds.values()]
+    lines += [f"- *{c.name}* ({', '.join(names)}; float32 only)" if c.float32 else
+              f"- *{c.name}* ({', '.join(names)})" for c, names in conds.values()]
     return lines + [""]
 
 
@@ -221,7 +221,7 @@ def markdown_chain(name: str, outcomes, known: dict) -> list:
         lines += [f"- {t}" for t in p["trusted"]] + [""]
     if p["conditions"]:
         lines += ["*Conditions: run-time hypotheses of the claim, not proved:*", ""]
-        lines += [f"- **{c['name']}**: {c['text']}" for c in p["conditions"]] + [""]
+        lines += [f"- *{c['name']}*: {c['text']}" for c in p["conditions"]] + [""]
     lines.append("*Status:* " + "; ".join(
         f"{s} **{p['status'][s]['status']}**" + (f" ({not_proved(p['status'][s])})" if not_proved(p["status"][s]) else "")
         for s in sems) + ".")
