@@ -76,10 +76,12 @@ def test_the_command_reports_and_exits_1_on_a_failure(tmp_path, capsys):
     # with the fix, plugin-complete holds for every size by the two predicates, under their run-time
     # conditions (below Progress's bound, the descent within calcPath's budget, ...), each said
     out = capsys.readouterr().out
-    assert ("plugin-complete (fixed): every costmap size by induction, under 5 run-time conditions: bounded "
-            "(DescentPath bounded, ConnectedStartReached proved)") in out
-    assert "  condition: that the walk fits in n points is a run-time condition" in out
-    assert doc["every_size_by_induction_fixed"]["plugin-complete"]["status"] == "bounded"
+    assert ("plugin-complete (fixed): every costmap size by induction, under 6 run-time conditions: conditional "
+            "(bounded; potentials below 2^30; the descent fits calcPath's budget;") in out
+    assert "; 5 trusted steps) (DescentPath conditional (bounded;" in out  # 2 of the predicates', 3 of the plugin's
+    assert "  condition: the descent fits calcPath's budget: " in out
+    got = doc["every_size_by_induction_fixed"]["plugin-complete"]
+    assert got["status"].startswith("conditional (bounded; ") and len(got["trusted"]) == 5
     assert main(["plugin-check", "--values", "0,300"]) == 2
     assert "costmap values 0..255" in capsys.readouterr().err
     assert main(["plugin-check", "--max-size", "6", "6"]) == 2
