@@ -127,7 +127,7 @@ def induction_known(name: str) -> Optional[dict]:
         return None
     from ..proofs import PREDICATES
     from ..smt.chains import combined, declared_verdicts, derive, qualified
-    from .runner import _chain_conditions
+    from .runner import chain_conditions
     from ..smt.obligation import load_obligations
     from ..smt.runner import default_proof_files
     from ..smt.split import load_splits
@@ -141,7 +141,7 @@ def induction_known(name: str) -> Optional[dict]:
     return {"status": qualified(whole["rank"], len(whole["trusted"]) + len(trusted), whole["conditions"]),
             "predicates": {n: d["status"] for n, d in derived.items()},
             "trusted": whole["trusted"] + trusted,
-            "conditions": [f"{c.name}: {c.text}" for c in _chain_conditions(carriers, "fp32")]}
+            "conditions": [f"{c.name}: {c.text}" for c in chain_conditions(carriers, "fp32")]}
 
 
 PLUGIN_PROPERTIES = {p.name: p for p in (

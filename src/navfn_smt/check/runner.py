@@ -39,11 +39,11 @@ def conditions(name: str, planner: PlannerUnderTest = ORIGINAL) -> list[str]:
     """The run-time conditions under which an inductive property's every-size verdict holds, in
     the float32 semantics of ``planner``: those on the chains of the predicates that carry it
     (their own and those of the predicates they rest on), each once, as ``name: text``."""
-    return [f"{c.name}: {c.text}" for c in _chain_conditions(inductive(planner).get(name, ()),
+    return [f"{c.name}: {c.text}" for c in chain_conditions(inductive(planner).get(name, ()),
                                                              planner.fp32_semantics())]
 
 
-def _chain_conditions(carriers, semantics: str) -> list:
+def chain_conditions(carriers, semantics: str) -> list:
     """The :class:`~navfn_smt.smt.chains.Condition` objects on the chains of ``carriers``, once each."""
     from ..proofs import PREDICATES
 
