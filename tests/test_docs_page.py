@@ -88,6 +88,12 @@ def test_every_trusted_step_is_on_the_page_and_the_docs_count_them_as_the_code_d
     fix = re.findall(r"every trusted step \((\d+) in all", (REPO / "docs" / "fix.md").read_text())
     proofs = re.findall(r"steps still trusted \((\d+)\)", (REPO / "docs" / "proofs.md").read_text())
     assert fix and proofs and {int(n) for n in fix + proofs} == {len(steps)}
+    # the page's count line: trusted steps and run-time conditions, each condition once, as the code has them
+    conditions = {c.name: c for p in PREDICATES for c in p.conditions}
+    counts = re.findall(r"The chains take (\d+) trusted steps .*? and (\d+) run-time conditions", text)
+    assert counts == [(str(len(steps)), str(len(conditions)))]
+    for name in conditions:
+        assert f"- *{name}* (" in text, name
 
 
 @pytest.mark.fast

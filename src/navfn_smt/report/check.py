@@ -72,6 +72,11 @@ def replay_evidence(got: dict) -> list[str]:
              f"paths cut by QueuedStartReached: {tr['paths_cut_by_queued_start']}; cases decided by the reduction "
              f"(ReachedWithinComponent): {tr['cases_by_reduction']}"
              + (f"; by induction: {', '.join(tr['by_induction'])}" if tr["by_induction"] else "")]
+    if got.get("interval_decisions_recorded") is False:
+        lines.append("branches the box decided: not recorded (a certificate of format 1): trusted, not counted")
+    elif "interval_decisions_asked" in ev:
+        lines.append(f"branches the box decided: {ev['interval_decisions_asked']} recorded, each asked of the solver "
+                     "(box => branch, with the path's other unsats)")
     return lines
 
 
