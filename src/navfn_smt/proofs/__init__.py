@@ -43,7 +43,9 @@ CYCLES_SUFFICE = Condition(
     "the further call's nx*ny cycles suffice",
     "the wave empties its buffers or reaches the start within the further call's cap of nx*ny cycles: each cycle "
     "updates at least one buffered cell, but a cell can be buffered more than once, so nx*ny cycles are not shown "
-    "to suffice; the bounded checks explore it on every map of their sizes")
+    "to suffice; the bounded checks explore it on every map of their sizes, and benchmarks/further_call_cycles.py "
+    "samples generated maps (tested, not proved: on 3,575 runs of 20x20, 60x60 and 120x120 maps of every category "
+    "the further call used at most 42% of its cap, and never left a joined start unreached)")
 DESCENT_FITS = Condition(
     "the descent fits calcPath's budget",
     "the descent's walk fits in calcPath's budget of n points (4 * nx, or max_cycles_factor times the larger side "
