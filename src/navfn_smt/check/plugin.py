@@ -141,7 +141,7 @@ def induction_known(name: str) -> Optional[dict]:
     return {"status": qualified(whole["rank"], len(whole["trusted"]) + len(trusted), whole["conditions"]),
             "predicates": {n: d["status"] for n, d in derived.items()},
             "trusted": whole["trusted"] + trusted,
-            "conditions": [f"{c.name}: {c.text}" for c in chain_conditions(carriers, "fp32")]}
+            "conditions": chain_conditions(carriers, "fp32")}
 
 
 PLUGIN_PROPERTIES = {p.name: p for p in (

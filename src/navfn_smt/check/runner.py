@@ -39,21 +39,17 @@ def conditions(name: str, planner: PlannerUnderTest = ORIGINAL) -> list[str]:
     """The run-time conditions under which an inductive property's every-size verdict holds, in
     the float32 semantics of ``planner``: those on the chains of the predicates that carry it
     (their own and those of the predicates they rest on), each once, as ``name: text``."""
-    return [f"{c.name}: {c.text}" for c in chain_conditions(inductive(planner).get(name, ()),
-                                                             planner.fp32_semantics())]
+    return chain_conditions(inductive(planner).get(name, ()), planner.fp32_semantics())
 
 
-def chain_conditions(carriers, semantics: str) -> list:
-    """The :class:`~navfn_smt.smt.chains.Condition` objects on the chains of ``carriers``, once each."""
+def chain_conditions(carriers, semantics: str) -> list[str]:
+    """The run-time conditions on the chains of the predicates named ``carriers`` in ``semantics``
+    (:func:`~navfn_smt.smt.chains.beneath`), once each, as ``name: text``."""
     from ..proofs import PREDICATES
+    from ..smt.chains import beneath
 
-    preds = {p.name: p for p in PREDICATES}
-    seen, todo = {}, list(carriers)
-    while todo:
-        p = preds[todo.pop(0)]
-        seen.update({c.name: c for c in p.conditions if c.applies(semantics) and c.name not in seen})
-        todo += [r for r in p.rests_on if r in preds]
-    return list(seen.values())
+    _, conds = beneath([p for p in PREDICATES if p.name in carriers], semantics, PREDICATES)
+    return [f"{c.name}: {c.text}" for c in conds]
 
 # ... and on a narrow size, NavFn as shipped: complete, by FallbackPath (.common.INDUCTION_NARROW,
 # carried_at: shared with a certificate's replay)

@@ -185,6 +185,29 @@ def qualified(rank: str, trusted: int, conditions) -> str:
     return f"{rank} ({steps[0]})" if steps else rank
 
 
+def beneath(preds: Iterable[Predicate], semantics: str, predicates: Iterable[Predicate] = ()) -> tuple[list, list]:
+    """What lies on the chains of ``preds`` beside their links: ``(trusted, conditions)``, the
+    trusted steps as ``(owner, step)`` and the :class:`Condition` objects that apply in
+    ``semantics``, of each predicate and of those it rests on (among ``predicates``), depth
+    first, each once."""
+    by_name = {p.name: p for p in predicates}
+    trusted: dict = {}
+    conditions: dict = {}
+
+    def visit(p):
+        trusted.update(dict.fromkeys((p.name, t) for t in p.trusted))
+        for c in p.conditions:
+            if c.applies(semantics):
+                conditions.setdefault(c.name, c)
+        for r in p.rests_on:
+            if r in by_name:
+                visit(by_name[r])
+
+    for p in preds:
+        visit(p)
+    return list(trusted), list(conditions.values())
+
+
 def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Optional[Verdict]],
            predicates: Iterable[Predicate] = ()) -> dict:
     """The predicate's status in one semantics from its links' verdicts (and those of the
@@ -198,8 +221,6 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
     those of a predicate it rests on)."""
     preds = {p.name: p for p in predicates}
     by_status: dict = {s: [] for s in STATUS_RANK}
-    trusted = {(pred.name, t): None for t in pred.trusted}
-    conditions = {c.name: None for c in pred.conditions if c.applies(semantics)}
     for x in pred.links:
         v = verdict_of(split_link(x)[1], semantics)
         by_status[link_status(v)].append(x if v is None or not v.bound else f"{x} ({v.bound})")
@@ -211,11 +232,10 @@ def derive(pred: Predicate, semantics: str, verdict_of: Callable[[str, str], Opt
             sub = derive(preds[r], semantics, verdict_of, predicates)
             for s in STATUS_RANK[1:]:
                 by_status[s] += [f"{y} (via {r})" for y in sub[s]]
-            trusted.update(dict.fromkeys(tuple(t.split(": ", 1)) for t in sub["trusted"]))
-            conditions.update(dict.fromkeys(sub["conditions"]))
     rank = max((s for s in STATUS_RANK if by_status[s] or s == "proved"), key=STATUS_RANK.index)
-    return {"status": qualified(rank, len(trusted), list(conditions)), "rank": rank,
-            "trusted": [f"{o}: {t}" for o, t in trusted], "conditions": list(conditions),
+    trusted, conditions = beneath([pred], semantics, preds.values())
+    return {"status": qualified(rank, len(trusted), [c.name for c in conditions]), "rank": rank,
+            "trusted": [f"{o}: {t}" for o, t in trusted], "conditions": [c.name for c in conditions],
             **{s: by_status[s] for s in STATUS_RANK[1:]}}
 
 
