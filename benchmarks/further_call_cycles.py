@@ -26,6 +26,7 @@ from navfn_smt.maps.regions import reaches_all, regions
 from navfn_smt.spec.constants import COST_OBS
 from navfn_smt.spec.fix import FIX, extra_cycles
 from navfn_smt.spec.planner import plan
+from navfn_smt.spec.propagation import cycle_limit
 
 
 def main() -> int:
@@ -52,8 +53,8 @@ def main() -> int:
                 start, goal, astar = (int(sx), int(sy)), (int(gx), int(gy)), bool(k % 2)
                 r = plan(costs, start, goal, astar, fix=FIX, record_trace=False)
                 runs += 1
-                used = r.cycles - max(nx * ny // 20, nx + ny)
-                further += used > 0
+                used = r.cycles - cycle_limit(nx, ny)  # past the first call's cap
+                further += "propagation" in r.extra.get("fix", [])
                 joined = bool(reaches_all(regions(costs), np.array([[*start, *goal]]))[0])
                 capped_unreached += joined and not r.start_reached
                 share = max(used, 0) / extra_cycles(nx, ny)
