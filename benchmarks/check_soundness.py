@@ -80,6 +80,10 @@ def main() -> int:
             for n in names:
                 if got.failures[n]:
                     print(f"  UNSOUND: {n} proved, refuted by {got.first[n]}")
+    if not rows:
+        print(f"check_soundness: no size of at most {a.max_cells} cells is proved by a report in {a.reports}: "
+              "nothing swept", file=sys.stderr)
+        return 1
     if a.json:
         a.json.write_text(json.dumps({"costs": list(COSTS), "sizes": rows}, indent=1) + "\n")
     return 1 if bad else 0

@@ -65,6 +65,9 @@ def main() -> int:
            "further_call_ran": further, "capped_unreached": capped_unreached, "worst": worst,
            "seconds": round(time.perf_counter() - t0, 1)}
     print(json.dumps(doc))
+    if not runs:
+        print("further_call_cycles: no map was planned (--maps 0, or no generated map with two passable cells)", file=sys.stderr)
+        return 1
     if a.json:
         a.json.write_text(json.dumps(doc, indent=1) + "\n")
     return 1 if capped_unreached else 0

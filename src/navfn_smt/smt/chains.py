@@ -31,7 +31,7 @@ class Condition:
     """A run-time condition: a hypothesis under which a chain's claim holds, stated where the
     claim is; one object shared by every predicate that needs it."""
 
-    name: str  # short, as a status shows it: "conditional (potentials below 2**30)"
+    name: str  # short, as a status shows it: "conditional (potentials below 2^30)"
     text: str  # what it says, where it is checked, and when it is argued to hold
     float32: bool = False  # a hypothesis of the float32 semantics only (the reals need no bound)
 
